@@ -1,0 +1,115 @@
+// build_scene.cpp: the builder's data flow for one input file (DESIGN.md):
+// load + validate -> repair -> Catmull-Clark N levels -> DAG -> layout. Sizes are checked before any
+// subdivision so that a request too large for 32-bit indices is an error, not an out-of-memory.
+#include "build_scene.h"
+
+#include <chrono>
+
+#include "layout.h"
+
+namespace vgeo {
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void add(RepairReport& sum, const RepairReport& r) {
+  sum.weldedVertices += r.weldedVertices;
+  sum.degenerateFaces += r.degenerateFaces;
+  sum.duplicateFaces += r.duplicateFaces;
+  sum.nonManifoldEdges += r.nonManifoldEdges;
+  sum.splitVertices += r.splitVertices;
+  sum.boundaryEdges += r.boundaryEdges;
+  sum.unusedVertices += r.unusedVertices;
+}
+
+// Vertices and triangles after `levels` rounds, exactly: V' = V + E + F, E' = 2E + C, F' = C, C' = 4C.
+void predictSize(const PolygonMesh& mesh, size_t boundaryEdges, int levels, double& vertices, double& triangles) {
+  double v = double(mesh.positions.size()), c = double(mesh.faceVertices.size()), f = double(mesh.faceCount());
+  double e = (c + double(boundaryEdges)) / 2.0;
+  for (int l = 0; l < levels; l++) {
+    double v2 = v + e + f, e2 = 2.0 * e + c, f2 = c, c2 = 4.0 * c;
+    v = v2, e = e2, f = f2, c = c2;
+  }
+  vertices = v;
+  triangles = levels > 0 ? 2.0 * f : double(mesh.triangleCount());
+}
+
+}  // namespace
+
+VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, SceneBuildStats& stats) {
+  auto start = std::chrono::steady_clock::now();
+  SourceScene scene = loadMeshFile(path);
+  stats.loadSeconds = secondsSince(start);
+  if (options.subdivisionLevels < 0) throw InputError(path, "--subdiv must be >= 0");
+
+  std::vector<PolygonMesh> leaves(scene.meshes.size());
+  std::vector<bool> closed(scene.meshes.size());
+  for (size_t m = 0; m < scene.meshes.size(); m++) {
+    PolygonMesh& mesh = scene.meshes[m];
+    stats.inputTriangles += mesh.triangleCount();
+    const std::string where = scene.meshes.size() > 1 ? path + " (mesh '" + scene.meshNames[m] + "')" : path;
+    RepairReport report = repairMesh(mesh, where);
+    add(stats.repair, report);
+    closed[m] = report.boundaryEdges == 0;
+    double vertices = 0, triangles = 0;
+    predictSize(mesh, report.boundaryEdges, options.subdivisionLevels, vertices, triangles);
+    // Cluster triangles over all levels (~2x the leaves) and vertices must stay addressable by uint32.
+    if (vertices > double(UINT32_MAX) || triangles * 2.0 > double(INT32_MAX))
+      throw InputError(where, "too large for the format's 32-bit indices: --subdiv " + std::to_string(options.subdivisionLevels) +
+                                  " would make " + std::to_string(uint64_t(triangles)) + " triangles over " +
+                                  std::to_string(uint64_t(vertices)) + " vertices (limit about 1 billion triangles)");
+  }
+  auto subdivideStart = std::chrono::steady_clock::now();
+  for (size_t m = 0; m < scene.meshes.size(); m++) {
+    leaves[m] = std::move(scene.meshes[m]);
+    for (int l = 0; l < options.subdivisionLevels; l++) {
+      if (options.progress) options.progress(0.0, "subdividing");
+      leaves[m] = subdivideCatmullClark(leaves[m]);
+    }
+    fanLargeFaces(leaves[m]);
+    stats.leafTriangles += leaves[m].triangleCount();
+  }
+  stats.subdivideSeconds = secondsSince(subdivideStart);
+
+  auto buildStart = std::chrono::steady_clock::now();
+  VgeoData data;
+  for (size_t m = 0; m < leaves.size(); m++) {
+    BuildOptions bo;
+    bo.threads = options.threads;
+    if (options.progress)
+      bo.progress = [&, m](double f, const char* stage) { options.progress((double(m) + f) / double(leaves.size()), stage); };
+    Dag dag = buildDag(leaves[m], bo);
+    appendGeometry(data, dag, leaves[m], closed[m]);
+    stats.clusters += dag.clusters.size();
+    stats.leafClusters += dag.levelClusters[0];
+    for (const auto& c : dag.clusters) stats.clusterTriangles += c.indices.size() / 3;
+    stats.levels = std::max<uint32_t>(stats.levels, uint32_t(dag.levelClusters.size()));
+    stats.levelClusters.resize(stats.levels, 0);
+    stats.levelTriangles.resize(stats.levels, 0);
+    for (size_t l = 0; l < dag.levelClusters.size(); l++) {
+      stats.levelClusters[l] += dag.levelClusters[l];
+      stats.levelTriangles[l] += dag.levelTriangles[l];
+    }
+    stats.rootClusters += dag.rootClusters;
+    stats.relaxedGroups += dag.relaxedGroups;
+    stats.stuckGroups += dag.stuckGroups;
+    leaves[m] = PolygonMesh();  // free as we go: peak memory is one mesh's build
+  }
+  stats.buildSeconds = secondsSince(buildStart);
+  for (const SourceInstance& inst : scene.instances) {
+    shaderio::Instance out{};
+    glm::mat4 t = glm::transpose(inst.transform);  // rows of the 3x4 part
+    out.row0 = t[0];
+    out.row1 = t[1];
+    out.row2 = t[2];
+    out.geometry = inst.mesh;
+    data.instances.push_back(out);
+  }
+  stats.geometries = uint32_t(data.geometries.size());
+  stats.instances = uint32_t(data.instances.size());
+  return data;
+}
+
+}  // namespace vgeo

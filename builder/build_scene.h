@@ -1,0 +1,41 @@
+// build_scene.h: the whole builder, from a mesh file to the .vgeo arrays (build_scene.cpp).
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "../common/vgeo_file.h"
+#include "builder.h"
+
+namespace vgeo {
+
+struct SceneBuildOptions {
+  int subdivisionLevels = 0;
+  int threads = 1;
+  std::function<void(double fraction, const char* stage)> progress;
+};
+
+struct SceneBuildStats {
+  uint64_t inputTriangles = 0;   // of the input file's faces, fanned
+  uint64_t leafTriangles = 0;    // after subdivision: the finest level
+  uint64_t clusters = 0;
+  uint64_t leafClusters = 0;
+  uint64_t clusterTriangles = 0; // over all levels
+  uint32_t levels = 0;
+  std::vector<uint64_t> levelClusters;   // summed over geometries
+  std::vector<uint64_t> levelTriangles;
+  uint64_t rootClusters = 0;
+  uint64_t relaxedGroups = 0;
+  uint64_t stuckGroups = 0;
+  uint32_t geometries = 0;
+  uint32_t instances = 0;
+  RepairReport repair;           // summed over meshes
+  double loadSeconds = 0.0, subdivideSeconds = 0.0, buildSeconds = 0.0;
+};
+
+// Loads, repairs, subdivides and builds every mesh of `path`; throws InputError for bad input (nothing
+// is written by this function).
+VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, SceneBuildStats& stats);
+
+}  // namespace vgeo

@@ -1,0 +1,198 @@
+// builder.h: the offline builder's contracts, one function per step of DESIGN.md's data flow:
+//   load -> repair -> subdivide -> cluster -> (group -> simplify -> split)* -> bounds -> BVH -> .vgeo
+// Every function here is deterministic: the same input and options give the same output, whatever the
+// thread count. Errors in the input are thrown as InputError with one line "FILE: cause".
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "../common/input_error.h"
+#include "../shaders/shaderio.h"
+
+namespace vgeo {
+
+
+// An indexed polygon mesh: face f has the corners faceVertices[faceStart[f] .. faceStart[f+1]).
+struct PolygonMesh {
+  std::vector<glm::vec3> positions;
+  std::vector<uint32_t> faceStart{0};
+  std::vector<uint32_t> faceVertices;
+
+  size_t faceCount() const { return faceStart.size() - 1; }
+  uint32_t faceSize(size_t f) const { return faceStart[f + 1] - faceStart[f]; }
+  const uint32_t* face(size_t f) const { return faceVertices.data() + faceStart[f]; }
+  void addFace(const uint32_t* corners, size_t count) {
+    faceVertices.insert(faceVertices.end(), corners, corners + count);
+    faceStart.push_back(uint32_t(faceVertices.size()));
+  }
+  // Triangles when every face is fanned: sum of (corners - 2).
+  size_t triangleCount() const { return faceVertices.size() - 2 * faceCount(); }
+};
+
+struct SourceInstance {
+  glm::mat4 transform{1.0f};
+  uint32_t mesh = 0;
+};
+
+// What a mesh file holds: meshes (a glTF mesh used by several nodes appears once) and their instances.
+// OBJ, OFF and PLY files hold one mesh and one identity instance.
+struct SourceScene {
+  std::vector<PolygonMesh> meshes;
+  std::vector<std::string> meshNames;
+  std::vector<SourceInstance> instances;
+};
+
+// ---- load_*.cpp -------------------------------------------------------------------------------------
+// Reads .obj, .off, .ply, .gltf or .glb (by extension, case-insensitive). Polygons are kept as they are.
+// Checks the syntax, counts, index ranges, buffer bounds and finiteness of positions; throws InputError.
+SourceScene loadMeshFile(const std::string& path);
+SourceScene loadObj(const std::string& path);
+SourceScene loadOff(const std::string& path);
+SourceScene loadPly(const std::string& path);
+SourceScene loadGltf(const std::string& path);
+
+// ---- repair.cpp -------------------------------------------------------------------------------------
+struct RepairReport {
+  size_t weldedVertices = 0;        // vertices merged because they had bit-identical positions
+  size_t degenerateFaces = 0;       // dropped: fewer than 3 distinct corners after welding
+  size_t duplicateFaces = 0;        // dropped: same corner set as an earlier face
+  size_t nonManifoldEdges = 0;      // edges with more than two faces, or two faces of one orientation
+  size_t splitVertices = 0;         // vertex copies added to make every edge and vertex manifold
+  size_t boundaryEdges = 0;         // edges with one face after repair (0 means closed)
+  size_t unusedVertices = 0;        // dropped: referenced by no face
+};
+// Welds bit-identical positions, drops degenerate and duplicate faces, and splits non-manifold edges and
+// vertices so that every edge has at most two faces of opposite orientation and every vertex has one fan.
+// Throws InputError (naming `file`) when positions are not finite or nothing is left.
+RepairReport repairMesh(PolygonMesh& mesh, const std::string& file);
+
+// ---- subdivide.cpp ----------------------------------------------------------------------------------
+// Faces of `mesh` after `levels` rounds, computed without allocating; used to reject sizes that would not
+// fit 32-bit indices before any work is done.
+uint64_t subdividedFaceCount(const PolygonMesh& mesh, int levels);
+// One round of Catmull-Clark on a manifold mesh (repairMesh's output). Output vertex order: the old
+// vertices, then one per edge, then one per face; every output face is a quad (corner, edge, face, edge).
+// Boundary edges use the cubic B-spline rules (edge point = midpoint, vertex = 3/4 V + 1/8 (A + B)); a
+// boundary vertex with one face is a corner and stays put.
+PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh);
+
+// ---- partition.cpp ----------------------------------------------------------------------------------
+// A graph in compressed rows: node i's neighbours are adjacency[offsets[i] .. offsets[i+1]).
+struct Graph {
+  std::vector<uint32_t> offsets{0};
+  std::vector<uint32_t> adjacency;
+  size_t nodeCount() const { return offsets.size() - 1; }
+};
+// The parts as contiguous runs of a node permutation: part p is order[partStart[p] .. partStart[p+1]).
+struct Partition {
+  std::vector<uint32_t> order;
+  std::vector<uint32_t> partStart{0};
+  size_t partCount() const { return partStart.size() - 1; }
+};
+// Splits the nodes into parts of total weight <= maxWeight by recursive bisection: each cut grows one
+// side breadth-first from the extreme node along the set's longest axis, so parts are connected where
+// the graph allows and compact. A set of weight w becomes ceil(w / maxWeight) parts of near equal
+// weight, so parts are nearly full. `fits(nodes, count)` may reject a part (then it is split in two).
+// Every node weight must be <= maxWeight. Deterministic for any thread count.
+Partition partitionGraph(const Graph& graph, const std::vector<uint8_t>& weights,
+                         const std::vector<glm::vec3>& positions, uint32_t maxWeight, int threads,
+                         const std::function<bool(const uint32_t*, size_t)>& fits = {});
+
+// ---- cluster.cpp ------------------------------------------------------------------------------------
+// A cluster under construction: triangles as absolute vertex index triples.
+struct BuildCluster {
+  std::vector<uint32_t> indices;    // 3 per triangle, <= 128 triangles, <= 256 distinct vertices
+  std::vector<uint32_t> cageFaces;  // leaves: the cage faces it holds (their triangles are consecutive)
+  glm::vec4 selfSphere{0.0f};
+  float selfError = 0.0f;
+  uint32_t producer = VGEO_NO_GROUP;  // the group that produced it
+  uint32_t group = VGEO_NO_GROUP;     // the group it belongs to
+  uint32_t level = 0;
+};
+// Faces of more than kMaxLeafFaceCorners corners are replaced by triangle fans: they could not be
+// patches and might not fit one cluster. Call before buildLeafClusters (a no-op on subdivided meshes).
+constexpr uint32_t kMaxLeafFaceCorners = 66;
+void fanLargeFaces(PolygonMesh& mesh);
+// Leaf clusters from whole faces of `mesh` (a face's triangles never part): faces adjacent by an edge
+// are graph neighbours, weighted by their triangle count. cageFaces lists each cluster's faces, whose
+// triangles follow in that order (quads split along the shorter diagonal, other faces fanned).
+std::vector<BuildCluster> buildLeafClusters(const PolygonMesh& mesh, int threads);
+// Splits a triangle list (absolute vertex indices) into clusters by edge adjacency.
+std::vector<BuildCluster> splitIntoClusters(const std::vector<uint32_t>& indices,
+                                            const std::vector<glm::vec3>& positions);
+
+// ---- bounds.cpp -------------------------------------------------------------------------------------
+// Smallest sphere enclosing the points (CGAL), rounded outward so that float tests agree.
+glm::vec4 sphereOfPoints(const std::vector<glm::vec3>& positions, const uint32_t* vertices, size_t count);
+// Smallest sphere enclosing the spheres (CGAL), rounded outward so that float tests agree.
+glm::vec4 sphereOfSpheres(const glm::vec4* spheres, size_t count);
+
+// ---- group.cpp --------------------------------------------------------------------------------------
+struct GroupPlan {
+  std::vector<uint32_t> clusters;  // cluster ids, ascending
+  bool isWholeComponent = false;   // no cluster outside the group shares an edge with it
+};
+// Partitions the `active` clusters into groups of about `targetSize` neighbours: METIS k-way on the graph
+// of clusters sharing an edge, edges weighted by the shared edge count, so that groups have short
+// borders (the locked part of the next simplification). Deterministic (fixed METIS seed).
+std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, const std::vector<uint32_t>& active,
+                                     uint32_t targetSize);
+
+// ---- simplify.cpp -----------------------------------------------------------------------------------
+struct SimplifiedGroup {
+  std::vector<uint32_t> indices;  // absolute vertex indices of the simplified triangles
+  float error = 0.0f;             // object-space error added by this simplification
+  int relaxation = 0;             // 0 normal, 1 unbounded error, 2 border unlocked, 3 sloppy
+  bool halved = false;            // reached <= 55% of the input triangles with its topology intact
+  std::vector<uint64_t> borderChords;  // new edges between two border vertices, (min << 32 | max)
+};
+// Simplifies a group's triangles to about half with the group border locked (quadric error, meshopt).
+// When that cannot halve it: allow any error; and when `isWholeComponent` (no other group shares an
+// edge with it, so no neighbour can crack) unlock the border, then vertex-cluster (sloppy). A result is
+// taken only if it keeps the topology (no folded edge, border unchanged) and adds no edge between two
+// border vertices for which `edgeExists` (absolute (min << 32 | max)) is true.
+SimplifiedGroup simplifyGroup(const std::vector<uint32_t>& indices, const std::vector<glm::vec3>& positions,
+                              bool isWholeComponent, const std::function<bool(uint64_t)>& edgeExists);
+
+// ---- dag.cpp ----------------------------------------------------------------------------------------
+struct BuildOptions {
+  int threads = 1;
+  uint32_t groupSize = 16;
+  std::function<void(double fraction, const char* stage)> progress;
+};
+struct BuildGroup {
+  std::vector<uint32_t> members;  // cluster ids
+  glm::vec4 sphere{0.0f};
+  float error = 0.0f;             // +inf for root groups
+  uint32_t level = 0;
+};
+// A mesh's LOD DAG before it is laid out into a file.
+struct Dag {
+  std::vector<BuildCluster> clusters;
+  std::vector<BuildGroup> groups;
+  std::vector<uint32_t> levelClusters;   // clusters formed in each round (round 0: the leaves)
+  std::vector<uint64_t> levelTriangles;  // triangles of the active set after each round
+  uint32_t relaxedGroups = 0;            // groups that needed any relaxation (see SimplifiedGroup)
+  uint32_t stuckGroups = 0;              // groups that could not be halved; their clusters were retried
+  uint32_t chordRejections = 0;          // of those, halved but with a border chord some cluster already had
+  uint32_t rootClusters = 0;
+};
+// Builds the DAG of a repaired mesh whose faces are the leaf faces (the level-N cage).
+Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options);
+
+// ---- bvh.cpp ----------------------------------------------------------------------------------------
+// A BVH over groups: one subtree per level under one root, VGEO_BVH_WIDTH children a node. Group ids in
+// leaves are indices into `groups`; node 0 is the root.
+struct Bvh {
+  std::vector<shaderio::BvhNode> nodes;
+  std::vector<uint32_t> groupOrder;  // groups in leaf order: leaves reference runs of this array
+};
+Bvh buildBvh(const std::vector<BuildGroup>& groups);
+
+}  // namespace vgeo

@@ -1,0 +1,90 @@
+// group.cpp: neighbouring clusters into groups for simplification (Nanite's grouping step).
+// Two clusters are neighbours when they share an edge; the edge weight is how many edges they share,
+// so METIS's k-way partition, which minimises the cut weight, makes groups whose outer border is short.
+// That border is what the simplifier must lock, so a short border leaves room to halve the group.
+#include <metis.h>
+
+#include <algorithm>
+#include <map>
+
+#include "builder.h"
+
+namespace vgeo {
+
+std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, const std::vector<uint32_t>& active,
+                                     uint32_t targetSize) {
+  const size_t n = active.size();
+  // Border edges of each cluster (edges used once inside it), tagged with the cluster's slot.
+  std::vector<std::pair<uint64_t, uint32_t>> borders;
+  std::vector<uint64_t> local;
+  for (size_t slot = 0; slot < n; slot++) {
+    const auto& idx = clusters[active[slot]].indices;
+    local.clear();
+    for (size_t t = 0; t + 2 < idx.size(); t += 3)
+      for (int i = 0; i < 3; i++) {
+        uint32_t a = idx[t + size_t(i)], b = idx[t + size_t((i + 1) % 3)];
+        local.push_back(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
+      }
+    std::sort(local.begin(), local.end());
+    for (size_t i = 0; i < local.size();) {
+      size_t j = i;
+      while (j < local.size() && local[j] == local[i]) j++;
+      if (j - i == 1) borders.push_back({local[i], uint32_t(slot)});
+      i = j;
+    }
+  }
+  std::sort(borders.begin(), borders.end());
+  std::map<std::pair<uint32_t, uint32_t>, int> shared;
+  for (size_t i = 0; i < borders.size();) {
+    size_t j = i;
+    while (j < borders.size() && borders[j].first == borders[i].first) j++;
+    for (size_t a = i; a < j; a++)
+      for (size_t b = a + 1; b < j; b++)
+        if (borders[a].second != borders[b].second)
+          shared[{std::min(borders[a].second, borders[b].second), std::max(borders[a].second, borders[b].second)}]++;
+    i = j;
+  }
+  std::vector<std::vector<std::pair<uint32_t, int>>> neighbours(n);
+  for (const auto& [pair, weight] : shared) {
+    neighbours[pair.first].push_back({pair.second, weight});
+    neighbours[pair.second].push_back({pair.first, weight});
+  }
+
+  std::vector<idx_t> part(n, 0);
+  idx_t nparts = idx_t((n + targetSize - 1) / targetSize);
+  if (nparts > 1) {
+    std::vector<idx_t> xadj{0}, adjncy, adjwgt;
+    for (size_t i = 0; i < n; i++) {
+      for (auto [j, w] : neighbours[i]) {
+        adjncy.push_back(idx_t(j));
+        adjwgt.push_back(idx_t(w));
+      }
+      xadj.push_back(idx_t(adjncy.size()));
+    }
+    idx_t nvtxs = idx_t(n), ncon = 1, objval = 0;
+    idx_t options[METIS_NOPTIONS];
+    METIS_SetDefaultOptions(options);
+    options[METIS_OPTION_SEED] = 1;
+    options[METIS_OPTION_NUMBERING] = 0;
+    int status = METIS_PartGraphKway(&nvtxs, &ncon, xadj.data(), adjncy.data(), nullptr, nullptr, adjwgt.data(), &nparts,
+                                     nullptr, nullptr, options, &objval, part.data());
+    if (status != METIS_OK) throw std::runtime_error("METIS_PartGraphKway failed with status " + std::to_string(status));
+  }
+  std::vector<GroupPlan> groups(size_t(std::max<idx_t>(nparts, 1)));
+  std::vector<bool> touchesOther(groups.size(), false);
+  for (size_t i = 0; i < n; i++) {
+    groups[size_t(part[i])].clusters.push_back(active[i]);
+    for (auto [j, w] : neighbours[i])
+      if (part[j] != part[i]) touchesOther[size_t(part[i])] = true;
+  }
+  std::vector<GroupPlan> result;
+  for (size_t g = 0; g < groups.size(); g++) {
+    if (groups[g].clusters.empty()) continue;
+    groups[g].isWholeComponent = !touchesOther[g];
+    std::sort(groups[g].clusters.begin(), groups[g].clusters.end());
+    result.push_back(std::move(groups[g]));
+  }
+  return result;
+}
+
+}  // namespace vgeo

@@ -1,0 +1,117 @@
+// layout.cpp: lays a DAG out as the renderer's buffers (a geometry of a VgeoData).
+// Groups are stored in BVH leaf order, so a leaf node's groups are one run; clusters in group order, so a
+// group's members are one run; leaf clusters' cage faces in cluster order, so a leaf's faces are one run.
+// Each cluster lists its distinct vertices once (absolute indices) and its triangles as 8-bit local
+// indices: the meshlet layout, which lets a pass read any cluster without a second index buffer.
+#include <algorithm>
+#include <unordered_map>
+
+#include "builder.h"
+#include "layout.h"
+
+namespace vgeo {
+
+void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh, bool closed) {
+  Bvh bvh = buildBvh(dag.groups);
+  const uint32_t vertexOffset = uint32_t(file.vertexCount()), clusterOffset = uint32_t(file.clusters.size()),
+                 groupOffset = uint32_t(file.groups.size()), nodeOffset = uint32_t(file.nodes.size()),
+                 cageOffset = uint32_t(file.cageFaces.size());
+
+  std::vector<uint32_t> groupIndex(dag.groups.size());
+  for (uint32_t i = 0; i < bvh.groupOrder.size(); i++) groupIndex[bvh.groupOrder[i]] = groupOffset + i;
+  std::vector<uint32_t> clusterOrder, clusterIndex(dag.clusters.size(), UINT32_MAX);
+  for (uint32_t g : bvh.groupOrder)
+    for (uint32_t m : dag.groups[g].members) {
+      clusterIndex[m] = clusterOffset + uint32_t(clusterOrder.size());
+      clusterOrder.push_back(m);
+    }
+  if (clusterOrder.size() != dag.clusters.size()) throw std::logic_error("appendGeometry: a cluster belongs to no group");
+
+  // Vertices, with area-weighted normals of the leaf triangles.
+  std::vector<glm::vec3> normals(leafMesh.positions.size(), glm::vec3(0.0f));
+  for (const BuildCluster& c : dag.clusters) {
+    if (c.level != 0) continue;
+    for (size_t t = 0; t + 2 < c.indices.size(); t += 3) {
+      const glm::vec3 &a = leafMesh.positions[c.indices[t]], &b = leafMesh.positions[c.indices[t + 1]], &d = leafMesh.positions[c.indices[t + 2]];
+      glm::vec3 n = glm::cross(b - a, d - a);
+      for (int i = 0; i < 3; i++) normals[c.indices[t + size_t(i)]] += n;
+    }
+  }
+  for (size_t v = 0; v < leafMesh.positions.size(); v++) {
+    file.positions.insert(file.positions.end(), {leafMesh.positions[v].x, leafMesh.positions[v].y, leafMesh.positions[v].z});
+    float len = glm::length(normals[v]);
+    file.normals.push_back(encodeNormal(len > 0.0f ? normals[v] / len : glm::vec3(0.0f, 0.0f, 1.0f)));
+  }
+
+  std::vector<uint32_t> local;
+  std::unordered_map<uint32_t, uint32_t> slot;
+  for (uint32_t id : clusterOrder) {
+    const BuildCluster& c = dag.clusters[id];
+    const BuildGroup& parent = dag.groups[c.group];
+    shaderio::Cluster out{};
+    out.selfSphere = c.selfSphere;
+    out.selfError = c.selfError;
+    out.parentSphere = parent.sphere;
+    out.parentError = parent.error;
+    out.group = groupIndex[c.group];
+    out.producer = c.producer == VGEO_NO_GROUP ? VGEO_NO_GROUP : groupIndex[c.producer];
+    out.vertexOffset = uint32_t(file.clusterVertices.size());
+    out.triangleOffset = uint32_t(file.clusterTriangles.size());
+    slot.clear();
+    local.clear();
+    for (uint32_t v : c.indices) {
+      auto [it, inserted] = slot.try_emplace(v, uint32_t(local.size()));
+      if (inserted) local.push_back(v);
+    }
+    for (uint32_t v : local) file.clusterVertices.push_back(vertexOffset + v);
+    for (size_t t = 0; t + 2 < c.indices.size(); t += 3)
+      file.clusterTriangles.push_back(slot[c.indices[t]] | slot[c.indices[t + 1]] << 8 | slot[c.indices[t + 2]] << 16);
+    out.cageFaceOffset = uint32_t(file.cageFaces.size());
+    uint32_t firstTriangle = 0;
+    for (uint32_t f : c.cageFaces) {
+      shaderio::CageFace face{};
+      face.firstVertex = uint32_t(file.cageFaceVertices.size());
+      face.vertexCount = leafMesh.faceSize(f);
+      face.leafCluster = clusterIndex[id];
+      face.firstTriangle = firstTriangle;
+      firstTriangle += face.vertexCount - 2;
+      for (uint32_t k = 0; k < face.vertexCount; k++) file.cageFaceVertices.push_back(vertexOffset + leafMesh.face(f)[k]);
+      file.cageFaces.push_back(face);
+    }
+    out.counts = shaderio::packClusterCounts(uint32_t(local.size()), uint32_t(c.indices.size() / 3), c.level, uint32_t(c.cageFaces.size()));
+    file.clusters.push_back(out);
+  }
+
+  for (uint32_t g : bvh.groupOrder) {
+    const BuildGroup& src = dag.groups[g];
+    shaderio::Group out{};
+    out.sphere = src.sphere;
+    out.error = src.error;
+    out.clusterOffset = clusterIndex[src.members.front()];
+    out.clusterCount = uint32_t(src.members.size());
+    out.level = src.level;
+    file.groups.push_back(out);
+  }
+  for (shaderio::BvhNode node : bvh.nodes) {
+    node.childOffset += (node.childCountAndFlags & VGEO_NODE_LEAF_BIT) ? groupOffset : nodeOffset;
+    file.nodes.push_back(node);
+  }
+
+  shaderio::Geometry geometry{};
+  geometry.boundsSphere = bvh.nodes[0].sphere;
+  geometry.clusterOffset = clusterOffset;
+  geometry.clusterCount = uint32_t(dag.clusters.size());
+  geometry.groupOffset = groupOffset;
+  geometry.groupCount = uint32_t(dag.groups.size());
+  geometry.nodeOffset = nodeOffset;
+  geometry.nodeCount = uint32_t(bvh.nodes.size());
+  geometry.vertexOffset = vertexOffset;
+  geometry.vertexCount = uint32_t(leafMesh.positions.size());
+  geometry.cageFaceOffset = cageOffset;
+  geometry.cageFaceCount = uint32_t(file.cageFaces.size() - cageOffset);
+  geometry.levelCount = uint32_t(dag.levelClusters.size());
+  geometry.flags = closed ? VGEO_GEOMETRY_CLOSED : 0u;
+  file.geometries.push_back(geometry);
+}
+
+}  // namespace vgeo

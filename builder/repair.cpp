@@ -1,0 +1,249 @@
+// repair.cpp: turns a polygon soup into a manifold mesh the later steps can trust.
+// 1. Positions must be finite (else an error). 2. Bit-identical positions are welded, so that meshes
+// split for texture seams (glTF) become connected. 3. Faces with fewer than 3 distinct corners are
+// dropped, as are faces with the corner set of an earlier face. 4. Non-manifold edges and vertices are
+// split by wedges: every face corner is a wedge; the wedges of a vertex that are joined through manifold
+// edges (two faces, opposite orientations) form one fan and share one output vertex, every other fan gets
+// its own copy. At an edge with more than two faces, or two of one orientation, the first face and the
+// first later face of opposite orientation stay joined; the other faces get their own vertices there.
+// One pass leaves every edge with at most two faces of opposite orientation and every vertex one fan.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <numeric>
+
+#include "builder.h"
+
+namespace vgeo {
+namespace {
+
+uint32_t findRoot(std::vector<uint32_t>& parent, uint32_t x) {
+  while (parent[x] != x) x = parent[x] = parent[parent[x]];
+  return x;
+}
+void unite(std::vector<uint32_t>& parent, uint32_t a, uint32_t b) {
+  a = findRoot(parent, a);
+  b = findRoot(parent, b);
+  if (a != b) parent[std::max(a, b)] = std::min(a, b);  // smaller root wins: deterministic
+}
+
+struct EdgeCorner {
+  uint64_t key;     // (min vertex, max vertex)
+  uint32_t corner;  // global corner index of the edge's first vertex in its face
+  uint32_t face;
+  bool forward;     // from min to max in face order
+};
+
+}  // namespace
+
+RepairReport repairMesh(PolygonMesh& mesh, const std::string& file) {
+  RepairReport report;
+  const size_t vertexCount = mesh.positions.size();
+  for (uint32_t v : mesh.faceVertices)
+    if (v >= vertexCount) throw InputError(file, "face index " + std::to_string(v) + " is out of range (" + std::to_string(vertexCount) + " vertices)");
+  std::vector<bool> used(vertexCount, false);
+  for (uint32_t v : mesh.faceVertices) used[v] = true;
+  for (size_t v = 0; v < vertexCount; v++) {
+    const glm::vec3& p = mesh.positions[v];
+    if (used[v] && !(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)))
+      throw InputError(file, "vertex " + std::to_string(v) + " has a non-finite position (" + std::to_string(p.x) + ", " +
+                                 std::to_string(p.y) + ", " + std::to_string(p.z) + ")");
+  }
+  if (mesh.faceCount() == 0) throw InputError(file, "empty mesh: no faces");
+
+  // Weld: sort by position bits (with -0 == +0), map every vertex to the first of its equals.
+  std::vector<uint32_t> weld(vertexCount);
+  {
+    auto bits = [&](uint32_t v) {
+      std::array<uint32_t, 3> b;
+      for (int i = 0; i < 3; i++) {
+        float f = mesh.positions[v][i] + 0.0f;  // -0 + 0 = +0
+        std::memcpy(&b[size_t(i)], &f, 4);
+      }
+      return b;
+    };
+    std::vector<uint32_t> order(vertexCount);
+    std::iota(order.begin(), order.end(), 0u);
+    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+      auto ba = bits(a), bb = bits(b);
+      return ba != bb ? ba < bb : a < b;
+    });
+    for (size_t i = 0; i < order.size(); i++) {
+      bool same = i > 0 && bits(order[i]) == bits(order[i - 1]);
+      weld[order[i]] = same ? weld[order[i - 1]] : order[i];
+      if (same && used[order[i]]) report.weldedVertices++;
+    }
+  }
+
+  // Faces: weld corners, drop repeated neighbours, drop faces with < 3 distinct corners.
+  PolygonMesh faces;
+  faces.positions = std::move(mesh.positions);
+  std::vector<uint32_t> corners, sorted;
+  for (size_t f = 0; f < mesh.faceCount(); f++) {
+    corners.clear();
+    for (uint32_t i = 0; i < mesh.faceSize(f); i++) {
+      uint32_t v = weld[mesh.face(f)[i]];
+      if (corners.empty() || corners.back() != v) corners.push_back(v);
+    }
+    while (corners.size() > 1 && corners.front() == corners.back()) corners.pop_back();
+    sorted = corners;
+    std::sort(sorted.begin(), sorted.end());
+    if (corners.size() < 3 || std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
+      report.degenerateFaces++;
+      continue;
+    }
+    faces.addFace(corners.data(), corners.size());
+  }
+
+  // Duplicates: faces with the same corner set; the first one stays.
+  {
+    const size_t n = faces.faceCount();
+    std::vector<uint64_t> hash(n);
+    for (size_t f = 0; f < n; f++) {
+      sorted.assign(faces.face(f), faces.face(f) + faces.faceSize(f));
+      std::sort(sorted.begin(), sorted.end());
+      uint64_t h = 1469598103934665603ull;
+      for (uint32_t v : sorted) h = (h ^ v) * 1099511628211ull;
+      hash[f] = h;
+    }
+    std::vector<uint32_t> order(n);
+    std::iota(order.begin(), order.end(), 0u);
+    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return hash[a] != hash[b] ? hash[a] < hash[b] : a < b; });
+    std::vector<bool> drop(n, false);
+    std::vector<uint32_t> sa, sb;
+    for (size_t i = 0; i < n; i++) {
+      for (size_t j = i + 1; j < n && hash[order[j]] == hash[order[i]]; j++) {
+        if (drop[order[j]]) continue;
+        sa.assign(faces.face(order[i]), faces.face(order[i]) + faces.faceSize(order[i]));
+        sb.assign(faces.face(order[j]), faces.face(order[j]) + faces.faceSize(order[j]));
+        std::sort(sa.begin(), sa.end());
+        std::sort(sb.begin(), sb.end());
+        if (sa == sb && !drop[order[i]]) drop[order[j]] = true;
+      }
+    }
+    PolygonMesh kept;
+    kept.positions = std::move(faces.positions);
+    for (size_t f = 0; f < n; f++) {
+      if (drop[f]) report.duplicateFaces++;
+      else kept.addFace(faces.face(f), faces.faceSize(f));
+    }
+    faces = std::move(kept);
+  }
+  if (faces.faceCount() == 0) throw InputError(file, "empty mesh: every face is degenerate or a duplicate");
+
+  // Edges sorted by (key, corner): every undirected edge's faces are adjacent, in face order.
+  const size_t cornerCount = faces.faceVertices.size();
+  std::vector<uint32_t> cornerFace(cornerCount);
+  for (size_t f = 0; f < faces.faceCount(); f++)
+    for (uint32_t c = faces.faceStart[f]; c < faces.faceStart[f + 1]; c++) cornerFace[c] = uint32_t(f);
+  auto nextCorner = [&](uint32_t c) {
+    uint32_t f = cornerFace[c];
+    return c + 1 == faces.faceStart[f + 1] ? faces.faceStart[f] : c + 1;
+  };
+  std::vector<EdgeCorner> edges(cornerCount);
+  for (uint32_t c = 0; c < cornerCount; c++) {
+    uint32_t a = faces.faceVertices[c], b = faces.faceVertices[nextCorner(c)];
+    edges[c] = {uint64_t(std::min(a, b)) << 32 | std::max(a, b), c, cornerFace[c], a < b};
+  }
+  std::sort(edges.begin(), edges.end(), [](const EdgeCorner& x, const EdgeCorner& y) { return x.key != y.key ? x.key < y.key : x.corner < y.corner; });
+
+  std::vector<uint32_t> wedgeParent(cornerCount);
+  std::iota(wedgeParent.begin(), wedgeParent.end(), 0u);
+  std::vector<bool> isolated(cornerCount, false);  // wedges that get a vertex of their own
+  std::vector<std::pair<uint32_t, uint32_t>> pairs;  // the two corners of each manifold edge
+  for (size_t i = 0; i < edges.size();) {
+    size_t j = i;
+    while (j < edges.size() && edges[j].key == edges[i].key) j++;
+    size_t count = j - i;
+    if (count == 1) {
+      i = j;
+      continue;
+    }
+    size_t partner = SIZE_MAX;
+    for (size_t k = i + 1; k < j; k++)
+      if (edges[k].forward != edges[i].forward) { partner = k; break; }
+    if (count > 2 || partner == SIZE_MAX) report.nonManifoldEdges++;
+    for (size_t k = i; k < j; k++) {
+      if (k == i || k == partner) continue;
+      isolated[edges[k].corner] = true;
+      isolated[nextCorner(edges[k].corner)] = true;
+    }
+    if (partner != SIZE_MAX) pairs.push_back({edges[i].corner, edges[partner].corner});
+    i = j;
+  }
+  // Join the wedges across manifold edges; c0 runs a->b in its face, c1 b->a in its. An isolated wedge
+  // (at an endpoint of an edge where its face was detached) joins nothing: it gets a vertex of its own,
+  // which may also open its face's other edge at that corner into a boundary, never into anything worse.
+  for (auto [c0, c1] : pairs) {
+    uint32_t pairsOfWedges[2][2] = {{c0, nextCorner(c1)}, {nextCorner(c0), c1}};
+    for (auto& w : pairsOfWedges)
+      if (!isolated[w[0]] && !isolated[w[1]]) unite(wedgeParent, w[0], w[1]);
+  }
+  std::vector<uint32_t> root(cornerCount);
+  for (uint32_t c = 0; c < cornerCount; c++) root[c] = findRoot(wedgeParent, c);
+  for (uint32_t c = 0; c < cornerCount; c++)
+    if (isolated[c]) root[c] = UINT32_MAX;  // decided below, per wedge
+
+  // Output vertices: the first class of each vertex keeps the vertex; others become copies.
+  std::vector<uint32_t> rootVertex(cornerCount, UINT32_MAX);
+  std::vector<uint32_t> firstRoot(faces.positions.size(), UINT32_MAX);
+  std::vector<uint32_t> newCorner(cornerCount);
+  PolygonMesh out;
+  out.positions = faces.positions;
+  for (uint32_t c = 0; c < cornerCount; c++) {
+    uint32_t v = faces.faceVertices[c];
+    if (root[c] == UINT32_MAX) {
+      if (firstRoot[v] == UINT32_MAX) firstRoot[v] = cornerCount;  // the vertex itself is taken
+      else { out.positions.push_back(faces.positions[v]); v = uint32_t(out.positions.size() - 1); report.splitVertices++; }
+      newCorner[c] = v;
+      continue;
+    }
+    if (rootVertex[root[c]] == UINT32_MAX) {
+      if (firstRoot[v] == UINT32_MAX) {
+        firstRoot[v] = root[c];
+        rootVertex[root[c]] = v;
+      } else {
+        out.positions.push_back(faces.positions[v]);
+        rootVertex[root[c]] = uint32_t(out.positions.size() - 1);
+        report.splitVertices++;
+      }
+    }
+    newCorner[c] = rootVertex[root[c]];
+  }
+  out.faceStart = faces.faceStart;
+  out.faceVertices = newCorner;
+
+  // Drop unused vertices, keeping order.
+  std::vector<uint32_t> remap(out.positions.size(), UINT32_MAX);
+  for (uint32_t v : out.faceVertices) remap[v] = 0;
+  std::vector<glm::vec3> compact;
+  for (size_t v = 0; v < out.positions.size(); v++)
+    if (remap[v] == 0) {
+      remap[v] = uint32_t(compact.size());
+      compact.push_back(out.positions[v]);
+    }
+  report.unusedVertices = out.positions.size() - compact.size();
+  for (uint32_t& v : out.faceVertices) v = remap[v];
+  out.positions = std::move(compact);
+
+  // Boundary edges of the result.
+  std::vector<uint64_t> keys;
+  keys.reserve(out.faceVertices.size());
+  for (size_t f = 0; f < out.faceCount(); f++)
+    for (uint32_t i = 0; i < out.faceSize(f); i++) {
+      uint32_t a = out.face(f)[i], b = out.face(f)[(i + 1) % out.faceSize(f)];
+      keys.push_back(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
+    }
+  std::sort(keys.begin(), keys.end());
+  for (size_t i = 0; i < keys.size();) {
+    size_t j = i;
+    while (j < keys.size() && keys[j] == keys[i]) j++;
+    if (j - i == 1) report.boundaryEdges++;
+    i = j;
+  }
+  mesh = std::move(out);
+  return report;
+}
+
+}  // namespace vgeo

@@ -1,0 +1,86 @@
+// text_reader.h: a cursor over a whole file's bytes for the text formats (OBJ, OFF, ASCII PLY).
+// Numbers are parsed with std::from_chars (locale-free, no allocation); the cursor counts lines so that
+// errors can say where the file went wrong.
+#pragma once
+
+#include <charconv>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "builder.h"
+
+namespace vgeo {
+
+// Reads a whole file; throws InputError when it cannot be opened or read.
+std::string readWholeFile(const std::string& path);
+
+class TextReader {
+ public:
+  TextReader(std::string_view text, const std::string& file) : text_(text), file_(file) {}
+
+  bool atEnd() { return pos_ >= text_.size(); }
+  size_t line() const { return line_; }
+  const std::string& file() const { return file_; }
+
+  // Skips spaces and tabs (not newlines).
+  void skipBlanks() {
+    while (pos_ < text_.size() && (text_[pos_] == ' ' || text_[pos_] == '\t' || text_[pos_] == '\r')) pos_++;
+  }
+  // Skips blanks, newlines and '#' comments.
+  void skipWhitespaceAndComments() {
+    while (pos_ < text_.size()) {
+      char c = text_[pos_];
+      if (c == '\n') { line_++; pos_++; }
+      else if (c == ' ' || c == '\t' || c == '\r') pos_++;
+      else if (c == '#') skipLine();
+      else break;
+    }
+  }
+  bool atLineEnd() {
+    skipBlanks();
+    return pos_ >= text_.size() || text_[pos_] == '\n' || text_[pos_] == '#';
+  }
+  // Moves past the next newline.
+  void skipLine() {
+    while (pos_ < text_.size() && text_[pos_] != '\n') pos_++;
+    if (pos_ < text_.size()) { pos_++; line_++; }
+  }
+  // The next blank-separated token on this line (empty at the line's end).
+  std::string_view token() {
+    skipBlanks();
+    size_t start = pos_;
+    while (pos_ < text_.size() && text_[pos_] != ' ' && text_[pos_] != '\t' && text_[pos_] != '\r' &&
+           text_[pos_] != '\n')
+      pos_++;
+    return text_.substr(start, pos_ - start);
+  }
+  template <class T>
+  bool tryNumber(T& value) {
+    std::string_view t = token();
+    if (t.empty()) return false;
+    if (t.front() == '+') t.remove_prefix(1);
+    auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
+    return ec == std::errc() && end == t.data() + t.size();
+  }
+  // The next number anywhere ahead (newlines and comments skipped); throws with `what` when absent.
+  template <class T>
+  T number(const char* what) {
+    skipWhitespaceAndComments();
+    if (atEnd()) fail(std::string("truncated: expected ") + what);
+    T value{};
+    if (!tryNumber(value)) fail(std::string("expected ") + what);
+    return value;
+  }
+  [[noreturn]] void fail(const std::string& cause) const {
+    throw InputError(file_, "line " + std::to_string(line_) + ": " + cause);
+  }
+
+ private:
+  std::string_view text_;
+  std::string file_;
+  size_t pos_ = 0;
+  size_t line_ = 1;
+};
+
+}  // namespace vgeo

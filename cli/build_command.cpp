@@ -1,0 +1,97 @@
+// build_command.cpp: `vgeo build IN -o OUT.vgeo`, the builder's command line.
+#include <sys/resource.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "../builder/build_scene.h"
+#include "commands.h"
+#include "progress.h"
+
+namespace vgeo {
+
+uint64_t peakRssBytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return uint64_t(usage.ru_maxrss) * 1024;
+}
+
+void addBuildCommand(CLI::App& app, int& exitCode) {
+  auto* cmd = app.add_subcommand("build", "Build a cluster LOD DAG (.vgeo) from a mesh file (.obj .off .ply .gltf .glb)");
+  struct Args {
+    std::string input, output, stats;
+    int subdiv = 0;
+    int threads = int(std::max(1u, std::thread::hardware_concurrency()));
+    bool quiet = false;
+  };
+  auto args = std::make_shared<Args>();
+  cmd->add_option("input", args->input, "Mesh file")->required();
+  cmd->add_option("-o,--output", args->output, "Output .vgeo file")->required();
+  cmd->add_option("--subdiv", args->subdiv, "Catmull-Clark levels applied to the input cage")->check(CLI::Range(0, 16));
+  cmd->add_option("--threads", args->threads, "Worker threads (the output does not depend on it)")->check(CLI::Range(1, 256));
+  cmd->add_option("--stats", args->stats, "Write build statistics as JSON to this file");
+  cmd->add_flag("-q,--quiet", args->quiet, "No progress bar");
+  cmd->callback([args, &exitCode] {
+    auto start = std::chrono::steady_clock::now();
+    ProgressBar bar(args->quiet);
+    SceneBuildOptions options;
+    options.subdivisionLevels = args->subdiv;
+    options.threads = args->threads;
+    options.progress = [&](double f, const char* stage) { bar.update(f, stage); };
+    SceneBuildStats s;
+    VgeoData data = buildScene(args->input, options, s);
+    writeVgeo(data, args->output);
+    bar.finish();
+    double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    uint64_t rss = peakRssBytes();
+    std::printf("built %s: %u geometr%s, %u instance%s; %llu input -> %llu leaf triangles; %llu clusters (%.1f triangles per leaf cluster), "
+                "%u levels, %llu root cluster%s, %llu relaxed groups\n",
+                args->output.c_str(), s.geometries, s.geometries == 1 ? "y" : "ies", s.instances, s.instances == 1 ? "" : "s",
+                (unsigned long long)s.inputTriangles, (unsigned long long)s.leafTriangles, (unsigned long long)s.clusters,
+                s.leafClusters ? double(s.levelTriangles[0]) / double(s.leafClusters) : 0.0, s.levels, (unsigned long long)s.rootClusters,
+                s.rootClusters == 1 ? "" : "s", (unsigned long long)s.relaxedGroups);
+    std::printf("time: DAG %.2f s (%.2f M leaf triangles/s on %d threads), total %.2f s; peak memory %.1f MB (%.0f bytes per leaf triangle)\n",
+                s.buildSeconds, double(s.leafTriangles) / 1e6 / std::max(s.buildSeconds, 1e-9), args->threads, total, double(rss) / 1e6,
+                double(rss) / double(std::max<uint64_t>(s.leafTriangles, 1)));
+    if (s.repair.degenerateFaces || s.repair.duplicateFaces || s.repair.nonManifoldEdges || s.repair.splitVertices)
+      std::printf("repaired: %zu degenerate and %zu duplicate faces dropped, %zu non-manifold edges, %zu vertices split\n",
+                  s.repair.degenerateFaces, s.repair.duplicateFaces, s.repair.nonManifoldEdges, s.repair.splitVertices);
+    if (!args->stats.empty()) {
+      nlohmann::ordered_json j;
+      j["input"] = args->input;
+      j["subdiv"] = args->subdiv;
+      j["input_triangles"] = s.inputTriangles;
+      j["leaf_triangles"] = s.leafTriangles;
+      j["levels"] = s.levels;
+      j["clusters"] = s.clusters;
+      j["level_clusters"] = s.levelClusters;
+      j["level_triangles"] = s.levelTriangles;
+      j["root_clusters"] = s.rootClusters;
+      j["avg_leaf_cluster_triangles"] = s.leafClusters ? double(s.levelTriangles[0]) / double(s.leafClusters) : 0.0;
+      j["avg_cluster_triangles"] = s.clusters ? double(s.clusterTriangles) / double(s.clusters) : 0.0;
+      j["relaxed_groups"] = s.relaxedGroups;
+      j["stuck_groups"] = s.stuckGroups;
+      j["geometries"] = s.geometries;
+      j["instances"] = s.instances;
+      j["repair"] = {{"welded_vertices", s.repair.weldedVertices}, {"degenerate_faces", s.repair.degenerateFaces},
+                     {"duplicate_faces", s.repair.duplicateFaces},  {"non_manifold_edges", s.repair.nonManifoldEdges},
+                     {"split_vertices", s.repair.splitVertices},    {"boundary_edges", s.repair.boundaryEdges}};
+      j["load_seconds"] = s.loadSeconds;
+      j["subdivide_seconds"] = s.subdivideSeconds;
+      j["build_seconds"] = s.buildSeconds;
+      j["total_seconds"] = total;
+      j["peak_rss_bytes"] = rss;
+      j["threads"] = args->threads;
+      std::ofstream out(args->stats);
+      out << j.dump(2) << "\n";
+      if (!out) throw std::runtime_error(args->stats + ": cannot write the stats file");
+    }
+    exitCode = 0;
+  });
+}
+
+}  // namespace vgeo

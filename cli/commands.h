@@ -1,0 +1,11 @@
+// commands.h: each subcommand of `vgeo` registers itself on the CLI11 app.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace vgeo {
+
+void addBuildCommand(CLI::App& app, int& exitCode);
+void addCheckCommand(CLI::App& app, int& exitCode);
+
+}  // namespace vgeo

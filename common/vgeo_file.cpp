@@ -1,0 +1,289 @@
+// vgeo_file.cpp: writing, reading and checking .vgeo files (layout in vgeo_file.h).
+#include "vgeo_file.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "input_error.h"
+
+namespace vgeo {
+namespace {
+
+constexpr char kMagic[8] = {'V', 'G', 'E', 'O', 'F', 'I', 'L', 'E'};
+constexpr size_t kHeaderSize = 32, kEntrySize = 32;
+
+struct Entry {
+  uint32_t id, elementSize;
+  uint64_t offset, count, checksum;
+};
+
+// Multiply-xor over 64-bit words: each step is a bijection of the word, so any change to one word
+// changes the sum; the length is mixed in so that truncation to a word boundary is caught too.
+uint64_t checksum(const uint8_t* p, size_t n) {
+  uint64_t h = 0x9e3779b97f4a7c15ull ^ n;
+  size_t i = 0;
+  for (; i + 8 <= n; i += 8) {
+    uint64_t w;
+    std::memcpy(&w, p + i, 8);
+    h = (h ^ w) * 0x100000001b3ull;
+    h ^= h >> 31;
+  }
+  uint64_t tail = 0;
+  std::memcpy(&tail, p + i, n - i);
+  h = (h ^ tail) * 0x100000001b3ull;
+  return h ^ (h >> 29);
+}
+
+template <class T>
+void put(std::vector<uint8_t>& out, const T& v) {
+  const uint8_t* b = reinterpret_cast<const uint8_t*>(&v);
+  out.insert(out.end(), b, b + sizeof(T));
+}
+template <class T>
+T get(const uint8_t* p) {
+  T v;
+  std::memcpy(&v, p, sizeof(T));
+  return v;
+}
+
+struct SectionView {
+  const void* data;
+  uint32_t elementSize;
+  uint64_t count;
+};
+
+std::vector<SectionView> views(const VgeoData& d) {
+  return {
+      {d.geometries.data(), sizeof(shaderio::Geometry), d.geometries.size()},
+      {d.instances.data(), sizeof(shaderio::Instance), d.instances.size()},
+      {d.positions.data(), 12, d.positions.size() / 3},
+      {d.normals.data(), 4, d.normals.size()},
+      {d.clusters.data(), sizeof(shaderio::Cluster), d.clusters.size()},
+      {d.clusterVertices.data(), 4, d.clusterVertices.size()},
+      {d.clusterTriangles.data(), 4, d.clusterTriangles.size()},
+      {d.groups.data(), sizeof(shaderio::Group), d.groups.size()},
+      {d.nodes.data(), sizeof(shaderio::BvhNode), d.nodes.size()},
+      {d.cageFaces.data(), sizeof(shaderio::CageFace), d.cageFaces.size()},
+      {d.cageFaceVertices.data(), 4, d.cageFaceVertices.size()},
+  };
+}
+
+}  // namespace
+
+const char* sectionName(Section s) {
+  static const char* names[] = {"?", "geometries", "instances", "positions", "normals", "clusters", "cluster vertices",
+                                "cluster triangles", "groups", "BVH nodes", "cage faces", "cage face vertices"};
+  uint32_t i = uint32_t(s);
+  return i < uint32_t(Section::Count_) ? names[i] : "?";
+}
+
+std::vector<uint8_t> serializeVgeo(const VgeoData& data) {
+  auto sections = views(data);
+  const uint32_t count = uint32_t(sections.size());
+  std::vector<uint8_t> out(kHeaderSize + kEntrySize * count, 0);
+  std::vector<Entry> entries(count);
+  for (uint32_t i = 0; i < count; i++) {
+    while (out.size() % 16) out.push_back(0);
+    size_t bytes = size_t(sections[i].count) * sections[i].elementSize;
+    entries[i] = {i + 1, sections[i].elementSize, out.size(), sections[i].count, 0};
+    const uint8_t* src = static_cast<const uint8_t*>(sections[i].data);
+    if (bytes) out.insert(out.end(), src, src + bytes);
+    entries[i].checksum = checksum(out.data() + entries[i].offset, bytes);
+  }
+  std::vector<uint8_t> head;
+  head.insert(head.end(), kMagic, kMagic + 8);
+  put(head, kVgeoVersion);
+  put(head, count);
+  put(head, uint64_t(out.size()));
+  put(head, uint64_t(0));
+  for (const Entry& e : entries) {
+    put(head, e.id);
+    put(head, e.elementSize);
+    put(head, e.offset);
+    put(head, e.count);
+    put(head, e.checksum);
+  }
+  uint64_t tableSum = checksum(head.data(), head.size());
+  std::memcpy(head.data() + 24, &tableSum, 8);
+  std::memcpy(out.data(), head.data(), head.size());
+  return out;
+}
+
+VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name) {
+  auto fail = [&](const std::string& cause) { throw InputError(name, cause); };
+  if (size < kHeaderSize) fail("truncated: " + std::to_string(size) + " bytes is smaller than a .vgeo header");
+  if (std::memcmp(bytes, kMagic, 8) != 0) fail("not a .vgeo file (bad magic)");
+  uint32_t version = get<uint32_t>(bytes + 8);
+  if (version != kVgeoVersion)
+    fail("unsupported .vgeo version " + std::to_string(version) + " (this build reads version " + std::to_string(kVgeoVersion) +
+         "); rebuild the file with this vgeo");
+  uint32_t count = get<uint32_t>(bytes + 12);
+  uint64_t fileSize = get<uint64_t>(bytes + 16);
+  if (fileSize != size) fail("truncated or padded: the header says " + std::to_string(fileSize) + " bytes, the file has " + std::to_string(size));
+  if (count > 64 || kHeaderSize + uint64_t(count) * kEntrySize > size) fail("corrupt section table (" + std::to_string(count) + " sections)");
+  std::vector<uint8_t> head(bytes, bytes + kHeaderSize + count * kEntrySize);
+  uint64_t stored = get<uint64_t>(bytes + 24);
+  std::memset(head.data() + 24, 0, 8);
+  if (checksum(head.data(), head.size()) != stored) fail("corrupt header or section table (checksum mismatch)");
+
+  VgeoData data;
+  auto sections = views(data);  // element sizes only
+  std::vector<bool> seen(sections.size(), false);
+  for (uint32_t i = 0; i < count; i++) {
+    const uint8_t* p = bytes + kHeaderSize + i * kEntrySize;
+    Entry e{get<uint32_t>(p), get<uint32_t>(p + 4), get<uint64_t>(p + 8), get<uint64_t>(p + 16), get<uint64_t>(p + 24)};
+    if (e.id == 0 || e.id >= uint32_t(Section::Count_)) continue;  // unknown sections of later minor versions
+    const char* sname = sectionName(Section(e.id));
+    if (seen[e.id - 1]) fail(std::string("section '") + sname + "' appears twice");
+    seen[e.id - 1] = true;
+    if (e.elementSize != sections[e.id - 1].elementSize) fail(std::string("section '") + sname + "' has element size " + std::to_string(e.elementSize));
+    if (e.offset % 16 || e.offset > size || e.count > (size - e.offset) / e.elementSize)
+      fail(std::string("section '") + sname + "' lies outside the file");
+    const uint8_t* src = bytes + e.offset;
+    size_t n = size_t(e.count * e.elementSize);
+    if (checksum(src, n) != e.checksum) fail(std::string("section '") + sname + "' is corrupt (checksum mismatch)");
+    auto copy = [&](auto& vec, size_t elements) {
+      vec.resize(elements);
+      if (n) std::memcpy(vec.data(), src, n);
+    };
+    switch (Section(e.id)) {
+      case Section::Geometries: copy(data.geometries, e.count); break;
+      case Section::Instances: copy(data.instances, e.count); break;
+      case Section::Positions: copy(data.positions, e.count * 3); break;
+      case Section::Normals: copy(data.normals, e.count); break;
+      case Section::Clusters: copy(data.clusters, e.count); break;
+      case Section::ClusterVertices: copy(data.clusterVertices, e.count); break;
+      case Section::ClusterTriangles: copy(data.clusterTriangles, e.count); break;
+      case Section::Groups: copy(data.groups, e.count); break;
+      case Section::BvhNodes: copy(data.nodes, e.count); break;
+      case Section::CageFaces: copy(data.cageFaces, e.count); break;
+      case Section::CageFaceVertices: copy(data.cageFaceVertices, e.count); break;
+      default: break;
+    }
+  }
+  for (size_t i = 0; i < seen.size(); i++)
+    if (!seen[i]) fail(std::string("section '") + sectionName(Section(i + 1)) + "' is missing");
+
+  // References: everything the renderer will follow must stay inside its array.
+  const uint64_t vertices = data.vertexCount();
+  auto within = [](uint64_t offset, uint64_t n, uint64_t size) { return offset <= size && n <= size - offset; };
+  if (data.normals.size() != vertices) fail("normals and positions differ in count");
+  for (size_t v = 0; v < data.positions.size(); v++)
+    if (!std::isfinite(data.positions[v])) fail("vertex " + std::to_string(v / 3) + " has a non-finite position");
+  for (size_t i = 0; i < data.geometries.size(); i++) {
+    const auto& g = data.geometries[i];
+    std::string what = "geometry " + std::to_string(i);
+    if (!within(g.clusterOffset, g.clusterCount, data.clusters.size()) || !within(g.groupOffset, g.groupCount, data.groups.size()) ||
+        !within(g.nodeOffset, g.nodeCount, data.nodes.size()) || g.nodeCount == 0 || !within(g.vertexOffset, g.vertexCount, vertices) ||
+        !within(g.cageFaceOffset, g.cageFaceCount, data.cageFaces.size()))
+      fail(what + " refers outside the file's arrays");
+  }
+  for (size_t i = 0; i < data.instances.size(); i++) {
+    const auto& inst = data.instances[i];
+    if (inst.geometry >= data.geometries.size()) fail("instance " + std::to_string(i) + " uses a missing geometry");
+    for (int r = 0; r < 4; r++)
+      if (!std::isfinite(inst.row0[r]) || !std::isfinite(inst.row1[r]) || !std::isfinite(inst.row2[r]))
+        fail("instance " + std::to_string(i) + " has a non-finite transform");
+  }
+  for (size_t i = 0; i < data.clusters.size(); i++) {
+    const auto& c = data.clusters[i];
+    std::string what = "cluster " + std::to_string(i);
+    uint32_t vc = shaderio::clusterVertexCount(c.counts), tc = shaderio::clusterTriangleCount(c.counts);
+    if (vc > VGEO_MAX_CLUSTER_VERTICES || tc > VGEO_MAX_CLUSTER_TRIANGLES) fail(what + " is larger than a cluster may be");
+    if (!within(c.vertexOffset, vc, data.clusterVertices.size()) || !within(c.triangleOffset, tc, data.clusterTriangles.size()) ||
+        !within(c.cageFaceOffset, shaderio::clusterCageFaceCount(c.counts), data.cageFaces.size()))
+      fail(what + " refers outside the file's arrays");
+    if (c.group >= data.groups.size() || (c.producer != VGEO_NO_GROUP && c.producer >= data.groups.size()))
+      fail(what + " refers to a missing group");
+    for (uint32_t k = 0; k < vc; k++)
+      if (data.clusterVertices[c.vertexOffset + k] >= vertices) fail(what + " uses a vertex out of range");
+    for (uint32_t t = 0; t < tc; t++) {
+      uint32_t tri = data.clusterTriangles[c.triangleOffset + t];
+      if ((tri & 0xff) >= vc || ((tri >> 8) & 0xff) >= vc || ((tri >> 16) & 0xff) >= vc || (tri >> 24))
+        fail(what + " has a triangle with a local index out of range");
+    }
+    if (!std::isfinite(c.selfError) || std::isnan(c.parentError)) fail(what + " has a non-finite error");
+  }
+  for (size_t i = 0; i < data.groups.size(); i++)
+    if (!within(data.groups[i].clusterOffset, data.groups[i].clusterCount, data.clusters.size()))
+      fail("group " + std::to_string(i) + " refers outside the cluster array");
+  // Nodes: children in range, and every node reached once from its geometry's root (no cycles).
+  std::vector<uint8_t> reached(data.nodes.size(), 0);
+  for (const auto& g : data.geometries) {
+    std::vector<uint32_t> stack{g.nodeOffset};
+    while (!stack.empty()) {
+      uint32_t n = stack.back();
+      stack.pop_back();
+      if (reached[n]++) fail("BVH node " + std::to_string(n) + " is reached twice (the hierarchy is not a tree)");
+      const auto& node = data.nodes[n];
+      uint32_t children = node.childCountAndFlags & ~VGEO_NODE_LEAF_BIT;
+      if (children > VGEO_BVH_WIDTH) fail("BVH node " + std::to_string(n) + " has too many children");
+      if (node.childCountAndFlags & VGEO_NODE_LEAF_BIT) {
+        if (!within(node.childOffset, children, data.groups.size())) fail("BVH node " + std::to_string(n) + " refers to missing groups");
+      } else {
+        if (!within(node.childOffset, children, data.nodes.size())) fail("BVH node " + std::to_string(n) + " refers to missing nodes");
+        for (uint32_t k = 0; k < children; k++) stack.push_back(node.childOffset + k);
+      }
+    }
+  }
+  for (size_t i = 0; i < data.cageFaces.size(); i++) {
+    const auto& f = data.cageFaces[i];
+    if (!within(f.firstVertex, f.vertexCount, data.cageFaceVertices.size()) || f.leafCluster >= data.clusters.size())
+      fail("cage face " + std::to_string(i) + " refers outside the file's arrays");
+  }
+  for (uint32_t v : data.cageFaceVertices)
+    if (v >= vertices) fail("a cage face uses a vertex out of range");
+  return data;
+}
+
+void writeVgeo(const VgeoData& data, const std::string& path) {
+  std::vector<uint8_t> bytes = serializeVgeo(data);
+  std::string temp = path + ".tmp." + std::to_string(::getpid());
+  {
+    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+    if (!out) throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
+    out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    out.close();
+    if (!out) {
+      std::remove(temp.c_str());
+      throw std::runtime_error(path + ": write failed (disk full?)");
+    }
+  }
+  if (std::rename(temp.c_str(), path.c_str()) != 0) {
+    std::remove(temp.c_str());
+    throw std::runtime_error(path + ": cannot rename the finished file into place: " + std::strerror(errno));
+  }
+}
+
+VgeoData readVgeo(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
+  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return parseVgeo(bytes.data(), bytes.size(), path);
+}
+
+uint32_t encodeNormal(glm::vec3 n) {
+  n /= (std::abs(n.x) + std::abs(n.y) + std::abs(n.z) + 1e-30f);
+  glm::vec2 e(n.x, n.y);
+  if (n.z < 0.0f) e = (1.0f - glm::abs(glm::vec2(n.y, n.x))) * glm::vec2(n.x >= 0.0f ? 1.0f : -1.0f, n.y >= 0.0f ? 1.0f : -1.0f);
+  auto q = [](float f) { return uint32_t(int32_t(std::lround(glm::clamp(f, -1.0f, 1.0f) * 32767.0f)) & 0xffff); };
+  return q(e.x) | q(e.y) << 16;
+}
+
+glm::vec3 decodeNormal(uint32_t packed) {
+  glm::vec2 e(float(int16_t(packed & 0xffff)) / 32767.0f, float(int16_t(packed >> 16)) / 32767.0f);
+  glm::vec3 n(e.x, e.y, 1.0f - std::abs(e.x) - std::abs(e.y));
+  if (n.z < 0.0f) {
+    glm::vec2 xy = (1.0f - glm::abs(glm::vec2(n.y, n.x))) * glm::vec2(n.x >= 0.0f ? 1.0f : -1.0f, n.y >= 0.0f ? 1.0f : -1.0f);
+    n.x = xy.x;
+    n.y = xy.y;
+  }
+  return glm::normalize(n);
+}
+
+}  // namespace vgeo

@@ -1,0 +1,152 @@
+// shaderio.h: the structs that live in GPU buffers and in .vgeo sections, declared once for C++ and GLSL.
+// A .vgeo file's sections are arrays of these structs, byte for byte, so the renderer uploads them as they
+// are read. Every struct is a multiple of 16 bytes and uses only vec4, float and uint, so std430 (GLSL) and
+// the C++ layout agree without padding rules; the static_asserts below pin the sizes.
+#ifndef VGEO_SHADERIO_H
+#define VGEO_SHADERIO_H
+
+#ifdef __cplusplus
+#include <cstdint>
+#include <glm/glm.hpp>
+namespace shaderio {
+using vec3 = glm::vec3;
+using vec4 = glm::vec4;
+using uint = uint32_t;
+using glm::length;
+#endif
+
+#define VGEO_MAX_CLUSTER_TRIANGLES 128
+#define VGEO_MAX_CLUSTER_VERTICES 256
+#define VGEO_BVH_WIDTH 8
+#define VGEO_NODE_LEAF_BIT 0x80000000u
+#define VGEO_NO_GROUP 0xffffffffu
+
+// One cluster: <= 128 triangles over <= 256 vertices (8-bit local indices).
+// self   = (error, sphere) of the group that produced it (leaves: error 0, the cluster's own sphere);
+// parent = (error, sphere) of the group it belongs to (clusters of the last level: error = +inf).
+// Draw iff project(self) <= tau < project(parent) (DESIGN.md, invariant 4).
+struct Cluster {
+  vec4 selfSphere;      // xyz centre, w radius; encloses the cluster's triangles
+  vec4 parentSphere;
+  float selfError;      // object-space distance
+  float parentError;
+  uint vertexOffset;    // into the cluster-vertex section (absolute vertex indices)
+  uint triangleOffset;  // into the cluster-triangle section (one uint per triangle: 3 x 8-bit local indices)
+  uint counts;          // packed, see clusterVertexCount() etc.
+  uint group;           // the group it belongs to (absolute group index)
+  uint producer;        // the group that produced it, VGEO_NO_GROUP for leaves
+  uint cageFaceOffset;  // leaves: into the cluster-cage-face section; count in counts
+};
+
+// A group: clusters of one level simplified together. Its members are contiguous in the cluster array.
+struct Group {
+  vec4 sphere;          // encloses the members' self spheres
+  float error;          // >= every member's self error; +inf for the root groups
+  uint clusterOffset;   // absolute cluster index of the first member
+  uint clusterCount;
+  uint level;           // the simplification round that formed it
+};
+
+// BVH node over groups. Children are contiguous: nodes, or groups when VGEO_NODE_LEAF_BIT is set in
+// childCountAndFlags. sphere encloses every group below; maxError is the largest group error below.
+struct BvhNode {
+  vec4 sphere;
+  float maxError;
+  uint childOffset;     // absolute node or group index
+  uint childCountAndFlags;
+  uint level;           // simplification level of the groups below; 0xffffffff for mixed (the root)
+};
+
+// A geometry: one mesh's DAG. Offsets are absolute indices into the file's sections.
+struct Geometry {
+  vec4 boundsSphere;    // encloses every cluster of the geometry
+  uint clusterOffset;
+  uint clusterCount;
+  uint groupOffset;
+  uint groupCount;
+  uint nodeOffset;      // the BVH root is nodes[nodeOffset]
+  uint nodeCount;
+  uint vertexOffset;
+  uint vertexCount;
+  uint cageFaceOffset;  // into the cage-face section (the level-N cage, one entry per face)
+  uint cageFaceCount;
+  uint levelCount;
+  uint flags;           // VGEO_GEOMETRY_CLOSED when the repaired input had no boundary edge
+};
+#define VGEO_GEOMETRY_CLOSED 1u
+
+// An instance: a row-major 3x4 object-to-world transform and the geometry it shows.
+struct Instance {
+  vec4 row0;
+  vec4 row1;
+  vec4 row2;
+  uint geometry;
+  uint pad0;
+  uint pad1;
+  uint pad2;
+};
+
+// A face of the level-N cage: its corner vertices are cageFaceVertices[first .. first+count).
+struct CageFace {
+  uint firstVertex;
+  uint vertexCount;
+  uint leafCluster;     // the leaf cluster holding the face
+  uint firstTriangle;   // its first triangle within that cluster (a face's triangles are consecutive)
+};
+
+// Packing of Cluster.counts: vertex count (9 bits), triangle count (8), level (7), cage face count (8).
+#ifdef __cplusplus
+inline
+#endif
+uint packClusterCounts(uint vertexCount, uint triangleCount, uint level, uint cageFaceCount) {
+  return vertexCount | (triangleCount << 9) | (level << 17) | (cageFaceCount << 24);
+}
+#ifdef __cplusplus
+inline
+#endif
+uint clusterVertexCount(uint counts) { return counts & 0x1ffu; }
+#ifdef __cplusplus
+inline
+#endif
+uint clusterTriangleCount(uint counts) { return (counts >> 9) & 0xffu; }
+#ifdef __cplusplus
+inline
+#endif
+uint clusterLevel(uint counts) { return (counts >> 17) & 0x7fu; }
+#ifdef __cplusplus
+inline
+#endif
+uint clusterCageFaceCount(uint counts) { return counts >> 24; }
+
+// Projected error in pixels of an (error, sphere) pair seen from `eye`: error * projScale / distance to
+// the sphere, with projScale = viewport height / (2 tan(fovY / 2)). A camera within znear of the sphere
+// sees an unbounded error (it needs the finest level there); zero error projects to zero. The same
+// function decides the cut on the GPU and in the CPU reference, so the two agree up to rounding.
+// Monotonic: a larger error in an enclosing sphere never projects smaller (DESIGN.md, invariant 3).
+#ifdef __cplusplus
+inline float uintBitsToFloat(uint bits) {
+  float f;
+  static_assert(sizeof(f) == sizeof(bits), "float size");
+  __builtin_memcpy(&f, &bits, 4);
+  return f;
+}
+inline
+#endif
+float projectedError(vec4 sphere, float error, vec3 eye, float projScale, float znear) {
+  if (error == 0.0f) return 0.0f;
+  float d = length(vec3(sphere.x, sphere.y, sphere.z) - eye) - sphere.w;
+  if (d <= znear) return uintBitsToFloat(0x7f800000u);
+  return error * projScale / d;
+}
+
+#ifdef __cplusplus
+static_assert(sizeof(Cluster) == 64, "Cluster layout");
+static_assert(sizeof(Group) == 32, "Group layout");
+static_assert(sizeof(BvhNode) == 32, "BvhNode layout");
+static_assert(sizeof(Geometry) == 64, "Geometry layout");
+static_assert(sizeof(Instance) == 64, "Instance layout");
+static_assert(sizeof(CageFace) == 16, "CageFace layout");
+}  // namespace shaderio
+#endif
+
+#endif
