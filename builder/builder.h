@@ -95,14 +95,15 @@ struct Partition {
   std::vector<uint32_t> partStart{0};
   size_t partCount() const { return partStart.size() - 1; }
 };
-// Splits the nodes into parts of total weight <= maxWeight by recursive bisection: each cut grows one
-// side breadth-first from the extreme node along the set's longest axis, so parts are connected where
-// the graph allows and compact. A set of weight w becomes ceil(w / maxWeight) parts of near equal
-// weight, so parts are nearly full. `fits(nodes, count)` may reject a part (then it is split in two).
-// Every node weight must be <= maxWeight. Deterministic for any thread count.
+// Splits the nodes into parts of total weight <= maxWeight by recursive bisection: a set of weight w
+// becomes ceil(w / targetWeight) parts of near equal weight (so parts are nearly full), each cut growing
+// one side from a peripheral node in order of distance, so parts are compact and connected where the
+// graph allows. Then pieces cut off from their part move to a neighbouring part with room (up to
+// maxWeight). `fits(nodes, count)` may reject a part (then it is split in two). Every node weight must
+// be <= targetWeight <= maxWeight. Deterministic for any thread count.
 Partition partitionGraph(const Graph& graph, const std::vector<uint8_t>& weights,
-                         const std::vector<glm::vec3>& positions, uint32_t maxWeight, int threads,
-                         const std::function<bool(const uint32_t*, size_t)>& fits = {});
+                         const std::vector<glm::vec3>& positions, uint32_t maxWeight, uint32_t targetWeight,
+                         int threads, const std::function<bool(const uint32_t*, size_t)>& fits = {});
 
 // ---- cluster.cpp ------------------------------------------------------------------------------------
 // A cluster under construction: triangles as absolute vertex index triples.
@@ -148,17 +149,14 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
 struct SimplifiedGroup {
   std::vector<uint32_t> indices;  // absolute vertex indices of the simplified triangles
   float error = 0.0f;             // object-space error added by this simplification
-  int relaxation = 0;             // 0 normal, 1 unbounded error, 2 border unlocked, 3 sloppy
-  bool halved = false;            // reached <= 55% of the input triangles with its topology intact
-  std::vector<uint64_t> borderChords;  // new edges between two border vertices, (min << 32 | max)
+  int relaxation = 0;             // 1 when it needed an error above 2% of the group's size to get there
+  bool halved = false;            // reached <= 55% of the input triangles
 };
-// Simplifies a group's triangles to about half with the group border locked (quadric error, meshopt).
-// When that cannot halve it: allow any error; and when `isWholeComponent` (no other group shares an
-// edge with it, so no neighbour can crack) unlock the border, then vertex-cluster (sloppy). A result is
-// taken only if it keeps the topology (no folded edge, border unchanged) and adds no edge between two
-// border vertices for which `edgeExists` (absolute (min << 32 | max)) is true.
+// Simplifies a group's triangles to half by quadric-error half-edge collapses with the group border
+// (edges without a twin inside the group) locked, keeping the surface manifold (link condition, no
+// flips). A new edge between two locked vertices a, b (absolute ids) is made only if chordAllowed(a, b).
 SimplifiedGroup simplifyGroup(const std::vector<uint32_t>& indices, const std::vector<glm::vec3>& positions,
-                              bool isWholeComponent, const std::function<bool(uint64_t)>& edgeExists);
+                              const std::function<bool(uint32_t, uint32_t)>& chordAllowed);
 
 // ---- dag.cpp ----------------------------------------------------------------------------------------
 struct BuildOptions {
@@ -180,7 +178,6 @@ struct Dag {
   std::vector<uint64_t> levelTriangles;  // triangles of the active set after each round
   uint32_t relaxedGroups = 0;            // groups that needed any relaxation (see SimplifiedGroup)
   uint32_t stuckGroups = 0;              // groups that could not be halved; their clusters were retried
-  uint32_t chordRejections = 0;          // of those, halved but with a border chord some cluster already had
   uint32_t rootClusters = 0;
 };
 // Builds the DAG of a repaired mesh whose faces are the leaf faces (the level-N cage).

@@ -66,7 +66,8 @@ void triangulateFace(const glm::vec3* positions, const uint32_t* v, uint32_t n, 
 }
 
 std::vector<BuildCluster> clustersFromFaces(const std::vector<uint32_t>& faceStart, const std::vector<uint32_t>& faceVertices,
-                                            const std::vector<glm::vec3>& positions, int threads, bool keepFaces) {
+                                            const std::vector<glm::vec3>& positions, int threads, bool keepFaces,
+                                            uint32_t targetTriangles) {
   const size_t faceCount = faceStart.size() - 1;
   Graph graph = dualGraph(faceStart, faceVertices);
   std::vector<uint8_t> weights(faceCount);
@@ -79,7 +80,7 @@ std::vector<BuildCluster> clustersFromFaces(const std::vector<uint32_t>& faceSta
     centroids[f] = sum / float(n);
   }
   auto fits = [&](const uint32_t* faces, size_t count) { return fitsVertexLimit(faceStart, faceVertices, faces, count); };
-  Partition parts = partitionGraph(graph, weights, centroids, VGEO_MAX_CLUSTER_TRIANGLES, threads, fits);
+  Partition parts = partitionGraph(graph, weights, centroids, VGEO_MAX_CLUSTER_TRIANGLES, targetTriangles, threads, fits);
   std::vector<BuildCluster> clusters(parts.partCount());
   for (size_t p = 0; p < parts.partCount(); p++) {
     BuildCluster& c = clusters[p];
@@ -116,13 +117,17 @@ void fanLargeFaces(PolygonMesh& mesh) {
 std::vector<BuildCluster> buildLeafClusters(const PolygonMesh& mesh, int threads) {
   for (size_t f = 0; f < mesh.faceCount(); f++)
     if (mesh.faceSize(f) > kMaxLeafFaceCorners) throw std::logic_error("buildLeafClusters: call fanLargeFaces first");
-  return clustersFromFaces(mesh.faceStart, mesh.faceVertices, mesh.positions, threads, true);
+  // Leaves: nearly full clusters (the builder's promise is >= 124 triangles on average), with a little
+  // room left for merging cut-off pieces.
+  return clustersFromFaces(mesh.faceStart, mesh.faceVertices, mesh.positions, threads, true, 126);
 }
 
 std::vector<BuildCluster> splitIntoClusters(const std::vector<uint32_t>& indices, const std::vector<glm::vec3>& positions) {
   std::vector<uint32_t> faceStart(indices.size() / 3 + 1);
   for (size_t i = 0; i < faceStart.size(); i++) faceStart[i] = uint32_t(3 * i);
-  return clustersFromFaces(faceStart, indices, positions, 1, false);
+  // Simplified groups have a fine border ring around coarse insides, which cuts pieces off easily:
+  // leave more room for merging them back.
+  return clustersFromFaces(faceStart, indices, positions, 1, false, 120);
 }
 
 }  // namespace vgeo

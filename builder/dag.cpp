@@ -119,11 +119,36 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
       std::vector<BuildCluster> produced;
     };
     std::vector<Outcome> outcomes(plans.size());
-    auto edgeExists = [&](uint64_t key) { return edges.contains(key); };  // read-only while groups run
+    // Which groups of this round hold each vertex: a chord (a new edge between two border vertices) is
+    // made by at most one group of a round, and never when some cluster already has that edge.
+    std::vector<std::pair<uint32_t, uint32_t>> holders;
+    for (uint32_t g = 0; g < plans.size(); g++) {
+      std::vector<uint32_t> vertices;
+      for (uint32_t m : plans[g].clusters) vertices.insert(vertices.end(), dag.clusters[m].indices.begin(), dag.clusters[m].indices.end());
+      std::sort(vertices.begin(), vertices.end());
+      vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+      for (uint32_t v : vertices) holders.push_back({v, g});
+    }
+    std::sort(holders.begin(), holders.end());
+    auto holdersOf = [&](uint32_t v) {
+      auto lo = std::lower_bound(holders.begin(), holders.end(), std::make_pair(v, 0u));
+      auto hi = std::lower_bound(lo, holders.end(), std::make_pair(v + 1, 0u));
+      return std::make_pair(lo, hi);
+    };
     parallelFor(plans.size(), options.threads, [&](size_t g) {
       std::vector<uint32_t> indices;
       for (uint32_t m : plans[g].clusters) indices.insert(indices.end(), dag.clusters[m].indices.begin(), dag.clusters[m].indices.end());
-      outcomes[g].simplified = simplifyGroup(indices, positions, plans[g].isWholeComponent, edgeExists);
+      auto chordAllowed = [&](uint32_t a, uint32_t b) {
+        if (edges.contains(uint64_t(std::min(a, b)) << 32 | std::max(a, b))) return false;
+        auto [a0, a1] = holdersOf(a);
+        auto [b0, b1] = holdersOf(b);
+        // Of the groups holding both ends, only the first may make the chord this round.
+        for (auto i = a0; i != a1; ++i)
+          for (auto j = b0; j != b1; ++j)
+            if (i->second == j->second && i->second < g) return false;
+        return true;
+      };
+      outcomes[g].simplified = simplifyGroup(indices, positions, chordAllowed);
       if (outcomes[g].simplified.halved) outcomes[g].produced = splitIntoClusters(outcomes[g].simplified.indices, positions);
     });
     // Merge in group order: ids depend only on the plans, never on thread timing.
@@ -132,12 +157,7 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
     for (size_t g = 0; g < plans.size(); g++) {
       Outcome& o = outcomes[g];
       if (o.simplified.relaxation > 0) dag.relaxedGroups++;
-      // A new edge between two border vertices that some cluster already has would make an edge of
-      // four triangles in a cut holding both: keep this group's clusters for the next round instead.
-      bool chordTaken = false;
-      for (uint64_t chord : o.simplified.borderChords) chordTaken |= edges.contains(chord);
-      if (chordTaken) dag.chordRejections++;
-      if (!o.simplified.halved || chordTaken) {
+      if (!o.simplified.halved) {
         dag.stuckGroups++;
         next.insert(next.end(), plans[g].clusters.begin(), plans[g].clusters.end());
         continue;

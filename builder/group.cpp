@@ -66,8 +66,15 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
     METIS_SetDefaultOptions(options);
     options[METIS_OPTION_SEED] = 1;
     options[METIS_OPTION_NUMBERING] = 0;
+    // Contiguous groups when the cluster graph is connected (METIS refuses otherwise: then retry without).
+    options[METIS_OPTION_CONTIG] = 1;
     int status = METIS_PartGraphKway(&nvtxs, &ncon, xadj.data(), adjncy.data(), nullptr, nullptr, adjwgt.data(), &nparts,
                                      nullptr, nullptr, options, &objval, part.data());
+    if (status != METIS_OK) {
+      options[METIS_OPTION_CONTIG] = 0;
+      status = METIS_PartGraphKway(&nvtxs, &ncon, xadj.data(), adjncy.data(), nullptr, nullptr, adjwgt.data(), &nparts, nullptr,
+                                   nullptr, options, &objval, part.data());
+    }
     if (status != METIS_OK) throw std::runtime_error("METIS_PartGraphKway failed with status " + std::to_string(status));
   }
   std::vector<GroupPlan> groups(size_t(std::max<idx_t>(nparts, 1)));

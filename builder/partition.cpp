@@ -22,6 +22,7 @@ struct Bisector {
   const std::vector<uint8_t>& weights;
   const std::vector<glm::vec3>& positions;
   uint32_t maxWeight;
+  uint32_t targetWeight;  // sets are cut into ceil(weight / targetWeight) parts, each <= maxWeight
   const std::function<bool(const uint32_t*, size_t)>& fits;
   std::vector<uint32_t>& order;
   std::vector<uint32_t> stamp;   // the end of the segment a node lives in; kTaken|end while being taken
@@ -30,17 +31,32 @@ struct Bisector {
   uint32_t load(uint32_t node) const { return __atomic_load_n(&stamp[node], __ATOMIC_RELAXED); }
   void store(uint32_t node, uint32_t value) { __atomic_store_n(&stamp[node], value, __ATOMIC_RELAXED); }
 
+  // The last node a breadth-first search from `start` reaches within the set; marks are undone.
+  uint32_t farthestNode(uint32_t start, uint32_t inSet) {
+    const uint32_t visiting = inSet | kTaken;
+    std::vector<uint32_t> queue{start};
+    store(start, visiting);
+    for (size_t head = 0; head < queue.size(); head++)
+      for (uint32_t e = graph.offsets[queue[head]]; e < graph.offsets[queue[head] + 1]; e++)
+        if (load(graph.adjacency[e]) == inSet) {
+          store(graph.adjacency[e], visiting);
+          queue.push_back(graph.adjacency[e]);
+        }
+    for (uint32_t node : queue) store(node, inSet);
+    return queue.back();
+  }
+
   void split(uint32_t lo, uint32_t hi, int parallelDepth) {
     uint64_t w = 0;
     for (uint32_t i = lo; i < hi; i++) w += weights[order[i]];
-    if (hi - lo == 1 || (w <= maxWeight && (!fits || fits(&order[lo], hi - lo)))) {
+    if (hi - lo == 1 || (w <= targetWeight && (!fits || fits(&order[lo], hi - lo)))) {
       partHead[lo] = 1;
       return;
     }
-    uint64_t k = std::max<uint64_t>(2, (w + maxWeight - 1) / maxWeight);
+    uint64_t k = std::max<uint64_t>(2, (w + targetWeight - 1) / targetWeight);
     uint64_t kA = k / 2;
     uint64_t targetA = (w * kA + k / 2) / k;
-    uint64_t maxA = w <= maxWeight ? w - 1 : kA * maxWeight;
+    uint64_t maxA = w <= targetWeight ? w - 1 : kA * targetWeight;
 
     glm::vec3 lower(INFINITY), upper(-INFINITY);
     for (uint32_t i = lo; i < hi; i++) {
@@ -55,23 +71,40 @@ struct Bisector {
     };
 
     const uint32_t inSet = hi, taken = hi | kTaken;
-    std::vector<uint32_t> sideA;  // in BFS order
+    std::vector<uint32_t> sideA;  // in the order taken
     sideA.reserve(size_t(hi - lo) / 2 + 1);
     std::vector<uint32_t> seeds;  // the set sorted along the axis, made only when a component runs out
     size_t nextSeed = 0;
     uint64_t wA = 0;
-    size_t head = 0;
+    // Frontier ordered by distance to the seed: regions grow round, and the cut is a sphere around the
+    // peripheral seed, close to a plane across the set.
+    std::vector<std::pair<float, uint32_t>> frontier;
+    auto byDistance = [](const std::pair<float, uint32_t>& a, const std::pair<float, uint32_t>& b) {
+      return a.first != b.first ? a.first > b.first : a.second > b.second;
+    };
+    glm::vec3 origin(0.0f);
     auto take = [&](uint32_t node) {
       store(node, taken);
       sideA.push_back(node);
       wA += weights[node];
+      for (uint32_t e = graph.offsets[node]; e < graph.offsets[node + 1]; e++) {
+        uint32_t next = graph.adjacency[e];
+        if (load(next) == inSet) {
+          frontier.push_back({glm::distance(origin, positions[next]), next});
+          std::push_heap(frontier.begin(), frontier.end(), byDistance);
+        }
+      }
     };
     uint32_t seed = order[lo];
     for (uint32_t i = lo + 1; i < hi; i++)
       if (before(order[i], seed)) seed = order[i];
+    // Grow from the node of the seed's component farthest from it by graph distance (a peripheral
+    // node): growing from a node inside a curved strip would cut the rest of the set in two.
+    seed = farthestNode(seed, inSet);
+    origin = positions[seed];
     take(seed);
     while (wA < targetA) {
-      if (head == sideA.size()) {
+      if (frontier.empty()) {
         // Component exhausted: continue from the extreme node not yet taken.
         if (seeds.empty()) {
           seeds.assign(order.begin() + lo, order.begin() + hi);
@@ -83,11 +116,10 @@ struct Bisector {
         take(seeds[nextSeed]);
         continue;
       }
-      uint32_t node = sideA[head++];
-      for (uint32_t e = graph.offsets[node]; e < graph.offsets[node + 1] && wA < targetA; e++) {
-        uint32_t next = graph.adjacency[e];
-        if (load(next) == inSet && wA + weights[next] <= maxA) take(next);
-      }
+      std::pop_heap(frontier.begin(), frontier.end(), byDistance);
+      uint32_t node = frontier.back().second;
+      frontier.pop_back();
+      if (load(node) == inSet && wA + weights[node] <= maxA) take(node);
     }
     if (sideA.size() == hi - lo) {  // never take everything
       store(sideA.back(), inSet);
@@ -117,22 +149,105 @@ struct Bisector {
   }
 };
 
+// Moves the fragments of parts (every connected piece but the largest) into the neighbouring part they
+// share most edges with, when it has room and still fits; parts keep their order, moved nodes go last.
+void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uint32_t maxWeight,
+                    const std::function<bool(const uint32_t*, size_t)>& fits, Partition& p) {
+  const size_t n = p.order.size(), parts = p.partCount();
+  std::vector<uint32_t> owner(n);
+  std::vector<std::vector<uint32_t>> members(parts);
+  std::vector<uint64_t> weight(parts, 0);
+  for (uint32_t q = 0; q < parts; q++)
+    for (uint32_t i = p.partStart[q]; i < p.partStart[q + 1]; i++) {
+      owner[p.order[i]] = q;
+      members[q].push_back(p.order[i]);
+      weight[q] += weights[p.order[i]];
+    }
+  std::vector<uint32_t> piece(n, UINT32_MAX);
+  bool moved = false;
+  for (uint32_t q = 0; q < parts; q++) {
+    // Pieces of part q, by flood fill in member order.
+    std::vector<std::vector<uint32_t>> pieces;
+    for (uint32_t start : members[q]) {
+      if (piece[start] != UINT32_MAX) continue;
+      pieces.push_back({start});
+      piece[start] = uint32_t(pieces.size() - 1);
+      for (size_t h = 0; h < pieces.back().size(); h++) {
+        uint32_t u = pieces.back()[h];
+        for (uint32_t e = graph.offsets[u]; e < graph.offsets[u + 1]; e++) {
+          uint32_t v = graph.adjacency[e];
+          if (owner[v] == q && piece[v] == UINT32_MAX) {
+            piece[v] = piece[u];
+            pieces.back().push_back(v);
+          }
+        }
+      }
+    }
+    if (pieces.size() < 2) continue;
+    size_t largest = 0;
+    for (size_t i = 1; i < pieces.size(); i++)
+      if (pieces[i].size() > pieces[largest].size()) largest = i;
+    for (size_t i = 0; i < pieces.size(); i++) {
+      if (i == largest) continue;
+      uint64_t w = 0;
+      std::vector<std::pair<uint32_t, uint32_t>> shared;  // (part, edges)
+      for (uint32_t u : pieces[i]) {
+        w += weights[u];
+        for (uint32_t e = graph.offsets[u]; e < graph.offsets[u + 1]; e++) {
+          uint32_t r = owner[graph.adjacency[e]];
+          if (r == q) continue;
+          auto it = std::find_if(shared.begin(), shared.end(), [&](auto& x) { return x.first == r; });
+          if (it == shared.end()) shared.push_back({r, 1});
+          else it->second++;
+        }
+      }
+      std::sort(shared.begin(), shared.end(), [](auto& a, auto& b) { return a.second != b.second ? a.second > b.second : a.first < b.first; });
+      for (auto [r, edges] : shared) {
+        if (weight[r] + w > maxWeight) continue;
+        std::vector<uint32_t> merged = members[r];
+        merged.insert(merged.end(), pieces[i].begin(), pieces[i].end());
+        if (fits && !fits(merged.data(), merged.size())) continue;
+        members[r] = std::move(merged);
+        weight[r] += w;
+        weight[q] -= w;
+        for (uint32_t u : pieces[i]) owner[u] = r;
+        std::vector<uint32_t> rest;
+        for (uint32_t u : members[q])
+          if (owner[u] == q) rest.push_back(u);
+        members[q] = std::move(rest);
+        moved = true;
+        break;
+      }
+    }
+    for (uint32_t u : members[q]) piece[u] = UINT32_MAX;
+  }
+  if (!moved) return;
+  p.order.clear();
+  p.partStart.assign(1, 0);
+  for (uint32_t q = 0; q < parts; q++) {
+    if (members[q].empty()) continue;
+    p.order.insert(p.order.end(), members[q].begin(), members[q].end());
+    p.partStart.push_back(uint32_t(p.order.size()));
+  }
+}
+
 }  // namespace
 
 Partition partitionGraph(const Graph& graph, const std::vector<uint8_t>& weights, const std::vector<glm::vec3>& positions,
-                         uint32_t maxWeight, int threads, const std::function<bool(const uint32_t*, size_t)>& fits) {
+                         uint32_t maxWeight, uint32_t targetWeight, int threads, const std::function<bool(const uint32_t*, size_t)>& fits) {
   const uint32_t n = uint32_t(graph.nodeCount());
   Partition result;
   if (n == 0) return result;
   result.order.resize(n);
   for (uint32_t i = 0; i < n; i++) result.order[i] = i;
-  Bisector b{graph, weights, positions, maxWeight, fits, result.order, std::vector<uint32_t>(n, n), std::vector<uint8_t>(n, 0)};
+  Bisector b{graph, weights, positions, maxWeight, targetWeight, fits, result.order, std::vector<uint32_t>(n, n), std::vector<uint8_t>(n, 0)};
   int depth = 0;
   while ((1 << depth) < threads) depth++;
   b.split(0, n, depth);
   for (uint32_t i = 1; i < n; i++)
     if (b.partHead[i]) result.partStart.push_back(i);
   result.partStart.push_back(n);
+  mergeFragments(graph, weights, maxWeight, fits, result);
   return result;
 }
 
