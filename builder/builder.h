@@ -97,8 +97,8 @@ struct Partition {
 };
 // Splits the nodes into parts of total weight <= maxWeight by recursive bisection: a set of weight w
 // becomes ceil(w / targetWeight) parts of near equal weight (so parts are nearly full), each cut growing
-// one side from a peripheral node in order of distance, so parts are compact and connected where the
-// graph allows. Then pieces cut off from their part move to a neighbouring part with room (up to
+// one side from the set's extreme node in order of distance, so parts are compact and connected where
+// the graph allows. Then pieces cut off from their part move to a neighbouring part with room (up to
 // maxWeight). `fits(nodes, count)` may reject a part (then it is split in two). Every node weight must
 // be <= targetWeight <= maxWeight. Deterministic for any thread count.
 Partition partitionGraph(const Graph& graph, const std::vector<uint8_t>& weights,
@@ -139,11 +139,11 @@ struct GroupPlan {
   std::vector<uint32_t> clusters;  // cluster ids, ascending
   bool isWholeComponent = false;   // no cluster outside the group shares an edge with it
 };
-// Partitions the `active` clusters into groups of about `targetSize` neighbours: METIS k-way on the graph
+// Partitions the `active` clusters into groups of about `targetSize` neighbours: METIS on the graph
 // of clusters sharing an edge, edges weighted by the shared edge count, so that groups have short
 // borders (the locked part of the next simplification). Deterministic (fixed METIS seed).
 std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, const std::vector<uint32_t>& active,
-                                     uint32_t targetSize);
+                                     uint32_t targetSize, int threads);
 
 // ---- simplify.cpp -----------------------------------------------------------------------------------
 struct SimplifiedGroup {

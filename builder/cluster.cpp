@@ -4,54 +4,96 @@
 // of the level-N cage, so a quad's two triangles never part and every patch belongs to one cluster.
 #include <algorithm>
 
+#include "../common/parallel.h"
 #include "builder.h"
 
 namespace vgeo {
 namespace {
 
-// Faces sharing an edge are neighbours; an edge with more than two faces links consecutive ones.
-Graph dualGraph(const std::vector<uint32_t>& faceStart, const std::vector<uint32_t>& faceVertices) {
+// Faces sharing an edge are neighbours (all of them, should an edge have more than two faces). Found
+// through each vertex's faces rather than by sorting edges: linear, ~3x faster on large meshes, and
+// parallel over faces.
+Graph dualGraph(const std::vector<uint32_t>& faceStart, const std::vector<uint32_t>& faceVertices, int threads) {
   const size_t faceCount = faceStart.size() - 1;
-  std::vector<std::pair<uint64_t, uint32_t>> edges;
-  edges.reserve(faceVertices.size());
-  for (size_t f = 0; f < faceCount; f++) {
-    uint32_t n = faceStart[f + 1] - faceStart[f];
-    const uint32_t* v = &faceVertices[faceStart[f]];
-    for (uint32_t i = 0; i < n; i++) {
-      uint32_t a = v[i], b = v[(i + 1) % n];
-      edges.push_back({uint64_t(std::min(a, b)) << 32 | std::max(a, b), uint32_t(f)});
-    }
+  uint32_t vertexCount = 0;
+  for (uint32_t v : faceVertices) vertexCount = std::max(vertexCount, v + 1);
+  std::vector<uint32_t> vertexStart(vertexCount + 1, 0), vertexFaces(faceVertices.size());
+  for (uint32_t v : faceVertices) vertexStart[v + 1]++;
+  for (uint32_t v = 0; v < vertexCount; v++) vertexStart[v + 1] += vertexStart[v];
+  {
+    std::vector<uint32_t> fill(vertexStart.begin(), vertexStart.end() - 1);
+    for (uint32_t f = 0; f < faceCount; f++)
+      for (uint32_t c = faceStart[f]; c < faceStart[f + 1]; c++) vertexFaces[fill[faceVertices[c]]++] = f;
   }
-  std::sort(edges.begin(), edges.end());
-  std::vector<uint32_t> degree(faceCount, 0);
-  std::vector<std::pair<uint32_t, uint32_t>> links;
-  for (size_t i = 0; i + 1 < edges.size(); i++)
-    if (edges[i].first == edges[i + 1].first && edges[i].second != edges[i + 1].second) {
-      links.push_back({edges[i].second, edges[i + 1].second});
-      degree[edges[i].second]++;
-      degree[edges[i + 1].second]++;
+  auto hasVertex = [&](uint32_t f, uint32_t v) {
+    for (uint32_t c = faceStart[f]; c < faceStart[f + 1]; c++)
+      if (faceVertices[c] == v) return true;
+    return false;
+  };
+  // Each face writes its neighbours into a slot per corner edge (one neighbour an edge on a manifold
+  // mesh); faces with an edge of several neighbours are listed apart and merged after.
+  const uint32_t kNone = UINT32_MAX;
+  std::vector<uint32_t> slots(faceVertices.size(), kNone);
+  const size_t chunk = 4096, chunks = (faceCount + chunk - 1) / chunk;
+  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> extraByChunk(chunks);
+  parallelFor(chunks, threads, [&](size_t ch) {
+    for (uint32_t f = uint32_t(ch * chunk); f < std::min(faceCount, (ch + 1) * chunk); f++) {
+      uint32_t n = faceStart[f + 1] - faceStart[f];
+      for (uint32_t i = 0; i < n; i++) {
+        uint32_t a = faceVertices[faceStart[f] + i], b = faceVertices[faceStart[f] + (i + 1) % n];
+        for (uint32_t k = vertexStart[a]; k < vertexStart[a + 1]; k++) {
+          uint32_t other = vertexFaces[k];
+          if (other == f || !hasVertex(other, b)) continue;
+          uint32_t& slot = slots[faceStart[f] + i];
+          if (slot == kNone) slot = other;
+          else extraByChunk[ch].push_back({f, other});
+        }
+      }
     }
+  });
   Graph g;
-  g.offsets.resize(faceCount + 1, 0);
-  for (size_t f = 0; f < faceCount; f++) g.offsets[f + 1] = g.offsets[f] + degree[f];
+  g.offsets.assign(faceCount + 1, 0);
+  std::vector<uint32_t> extraCount(faceCount, 0);
+  for (auto& list : extraByChunk)
+    for (auto [f, other] : list) extraCount[f]++;
+  for (uint32_t f = 0; f < faceCount; f++) {
+    uint32_t found = extraCount[f];
+    for (uint32_t c = faceStart[f]; c < faceStart[f + 1]; c++) found += slots[c] != kNone;
+    g.offsets[f + 1] = g.offsets[f] + found;
+  }
   g.adjacency.resize(g.offsets.back());
   std::vector<uint32_t> fill(g.offsets.begin(), g.offsets.end() - 1);
-  for (auto [a, b] : links) {
-    g.adjacency[fill[a]++] = b;
-    g.adjacency[fill[b]++] = a;
-  }
+  for (uint32_t f = 0; f < faceCount; f++)
+    for (uint32_t c = faceStart[f]; c < faceStart[f + 1]; c++)
+      if (slots[c] != kNone) g.adjacency[fill[f]++] = slots[c];
+  for (auto& list : extraByChunk)
+    for (auto [f, other] : list) g.adjacency[fill[f]++] = other;
   return g;
 }
 
-// True when the faces use at most VGEO_MAX_CLUSTER_VERTICES distinct vertices.
+// True when the faces use at most VGEO_MAX_CLUSTER_VERTICES distinct vertices (counted with a marker
+// array per thread, stamped so that it never needs clearing).
 bool fitsVertexLimit(const std::vector<uint32_t>& faceStart, const std::vector<uint32_t>& faceVertices, const uint32_t* faces, size_t count) {
-  thread_local std::vector<uint32_t> vertices;
-  vertices.clear();
+  size_t corners = 0;
+  for (size_t i = 0; i < count; i++) corners += faceStart[faces[i] + 1] - faceStart[faces[i]];
+  if (corners <= VGEO_MAX_CLUSTER_VERTICES) return true;
+  thread_local std::vector<uint32_t> mark;
+  thread_local uint32_t stamp = 0;
+  if (++stamp == 0) {
+    std::fill(mark.begin(), mark.end(), 0u);
+    stamp = 1;
+  }
+  size_t distinct = 0;
   for (size_t i = 0; i < count; i++)
-    for (uint32_t c = faceStart[faces[i]]; c < faceStart[faces[i] + 1]; c++) vertices.push_back(faceVertices[c]);
-  if (vertices.size() <= VGEO_MAX_CLUSTER_VERTICES) return true;
-  std::sort(vertices.begin(), vertices.end());
-  return size_t(std::unique(vertices.begin(), vertices.end()) - vertices.begin()) <= VGEO_MAX_CLUSTER_VERTICES;
+    for (uint32_t c = faceStart[faces[i]]; c < faceStart[faces[i] + 1]; c++) {
+      uint32_t v = faceVertices[c];
+      if (v >= mark.size()) mark.resize(size_t(v) + 1 + mark.size() / 2, 0u);
+      if (mark[v] != stamp) {
+        mark[v] = stamp;
+        distinct++;
+      }
+    }
+  return distinct <= VGEO_MAX_CLUSTER_VERTICES;
 }
 
 void triangulateFace(const glm::vec3* positions, const uint32_t* v, uint32_t n, std::vector<uint32_t>& out) {
@@ -69,7 +111,7 @@ std::vector<BuildCluster> clustersFromFaces(const std::vector<uint32_t>& faceSta
                                             const std::vector<glm::vec3>& positions, int threads, bool keepFaces,
                                             uint32_t targetTriangles) {
   const size_t faceCount = faceStart.size() - 1;
-  Graph graph = dualGraph(faceStart, faceVertices);
+  Graph graph = dualGraph(faceStart, faceVertices, threads);
   std::vector<uint8_t> weights(faceCount);
   std::vector<glm::vec3> centroids(faceCount);
   for (size_t f = 0; f < faceCount; f++) {
@@ -123,11 +165,29 @@ std::vector<BuildCluster> buildLeafClusters(const PolygonMesh& mesh, int threads
 }
 
 std::vector<BuildCluster> splitIntoClusters(const std::vector<uint32_t>& indices, const std::vector<glm::vec3>& positions) {
+  // Work on compact local vertex ids: the adjacency arrays are sized by the vertex count.
+  thread_local std::vector<uint32_t> localOf;
+  if (localOf.size() < positions.size()) localOf.assign(positions.size(), UINT32_MAX);
+  std::vector<uint32_t> globals, local(indices.size());
+  std::vector<glm::vec3> points;
+  for (size_t i = 0; i < indices.size(); i++) {
+    uint32_t& slot = localOf[indices[i]];
+    if (slot == UINT32_MAX) {
+      slot = uint32_t(globals.size());
+      globals.push_back(indices[i]);
+      points.push_back(positions[indices[i]]);
+    }
+    local[i] = slot;
+  }
+  for (uint32_t g : globals) localOf[g] = UINT32_MAX;
   std::vector<uint32_t> faceStart(indices.size() / 3 + 1);
   for (size_t i = 0; i < faceStart.size(); i++) faceStart[i] = uint32_t(3 * i);
   // Simplified groups have a fine border ring around coarse insides, which cuts pieces off easily:
   // leave more room for merging them back.
-  return clustersFromFaces(faceStart, indices, positions, 1, false, 120);
+  std::vector<BuildCluster> clusters = clustersFromFaces(faceStart, local, points, 1, false, 120);
+  for (BuildCluster& c : clusters)
+    for (uint32_t& v : c.indices) v = globals[v];
+  return clusters;
 }
 
 }  // namespace vgeo

@@ -6,6 +6,7 @@
 // the group's (error, sphere) as their self pair.
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "../common/parallel.h"
 #include "builder.h"
@@ -46,14 +47,34 @@ BuildGroup makeGroup(std::vector<BuildCluster>& clusters, const std::vector<uint
 }
 
 // Every undirected edge of every cluster made so far, as an open-addressing hash set of (min << 32 | max).
+// Threads insert with compare-and-swap (being a set, its contents do not depend on the order); before
+// each batch, reserve() grows it so that it stays at most half full. (A home slot following the
+// smaller vertex id was tried for cache locality: vertices that survive many levels gather dozens of
+// edges, and linear probing then took 100x longer.)
 class EdgeSet {
  public:
   bool contains(uint64_t key) const {
-    if (slots_.empty()) return false;
     for (size_t i = hash(key) & mask_;; i = (i + 1) & mask_) {
-      if (slots_[i] == key) return true;
-      if (slots_[i] == kEmpty) return false;
+      uint64_t slot = __atomic_load_n(&slots_[i], __ATOMIC_RELAXED);
+      if (slot == key) return true;
+      if (slot == kEmpty) return false;
     }
+  }
+  // Makes room for `triangles` more triangles' edges; not thread-safe.
+  void reserve(size_t triangles) {
+    size_t needed = 2 * (count_ + 3 * triangles);
+    if (needed <= capacity_) return;
+    size_t capacity = std::max<size_t>(capacity_, 1024);
+    while (capacity < needed) capacity *= 2;
+    std::unique_ptr<uint64_t[]> old = std::move(slots_);
+    size_t oldCapacity = capacity_;
+    slots_.reset(new uint64_t[capacity]);
+    std::fill(slots_.get(), slots_.get() + capacity, kEmpty);
+    capacity_ = capacity;
+    mask_ = capacity - 1;
+    count_ = 0;
+    for (size_t i = 0; i < oldCapacity; i++)
+      if (old[i] != kEmpty) insert(old[i]);
   }
   void insertTriangles(const std::vector<uint32_t>& indices) {
     for (size_t t = 0; t + 2 < indices.size(); t += 3)
@@ -67,26 +88,17 @@ class EdgeSet {
   static constexpr uint64_t kEmpty = ~uint64_t(0);
   static size_t hash(uint64_t k) { return size_t((k * 0x9e3779b97f4a7c15ull) >> 20); }
   void insert(uint64_t key) {
-    if ((count_ + 1) * 2 > slots_.size()) grow();
     for (size_t i = hash(key) & mask_;; i = (i + 1) & mask_) {
-      if (slots_[i] == key) return;
-      if (slots_[i] == kEmpty) {
-        slots_[i] = key;
-        count_++;
+      uint64_t expected = kEmpty;
+      if (__atomic_compare_exchange_n(&slots_[i], &expected, key, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) {
+        __atomic_fetch_add(&count_, size_t(1), __ATOMIC_RELAXED);
         return;
       }
+      if (expected == key) return;
     }
   }
-  void grow() {
-    std::vector<uint64_t> old = std::move(slots_);
-    slots_.assign(std::max<size_t>(1024, old.size() * 2), kEmpty);
-    mask_ = slots_.size() - 1;
-    count_ = 0;
-    for (uint64_t k : old)
-      if (k != kEmpty) insert(k);
-  }
-  std::vector<uint64_t> slots_;
-  size_t mask_ = 0, count_ = 0;
+  std::unique_ptr<uint64_t[]> slots_;
+  size_t capacity_ = 0, mask_ = 0, count_ = 0;
 };
 
 }  // namespace
@@ -103,7 +115,12 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
     dag.clusters[i].selfSphere = sphereOfClusterVertices(dag.clusters[i], positions);
   });
   EdgeSet edges;
-  for (const BuildCluster& c : dag.clusters) edges.insertTriangles(c.indices);
+  // Leaves and every level above (which halves each time): about twice the leaf triangles, 1.5 edges each.
+  edges.reserve(mesh.triangleCount());
+  constexpr uint32_t kHolders = 4;
+  std::vector<uint8_t> holderCount;
+  std::vector<uint32_t> holders(positions.size() * kHolders);
+  parallelFor(dag.clusters.size(), options.threads, [&](size_t i) { edges.insertTriangles(dag.clusters[i].indices); });
   std::vector<uint32_t> active(dag.clusters.size());
   for (uint32_t i = 0; i < active.size(); i++) active[i] = i;
   dag.levelClusters.push_back(uint32_t(active.size()));
@@ -113,39 +130,39 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
 
   for (uint32_t round = 1; active.size() > 1; round++) {
     report(doneWork / totalWork, "simplifying");
-    std::vector<GroupPlan> plans = groupClusters(dag.clusters, active, options.groupSize);
+    std::vector<GroupPlan> plans = groupClusters(dag.clusters, active, options.groupSize, options.threads);
     struct Outcome {
       SimplifiedGroup simplified;
       std::vector<BuildCluster> produced;
     };
     std::vector<Outcome> outcomes(plans.size());
-    // Which groups of this round hold each vertex: a chord (a new edge between two border vertices) is
-    // made by at most one group of a round, and never when some cluster already has that edge.
-    std::vector<std::pair<uint32_t, uint32_t>> holders;
-    for (uint32_t g = 0; g < plans.size(); g++) {
-      std::vector<uint32_t> vertices;
-      for (uint32_t m : plans[g].clusters) vertices.insert(vertices.end(), dag.clusters[m].indices.begin(), dag.clusters[m].indices.end());
-      std::sort(vertices.begin(), vertices.end());
-      vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
-      for (uint32_t v : vertices) holders.push_back({v, g});
-    }
-    std::sort(holders.begin(), holders.end());
-    auto holdersOf = [&](uint32_t v) {
-      auto lo = std::lower_bound(holders.begin(), holders.end(), std::make_pair(v, 0u));
-      auto hi = std::lower_bound(lo, holders.end(), std::make_pair(v + 1, 0u));
-      return std::make_pair(lo, hi);
-    };
+    // Which groups of this round hold each vertex (up to kHolders; a vertex of more groups takes no
+    // chord): a chord (a new edge between two border vertices) is made by at most one group of a round,
+    // and never when some cluster already has that edge.
+    holderCount.assign(positions.size(), 0);
+    parallelFor(plans.size(), options.threads, [&](size_t g) {
+      thread_local std::vector<uint32_t> seenBy;
+      if (seenBy.size() < positions.size()) seenBy.assign(positions.size(), UINT32_MAX);
+      for (uint32_t m : plans[g].clusters)
+        for (uint32_t v : dag.clusters[m].indices) {
+          if (seenBy[v] == g) continue;
+          seenBy[v] = uint32_t(g);
+          uint8_t slot = __atomic_fetch_add(&holderCount[v], uint8_t(1), __ATOMIC_RELAXED);
+          if (slot < kHolders) __atomic_store_n(&holders[size_t(v) * kHolders + slot], uint32_t(g), __ATOMIC_RELAXED);
+        }
+      for (uint32_t m : plans[g].clusters)
+        for (uint32_t v : dag.clusters[m].indices) seenBy[v] = UINT32_MAX;
+    });
     parallelFor(plans.size(), options.threads, [&](size_t g) {
       std::vector<uint32_t> indices;
       for (uint32_t m : plans[g].clusters) indices.insert(indices.end(), dag.clusters[m].indices.begin(), dag.clusters[m].indices.end());
       auto chordAllowed = [&](uint32_t a, uint32_t b) {
         if (edges.contains(uint64_t(std::min(a, b)) << 32 | std::max(a, b))) return false;
-        auto [a0, a1] = holdersOf(a);
-        auto [b0, b1] = holdersOf(b);
+        if (holderCount[a] > kHolders || holderCount[b] > kHolders) return false;
         // Of the groups holding both ends, only the first may make the chord this round.
-        for (auto i = a0; i != a1; ++i)
-          for (auto j = b0; j != b1; ++j)
-            if (i->second == j->second && i->second < g) return false;
+        for (uint32_t i = 0; i < holderCount[a]; i++)
+          for (uint32_t j = 0; j < holderCount[b]; j++)
+            if (holders[size_t(a) * kHolders + i] == holders[size_t(b) * kHolders + j] && holders[size_t(a) * kHolders + i] < g) return false;
         return true;
       };
       outcomes[g].simplified = simplifyGroup(indices, positions, chordAllowed);
@@ -166,7 +183,6 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
       dag.groups.push_back(makeGroup(dag.clusters, plans[g].clusters, groupId, o.simplified.error, round - 1));
       const BuildGroup& group = dag.groups.back();
       for (BuildCluster& c : o.produced) {
-        edges.insertTriangles(c.indices);
         c.selfSphere = group.sphere;
         c.selfError = group.error;
         c.producer = groupId;
@@ -177,6 +193,11 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
       }
       for (uint32_t m : plans[g].clusters) doneWork += double(dag.clusters[m].indices.size() / 3);
     }
+    // This round's edges join the set only now: its chords were checked against earlier rounds.
+    uint64_t producedTriangles = 0;
+    for (size_t i = dag.clusters.size() - producedCount; i < dag.clusters.size(); i++) producedTriangles += dag.clusters[i].indices.size() / 3;
+    edges.reserve(producedTriangles);
+    parallelFor(producedCount, options.threads, [&](size_t i) { edges.insertTriangles(dag.clusters[dag.clusters.size() - producedCount + i].indices); });
     if (producedCount == 0) break;  // no group could be halved: what is left are the roots
     std::sort(next.begin(), next.end());
     active = std::move(next);
@@ -189,7 +210,7 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
   dag.rootClusters = uint32_t(active.size());
   std::vector<GroupPlan> roots;
   if (active.size() <= 32) roots.push_back({active, true});
-  else roots = groupClusters(dag.clusters, active, options.groupSize);
+  else roots = groupClusters(dag.clusters, active, options.groupSize, options.threads);
   for (const GroupPlan& plan : roots) {
     uint32_t groupId = uint32_t(dag.groups.size());
     dag.groups.push_back(makeGroup(dag.clusters, plan.clusters, groupId, 0.0f, uint32_t(dag.levelClusters.size() - 1)));

@@ -4,7 +4,6 @@
 // Each cluster lists its distinct vertices once (absolute indices) and its triangles as 8-bit local
 // indices: the meshlet layout, which lets a pass read any cluster without a second index buffer.
 #include <algorithm>
-#include <unordered_map>
 
 #include "builder.h"
 #include "layout.h"
@@ -44,7 +43,7 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
   }
 
   std::vector<uint32_t> local;
-  std::unordered_map<uint32_t, uint32_t> slot;
+  std::vector<uint32_t> slotOf(leafMesh.positions.size(), UINT32_MAX);  // vertex -> local index, reset per cluster
   for (uint32_t id : clusterOrder) {
     const BuildCluster& c = dag.clusters[id];
     const BuildGroup& parent = dag.groups[c.group];
@@ -57,15 +56,16 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
     out.producer = c.producer == VGEO_NO_GROUP ? VGEO_NO_GROUP : groupIndex[c.producer];
     out.vertexOffset = uint32_t(file.clusterVertices.size());
     out.triangleOffset = uint32_t(file.clusterTriangles.size());
-    slot.clear();
     local.clear();
-    for (uint32_t v : c.indices) {
-      auto [it, inserted] = slot.try_emplace(v, uint32_t(local.size()));
-      if (inserted) local.push_back(v);
-    }
+    for (uint32_t v : c.indices)
+      if (slotOf[v] == UINT32_MAX) {
+        slotOf[v] = uint32_t(local.size());
+        local.push_back(v);
+      }
     for (uint32_t v : local) file.clusterVertices.push_back(vertexOffset + v);
     for (size_t t = 0; t + 2 < c.indices.size(); t += 3)
-      file.clusterTriangles.push_back(slot[c.indices[t]] | slot[c.indices[t + 1]] << 8 | slot[c.indices[t + 2]] << 16);
+      file.clusterTriangles.push_back(slotOf[c.indices[t]] | slotOf[c.indices[t + 1]] << 8 | slotOf[c.indices[t + 2]] << 16);
+    for (uint32_t v : local) slotOf[v] = UINT32_MAX;
     out.cageFaceOffset = uint32_t(file.cageFaces.size());
     uint32_t firstTriangle = 0;
     for (uint32_t f : c.cageFaces) {

@@ -1,10 +1,11 @@
 // partition.cpp: splits a weighted graph into parts of bounded weight by recursive bisection.
-// Each bisection of a set of weight w into k = ceil(w / max) parts takes floor(k/2) parts' worth of
-// weight for side A by breadth-first growth from the set's extreme node along its longest axis; the
-// rest is side B. BFS from an extreme node cuts like a plane sweep that follows the surface, so both
-// sides stay compact and A is connected (it jumps to the next extreme node only when its component runs
-// out). Because every set is cut in proportion to its part count, all parts end near w / k: a mesh of
-// 50k triangles gives parts of ~127.9 triangles, where greedy growing leaves half-empty leftovers.
+// Each bisection of a set of weight w into k = ceil(w / target) parts takes floor(k/2) parts' worth of
+// weight for side A, grown from the set's extreme node along its longest axis in order of distance
+// from it (so A is a ball around that node, cut from the set by a sphere, which on a large set is
+// close to a plane across it); the rest is side B. A is connected: it jumps to the next extreme node
+// only when its component runs out. Because every set is cut in proportion to its part count, all
+// parts end near w / k, where greedy growing leaves half-empty leftovers. The cuts can still leave a
+// part in pieces; a last pass moves each cut-off piece into the neighbour it shares most edges with.
 // The two halves are independent, so the top of the recursion runs on several threads; a part's place
 // in the output depends only on the recursion tree, never on which thread ran it.
 #include <algorithm>
@@ -16,6 +17,7 @@ namespace vgeo {
 namespace {
 
 constexpr uint32_t kTaken = 0x80000000u;
+constexpr uint64_t kMedianSplitParts = 64;  // sets of more parts are cut at the weighted median
 
 struct Bisector {
   const Graph& graph;
@@ -30,21 +32,6 @@ struct Bisector {
 
   uint32_t load(uint32_t node) const { return __atomic_load_n(&stamp[node], __ATOMIC_RELAXED); }
   void store(uint32_t node, uint32_t value) { __atomic_store_n(&stamp[node], value, __ATOMIC_RELAXED); }
-
-  // The last node a breadth-first search from `start` reaches within the set; marks are undone.
-  uint32_t farthestNode(uint32_t start, uint32_t inSet) {
-    const uint32_t visiting = inSet | kTaken;
-    std::vector<uint32_t> queue{start};
-    store(start, visiting);
-    for (size_t head = 0; head < queue.size(); head++)
-      for (uint32_t e = graph.offsets[queue[head]]; e < graph.offsets[queue[head] + 1]; e++)
-        if (load(graph.adjacency[e]) == inSet) {
-          store(graph.adjacency[e], visiting);
-          queue.push_back(graph.adjacency[e]);
-        }
-    for (uint32_t node : queue) store(node, inSet);
-    return queue.back();
-  }
 
   void split(uint32_t lo, uint32_t hi, int parallelDepth) {
     uint64_t w = 0;
@@ -70,14 +57,24 @@ struct Bisector {
       return pa != pb ? pa < pb : a < b;
     };
 
-    const uint32_t inSet = hi, taken = hi | kTaken;
+    if (k > kMedianSplitParts) {
+      // Large sets: a weighted median cut across the longest axis. It costs one selection instead of a
+      // growth over half the set, and the halves run in parallel sooner; the growth cuts below it
+      // make the parts connected.
+      auto mid = order.begin() + lo + long((hi - lo) * kA / k);
+      std::nth_element(order.begin() + lo, mid, order.begin() + hi, before);
+      const uint32_t m = uint32_t(mid - order.begin());
+      for (uint32_t i = lo; i < m; i++) store(order[i], m);
+      recurse(lo, m, m, hi, parallelDepth);
+      return;
+    }
+    const uint32_t inSet = hi, taken = hi | kTaken, queued = lo | kTaken;
     std::vector<uint32_t> sideA;  // in the order taken
     sideA.reserve(size_t(hi - lo) / 2 + 1);
     std::vector<uint32_t> seeds;  // the set sorted along the axis, made only when a component runs out
     size_t nextSeed = 0;
     uint64_t wA = 0;
-    // Frontier ordered by distance to the seed: regions grow round, and the cut is a sphere around the
-    // peripheral seed, close to a plane across the set.
+    // Frontier ordered by distance to the seed: regions grow round, not in the diamonds of BFS.
     std::vector<std::pair<float, uint32_t>> frontier;
     auto byDistance = [](const std::pair<float, uint32_t>& a, const std::pair<float, uint32_t>& b) {
       return a.first != b.first ? a.first > b.first : a.second > b.second;
@@ -89,7 +86,8 @@ struct Bisector {
       wA += weights[node];
       for (uint32_t e = graph.offsets[node]; e < graph.offsets[node + 1]; e++) {
         uint32_t next = graph.adjacency[e];
-        if (load(next) == inSet) {
+        if (load(next) == inSet) {  // each node enters the frontier once: its distance never changes
+          store(next, queued);
           frontier.push_back({glm::distance(origin, positions[next]), next});
           std::push_heap(frontier.begin(), frontier.end(), byDistance);
         }
@@ -98,9 +96,6 @@ struct Bisector {
     uint32_t seed = order[lo];
     for (uint32_t i = lo + 1; i < hi; i++)
       if (before(order[i], seed)) seed = order[i];
-    // Grow from the node of the seed's component farthest from it by graph distance (a peripheral
-    // node): growing from a node inside a curved strip would cut the rest of the set in two.
-    seed = farthestNode(seed, inSet);
     origin = positions[seed];
     take(seed);
     while (wA < targetA) {
@@ -119,8 +114,10 @@ struct Bisector {
       std::pop_heap(frontier.begin(), frontier.end(), byDistance);
       uint32_t node = frontier.back().second;
       frontier.pop_back();
-      if (load(node) == inSet && wA + weights[node] <= maxA) take(node);
+      if (wA + weights[node] <= maxA) take(node);
+      else store(node, inSet);
     }
+    for (auto& f : frontier) store(f.second, inSet);  // left in the frontier: back to side B
     if (sideA.size() == hi - lo) {  // never take everything
       store(sideA.back(), inSet);
       sideA.pop_back();
@@ -138,6 +135,10 @@ struct Bisector {
     std::vector<uint32_t>().swap(sideB);
     std::vector<uint32_t>().swap(seeds);
 
+    recurse(lo, mid, mid, hi, parallelDepth);
+  }
+
+  void recurse(uint32_t lo, uint32_t mid, uint32_t, uint32_t hi, int parallelDepth) {
     if (parallelDepth > 0) {
       std::thread other([&] { split(lo, mid, parallelDepth - 1); });
       split(mid, hi, parallelDepth - 1);

@@ -17,7 +17,6 @@
 #include <algorithm>
 #include <cmath>
 #include <queue>
-#include <functional>
 
 #include "builder.h"
 
@@ -41,12 +40,15 @@ struct Quadric {
     for (int i = 0; i < 10; i++) a[i] += q.a[i];
     weight += q.weight;
   }
-  // Mean squared distance of p to the accumulated planes.
-  double meanSquaredDistance(glm::dvec3 p) const {
+  double evaluate(glm::dvec3 p) const {
     double x = p.x, y = p.y, z = p.z;
-    double e = a[0] * x * x + 2 * a[1] * x * y + 2 * a[2] * x * z + 2 * a[3] * x + a[4] * y * y + 2 * a[5] * y * z + 2 * a[6] * y +
-               a[7] * z * z + 2 * a[8] * z + a[9];
-    return weight > 0.0 ? std::max(0.0, e) / weight : 0.0;
+    return a[0] * x * x + 2 * a[1] * x * y + 2 * a[2] * x * z + 2 * a[3] * x + a[4] * y * y + 2 * a[5] * y * z + 2 * a[6] * y +
+           a[7] * z * z + 2 * a[8] * z + a[9];
+  }
+  // Mean squared distance of p to the planes of this quadric and `other` together.
+  double meanSquaredDistance(glm::dvec3 p, const Quadric& other) const {
+    double w = weight + other.weight;
+    return w > 0.0 ? std::max(0.0, evaluate(p) + other.evaluate(p)) / w : 0.0;
   }
 };
 
@@ -69,9 +71,22 @@ class Simplifier {
     alive_.assign(m, 1);
     removed_.assign(n, 0);
     aliveCount_ = m;
-    vertexTris_.resize(n);
+    // Triangle lists of the vertices in one pool: list v is pool_[start_[v] .. start_[v] + size_[v]),
+    // with room up to capacity_[v]; a list that outgrows its room moves to the pool's end.
+    start_.assign(n, 0);
+    size_.assign(n, 0);
+    capacity_.assign(n, 0);
+    for (uint32_t c : tri_) capacity_[c]++;
+    uint32_t total = 0;
+    for (uint32_t v = 0; v < n; v++) {
+      start_[v] = total;
+      capacity_[v] += 2;
+      total += capacity_[v];
+    }
+    pool_.resize(total);
     quadric_.resize(n);
     version_.assign(n, 0);
+    bestTarget_.assign(n, UINT32_MAX);
     rejected_.resize(n);
     for (uint32_t t = 0; t < m; t++) {
       glm::dvec3 a = p_[tri_[3 * t]], b = p_[tri_[3 * t + 1]], c = p_[tri_[3 * t + 2]];
@@ -80,7 +95,7 @@ class Simplifier {
       glm::dvec3 normal = len > 0.0 ? cross / len : glm::dvec3(0.0);
       double area = 0.5 * len;
       for (int k = 0; k < 3; k++) {
-        vertexTris_[tri_[3 * t + k]].push_back(t);
+        append(tri_[3 * t + k], t);
         quadric_[tri_[3 * t + k]].addPlane(normal, -glm::dot(normal, a), area + 1e-30);
       }
     }
@@ -116,29 +131,59 @@ class Simplifier {
  private:
   bool dead(uint32_t v) const { return removed_[v]; }
 
-  // Neighbours of u (sorted, unique) from its live triangles.
-  void neighbours(uint32_t u, std::vector<uint32_t>& out) const {
+  // Neighbours of u (sorted, unique) from its live triangles; drops dead triangles from u's list.
+  void neighbours(uint32_t u, std::vector<uint32_t>& out) {
     out.clear();
-    for (uint32_t t : vertexTris_[u])
-      if (alive_[t])
-        for (int k = 0; k < 3; k++)
-          if (tri_[3 * t + k] != u) out.push_back(tri_[3 * t + k]);
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
+    uint32_t* list = &pool_[start_[u]];
+    uint32_t kept = 0;
+    for (uint32_t i = 0; i < size_[u]; i++) {
+      uint32_t t = list[i];
+      if (!alive_[t]) continue;
+      list[kept++] = t;
+      for (int k = 0; k < 3; k++) {
+        uint32_t w = tri_[3 * t + k];
+        if (w == u) continue;
+        // Insertion into a short sorted list, skipping duplicates.
+        size_t i = out.size();
+        while (i > 0 && out[i - 1] > w) i--;
+        if (i > 0 && out[i - 1] == w) continue;
+        out.insert(out.begin() + long(i), w);
+      }
+    }
+    size_[u] = kept;
   }
 
+  void append(uint32_t v, uint32_t t) {
+    if (size_[v] == capacity_[v]) {
+      uint32_t moved = uint32_t(pool_.size());
+      capacity_[v] = capacity_[v] * 2 + 4;
+      pool_.resize(pool_.size() + capacity_[v]);
+      std::copy(pool_.begin() + start_[v], pool_.begin() + start_[v] + size_[v], pool_.begin() + moved);
+      start_[v] = moved;
+    }
+    pool_[start_[v] + size_[v]++] = t;
+  }
+  // Live and dead triangles of v; callers skip the dead.
+  const uint32_t* trianglesOf(uint32_t v) const { return &pool_[start_[v]]; }
+
+  // Pushes u's cheapest collapse. Candidates come straight from u's triangles (a neighbour seen twice
+  // costs one more quadric evaluation, cheaper than sorting the neighbours).
   void pushBest(uint32_t u) {
     if (locked_[u]) return;
-    neighbours(u, scratchA_);
     double best = INFINITY;
     uint32_t target = UINT32_MAX;
-    for (uint32_t v : scratchA_) {
-      if (std::find(rejected_[u].begin(), rejected_[u].end(), v) != rejected_[u].end()) continue;
-      Quadric q = quadric_[u];
-      q.add(quadric_[v]);
-      double cost = q.meanSquaredDistance(p_[v]);
-      if (cost < best) best = cost, target = v;
+    const std::vector<uint32_t>& rejected = rejected_[u];
+    for (uint32_t i = 0; i < size_[u]; i++) {
+      uint32_t t = trianglesOf(u)[i];
+      if (!alive_[t]) continue;
+      for (int k = 0; k < 3; k++) {
+        uint32_t v = tri_[3 * t + k];
+        if (v == u || (!rejected.empty() && std::find(rejected.begin(), rejected.end(), v) != rejected.end())) continue;
+        double cost = quadric_[u].meanSquaredDistance(p_[v], quadric_[v]);
+        if (cost < best || (cost == best && v < target)) best = cost, target = v;
+      }
     }
+    bestTarget_[u] = target;
     if (target != UINT32_MAX) heap_.push({best, u, target, version_[u]});
   }
 
@@ -149,17 +194,19 @@ class Simplifier {
     scratchC_.clear();
     std::set_intersection(scratchA_.begin(), scratchA_.end(), scratchB_.begin(), scratchB_.end(), std::back_inserter(scratchC_));
     size_t apexes = 0;
-    for (uint32_t t : vertexTris_[u]) {
+    for (uint32_t i = 0; i < size_[u]; i++) {
+      uint32_t t = trianglesOf(u)[i];
       if (!alive_[t]) continue;
       const uint32_t* x = &tri_[3 * t];
       if (x[0] != v && x[1] != v && x[2] != v) continue;
       apexes++;
       uint32_t apex = x[0] != u && x[0] != v ? x[0] : x[1] != u && x[1] != v ? x[1] : x[2];
-      if (!std::binary_search(scratchC_.begin(), scratchC_.end(), apex)) { stat[0]++; return false; }
+      if (!std::binary_search(scratchC_.begin(), scratchC_.end(), apex)) return false;
     }
-    if (apexes == 0 || scratchC_.size() != apexes) { stat[0]++; return false; }
+    if (apexes == 0 || scratchC_.size() != apexes) return false;
     // No flipped or degenerate triangle.
-    for (uint32_t t : vertexTris_[u]) {
+    for (uint32_t i = 0; i < size_[u]; i++) {
+      uint32_t t = trianglesOf(u)[i];
       if (!alive_[t]) continue;
       const uint32_t* x = &tri_[3 * t];
       if (x[0] == v || x[1] == v || x[2] == v) continue;
@@ -172,19 +219,20 @@ class Simplifier {
       glm::dvec3 n1 = glm::cross(after[1] - after[0], after[2] - after[0]);
       double l0 = glm::length(n0), l1 = glm::length(n1);
       if (l1 <= 1e-12 * (glm::dot(after[1] - after[0], after[1] - after[0]) + glm::dot(after[2] - after[0], after[2] - after[0])))
-        { stat[1]++; return false; }
-      if (l0 > 0.0 && glm::dot(n0, n1) < 0.2 * l0 * l1) { stat[2]++; return false; }
+        return false;
+      if (l0 > 0.0 && glm::dot(n0, n1) < 0.2 * l0 * l1) return false;
     }
     // Chords: new edges v-w between two locked vertices.
     if (locked_[v])
       for (uint32_t w : scratchA_)
-        if (w != v && locked_[w] && !std::binary_search(scratchB_.begin(), scratchB_.end(), w) && !chordAllowed_(v, w)) { stat[3]++; return false; }
+        if (w != v && locked_[w] && !std::binary_search(scratchB_.begin(), scratchB_.end(), w) && !chordAllowed_(v, w)) return false;
     return true;
   }
 
   void collapse(uint32_t u, uint32_t v) {
     neighbours(u, scratchA_);
-    for (uint32_t t : vertexTris_[u]) {
+    for (uint32_t i = 0; i < size_[u]; i++) {
+      uint32_t t = trianglesOf(u)[i];
       if (!alive_[t]) continue;
       uint32_t* x = &tri_[3 * t];
       if (x[0] == v || x[1] == v || x[2] == v) {
@@ -194,20 +242,23 @@ class Simplifier {
       }
       for (int k = 0; k < 3; k++)
         if (x[k] == u) x[k] = v;
-      vertexTris_[v].push_back(t);
+      append(v, t);
     }
-    vertexTris_[u].clear();
+    size_[u] = 0;
     removed_[u] = 1;
     quadric_[v].add(quadric_[u]);
-    // Costs change for v and every vertex around it.
-    std::vector<uint32_t> touched = scratchA_;
-    touched.push_back(v);
-    for (uint32_t w : touched) {
-      if (w == u) continue;
+    // All of v's candidates changed; a neighbour's only if it was aiming at u or v (its other candidates
+    // keep their cost, and its collapse onto v only got dearer by v's grown quadric, or so little
+    // cheaper that the order barely changes). Validity is checked again when a candidate is popped.
+    for (uint32_t w : scratchA_) {
+      if (w == u || (w != v && bestTarget_[w] != u && bestTarget_[w] != v)) continue;
       version_[w]++;
       rejected_[w].clear();
       pushBest(w);
     }
+    version_[v]++;
+    rejected_[v].clear();
+    pushBest(v);
   }
 
   std::vector<uint32_t> tri_;
@@ -216,15 +267,14 @@ class Simplifier {
   std::function<bool(uint32_t, uint32_t)> chordAllowed_;
   std::vector<uint8_t> alive_, removed_;
   size_t aliveCount_ = 0;
-  std::vector<std::vector<uint32_t>> vertexTris_;
+  std::vector<uint32_t> pool_, start_, size_, capacity_;
   std::vector<Quadric> quadric_;
   std::vector<uint32_t> version_;
+  std::vector<uint32_t> bestTarget_;  // target of each vertex's live heap entry
   std::vector<std::vector<uint32_t>> rejected_;
   std::priority_queue<Candidate> heap_;
   std::vector<uint32_t> scratchA_, scratchB_, scratchC_;
   double maxCost_ = 0.0;
- public:
-  size_t stat[4] = {0,0,0,0};
 };
 
 }  // namespace
@@ -245,15 +295,19 @@ SimplifiedGroup simplifyGroup(const std::vector<uint32_t>& indices, const std::v
   }
   for (uint32_t g : globals) localOf[g] = UINT32_MAX;
 
-  // Locked: vertices on a directed edge whose reverse is absent (the group border).
+  // Locked: vertices on an edge with one triangle in the group (the group border).
   std::vector<uint64_t> edges;
   edges.reserve(local.size());
   for (size_t t = 0; t + 2 < local.size(); t += 3)
-    for (int k = 0; k < 3; k++) edges.push_back(uint64_t(local[t + size_t(k)]) << 32 | local[t + size_t((k + 1) % 3)]);
+    for (int k = 0; k < 3; k++) {
+      uint32_t a = local[t + size_t(k)], b = local[t + size_t((k + 1) % 3)];
+      edges.push_back(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
+    }
   std::sort(edges.begin(), edges.end());
   std::vector<uint8_t> locked(globals.size(), 0);
-  for (uint64_t e : edges)
-    if (!std::binary_search(edges.begin(), edges.end(), (e << 32) | (e >> 32))) locked[e >> 32] = locked[e & 0xffffffffu] = 1;
+  for (size_t i = 0; i < edges.size(); i++)
+    if ((i == 0 || edges[i - 1] != edges[i]) && (i + 1 == edges.size() || edges[i + 1] != edges[i]))
+      locked[edges[i] >> 32] = locked[edges[i] & 0xffffffffu] = 1;
 
   std::vector<glm::dvec3> points(globals.size());
   glm::dvec3 lower(INFINITY), upper(-INFINITY);
@@ -263,22 +317,9 @@ SimplifiedGroup simplifyGroup(const std::vector<uint32_t>& indices, const std::v
     upper = glm::max(upper, points[i]);
   }
   const size_t triangles = indices.size() / 3;
-  std::vector<uint8_t> lockedCopy = locked;
   Simplifier s(std::move(local), std::move(points), std::move(locked),
                [&](uint32_t a, uint32_t b) { return chordAllowed(globals[a], globals[b]); });
   double error = s.run(triangles / 2);
-  if (getenv("VGEO_DEBUG") && s.triangleCount() > size_t(float(triangles) * kHalvedRatio)) {
-    // components of the input triangles by shared edges
-    std::vector<uint32_t> comp(triangles); for (size_t i = 0; i < triangles; i++) comp[i] = uint32_t(i);
-    std::function<uint32_t(uint32_t)> find = [&](uint32_t x) { while (comp[x] != x) x = comp[x] = comp[comp[x]]; return x; };
-    std::vector<std::pair<uint64_t, uint32_t>> es;
-    for (size_t t = 0; t < triangles; t++) for (int k = 0; k < 3; k++) { uint32_t a = indices[3*t+k], b = indices[3*t+(k+1)%3]; es.push_back({uint64_t(std::min(a,b))<<32|std::max(a,b), uint32_t(t)}); }
-    std::sort(es.begin(), es.end());
-    for (size_t i = 0; i + 1 < es.size(); i++) if (es[i].first == es[i+1].first) comp[find(es[i].second)] = find(es[i+1].second);
-    size_t nc = 0; for (size_t i = 0; i < triangles; i++) nc += find(uint32_t(i)) == i;
-    fprintf(stderr, "components %zu\n", nc);
-  }
-  if (getenv("VGEO_DEBUG") && s.triangleCount() > size_t(float(triangles) * kHalvedRatio)) fprintf(stderr, "stuck %zu -> %zu link %zu degen %zu flip %zu chord %zu locked %zu of %zu\n", triangles, s.triangleCount(), s.stat[0], s.stat[1], s.stat[2], s.stat[3], size_t(std::count(lockedCopy.begin(), lockedCopy.end(), 1)), lockedCopy.size());
   SimplifiedGroup result;
   result.error = float(error);
   result.halved = s.triangleCount() <= size_t(float(triangles) * kHalvedRatio);

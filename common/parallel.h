@@ -2,6 +2,7 @@
 // time from an atomic counter; callers write results to slot i, so output never depends on scheduling.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <exception>
 #include <mutex>
@@ -33,6 +34,21 @@ void parallelFor(size_t count, int threads, Fn&& fn) {
   work();
   for (auto& t : pool) t.join();
   if (error) std::rethrow_exception(error);
+}
+
+// std::sort on two threads: each half sorted apart, then merged. Same result as std::sort for a strict
+// weak order on distinct-or-equal elements (equal elements are indistinguishable here).
+template <class T>
+void parallelSort(std::vector<T>& v, int threads) {
+  if (threads <= 1 || v.size() < 65536) {
+    std::sort(v.begin(), v.end());
+    return;
+  }
+  auto mid = v.begin() + long(v.size() / 2);
+  std::thread other([&] { std::sort(v.begin(), mid); });
+  std::sort(mid, v.end());
+  other.join();
+  std::inplace_merge(v.begin(), mid, v.end());
 }
 
 }  // namespace vgeo
