@@ -52,7 +52,8 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
     const std::string where = scene.meshes.size() > 1 ? path + " (mesh '" + scene.meshNames[m] + "')" : path;
     RepairReport report = repairMesh(mesh, where);
     add(stats.repair, report);
-    closed[m] = report.boundaryEdges == 0;
+    // Closed: no boundary edge, and no vertex split by repair (so positions identify vertices).
+    closed[m] = report.boundaryEdges == 0 && report.splitVertices == 0;
     double vertices = 0, triangles = 0;
     predictSize(mesh, report.boundaryEdges, options.subdivisionLevels, vertices, triangles);
     // Cluster triangles over all levels (~2x the leaves) and vertices must stay addressable by uint32.

@@ -48,6 +48,7 @@ class GltfReader {
     }
     onPath_.assign(model_.nodes.size(), false);
     for (int r : roots) visit(r, glm::mat4(1.0f), scene);
+    if (model_.meshes.empty()) fail("empty mesh: no meshes (the 'meshes' array is missing, empty or not an array)");
     if (scene.instances.empty()) fail("empty mesh: the default scene shows no triangle mesh");
     return scene;
   }

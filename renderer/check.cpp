@@ -105,7 +105,9 @@ struct GeometryChecker {
     return true;
   }
 
-  // Vertex ids matched by position: copies made by repair at one position count as one vertex.
+  // Vertex ids matched by position for closed geometries (copies at one position count as one vertex).
+  // Open ones are matched by id: their repair may have split non-manifold edges into coincident
+  // borders, which matched by position would look like overlaps already at the finest level.
   std::vector<uint32_t> canonical;
   std::vector<std::vector<uint32_t>> products;  // per group (relative), the clusters it produced
   void prepare() {
@@ -115,7 +117,7 @@ struct GeometryChecker {
       glm::vec3 p = d.position(g.vertexOffset + v);
       std::array<uint32_t, 3> key;
       std::memcpy(key.data(), &p, 12);
-      canonical[v] = byPosition.emplace(key, v).first->second;
+      canonical[v] = (g.flags & VGEO_GEOMETRY_CLOSED) ? byPosition.emplace(key, v).first->second : v;
     }
     products.assign(g.groupCount, {});
     for (uint32_t i = g.clusterOffset; i < g.clusterOffset + g.clusterCount; i++)

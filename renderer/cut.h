@@ -38,7 +38,8 @@ struct CheckResult {
 // and shared parent per group; monotonic errors and enclosing spheres (self spheres also enclose their
 // cluster's vertices); the BVH encloses and bounds its groups and reaches each once; and for `cuts`
 // random views that the cut is watertight (closed geometries: every edge, matched by position, has
-// exactly two triangles of opposite orientation; open ones: no edge is covered twice the same way) and
+// exactly two triangles of opposite orientation; open ones: no edge, matched by vertex id, is covered
+// twice the same way) and
 // covers every leaf triangle's area exactly once. Stops at the first violation.
 CheckResult checkVgeo(const VgeoData& data, const CheckOptions& options);
 

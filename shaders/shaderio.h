@@ -71,7 +71,7 @@ struct Geometry {
   uint cageFaceOffset;  // into the cage-face section (the level-N cage, one entry per face)
   uint cageFaceCount;
   uint levelCount;
-  uint flags;           // VGEO_GEOMETRY_CLOSED when the repaired input had no boundary edge
+  uint flags;           // VGEO_GEOMETRY_CLOSED: the repaired input had no boundary edge and no split vertex
 };
 #define VGEO_GEOMETRY_CLOSED 1u
 

@@ -1,0 +1,102 @@
+// test_bad_input.cpp: every bad input gives one clear line naming the file and the cause, a non-zero
+// exit, and no output file; inputs that are odd but valid build.
+#include <filesystem>
+
+#include "test_util.h"
+
+namespace vgeo {
+namespace {
+
+struct BadCase {
+  std::string name;
+  std::string file;      // path, or a file name written from `content` into the test directory
+  std::string content;   // empty: `file` is an existing path
+  std::string expected;  // a part of the error line
+  std::string options = "";
+};
+
+void PrintTo(const BadCase& c, std::ostream* os) { *os << c.name; }
+
+class BadInput : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(BadInput, FailsWithOneClearLineAndWritesNothing) {
+  const BadCase& c = GetParam();
+  std::string dir = test::tempDir();
+  std::string input = c.content.empty() ? c.file : test::writeFile(dir, c.file, c.content);
+  std::string output = dir + "/out.vgeo";
+  test::RunResult r = test::runVgeo("build '" + input + "' -o '" + output + "' -q " + c.options);
+  EXPECT_NE(r.exitCode, 0) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(output)) << "an output file was written";
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << "temporary file left: " << entry.path();
+  // One line: the file's name, then the cause.
+  ASSERT_FALSE(r.output.empty());
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_EQ(r.output.rfind(input + ": ", 0), 0u) << r.output;
+  EXPECT_NE(r.output.find(c.expected), std::string::npos) << "expected '" << c.expected << "' in: " << r.output;
+}
+
+const char* kCube = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                    "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+
+INSTANTIATE_TEST_SUITE_P(
+    Files, BadInput,
+    ::testing::Values(
+        BadCase{"Missing", "/nonexistent/mesh.obj", "", "cannot open"},
+        BadCase{"UnknownFormat", "mesh.xyz", "1 2 3\n", "unknown mesh format"},
+        BadCase{"TruncatedOff", "t.off", "OFF\n8 6 0\n0 0 0\n1 0 0\n", "truncated"},
+        BadCase{"OffIndexOutOfRange", "i.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n", "out of range"},
+        BadCase{"OffNotOff", "n.off", "PLY\n3 1 0\n", "not an OFF file"},
+        BadCase{"ObjBadVertex", "v.obj", "v 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "vertex needs three numbers"},
+        BadCase{"ObjIndexOutOfRange", "o.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", "out of range"},
+        BadCase{"ObjNaN", "nan.obj", "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n", "non-finite position"},
+        BadCase{"ObjInf", "inf.obj", "v 0 0 0\nv 1 inf 0\nv 0 1 0\nf 1 2 3\n", "non-finite position"},
+        BadCase{"EmptyMesh", "e.obj", "v 0 0 0\nv 1 0 0\n", "empty mesh"},
+        BadCase{"AllDegenerate", "d.obj", "v 0 0 0\nv 1 0 0\nf 1 2 2\nf 1 1 1\n", "empty mesh"},
+        BadCase{"PlyTruncatedBinary", "b.ply",
+                std::string("ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                            "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n") +
+                    std::string(20, '\0'),
+                "truncated"},
+        BadCase{"PlyNoVertexXYZ", "x.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float q\nend_header\n1\n", "lacks x, y or z"},
+        BadCase{"TooLargeForIndices", "cube.obj", kCube, "too large for the format's 32-bit indices", "--subdiv 16"},
+        BadCase{"GltfIndexOutOfRange", test::assimpModel("IndexOutOfRange/IndexOutOfRange.gltf"), "", "out of range"},
+        BadCase{"GltfAllIndicesOutOfRange", test::assimpModel("IndexOutOfRange/AllIndicesOutOfRange.gltf"), "", "out of range"},
+        BadCase{"GltfMissingBin", test::assimpModel("MissingBin/BoxTextured.gltf"), "", "BoxTextured0.bin"},
+        BadCase{"GltfSchemaFailure", test::assimpModel("SchemaFailures/sceneWrongType.gltf"), "", "BoxTextured0.bin"},
+        BadCase{"GltfInfinites", test::assimpModel("BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb"), "", "non-finite position"},
+        BadCase{"GltfRecursiveNodes", test::assimpModel("RecursiveNodes/RecursiveNodes.gltf"), "", "cyclic node graph"},
+        BadCase{"GltfIncorrectVertexArrays", test::assimpModel("IncorrectVertexArrays/Cube.gltf"), "", "not a whole number of triangles"},
+        BadCase{"GltfNoScene", test::assimpModel("TestNoRootNode/NoScene.gltf"), "", "no meshes"},
+        BadCase{"GltfBadJson", "bad.gltf", "{ \"asset\": { \"version\": \"2.0\" }, \"meshes\": [ { ", "parse error"},
+        BadCase{"GltfTruncatedGlb", "t.glb", std::string("glTF\x02\0\0\0", 8), "Too short"},
+        BadCase{"GltfMeshesNotAnArray", test::assimpModel("wrongTypes/badArray.gltf"), "", "shows no triangle mesh"}),
+    [](const ::testing::TestParamInfo<BadCase>& info) { return info.param.name; });
+
+TEST(GoodInput, BoxBadNormalsBuilds) {
+  // Bad normals do not matter to the builder (it uses positions only): a correct build.
+  std::string dir = test::tempDir();
+  test::RunResult r = test::runVgeo("build '" + test::assimpModel("BoxBadNormals-glTF-Binary/BoxBadNormals.glb") + "' -o " + dir + "/b.vgeo -q");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/b.vgeo"));
+}
+
+TEST(GoodInput, DegenerateAndDuplicateFacesAreDroppedAndCounted) {
+  std::string dir = test::tempDir();
+  std::string obj = std::string(kCube) + "f 1 2 2\nf 1 4 3 2\nf 3 2 1 4\n";
+  std::string path = test::writeFile(dir, "dups.obj", obj);
+  test::RunResult r = test::runVgeo("build '" + path + "' -o " + dir + "/d.vgeo -q --stats " + dir + "/s.json");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("1 degenerate and 2 duplicate faces dropped"), std::string::npos) << r.output;
+}
+
+TEST(BadVgeo, CheckRejectsAFileThatIsNotVgeo) {
+  std::string dir = test::tempDir();
+  std::string path = test::writeFile(dir, "x.vgeo", "this is not a vgeo file at all, but it is long enough");
+  test::RunResult r = test::runVgeo("check '" + path + "'");
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_EQ(r.output, path + ": not a .vgeo file (bad magic)\n");
+}
+
+}  // namespace
+}  // namespace vgeo

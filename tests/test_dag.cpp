@@ -1,0 +1,115 @@
+// test_dag.cpp: the invariants of DESIGN.md on real meshes (CGAL's demo data, the shipped cage, a
+// multi-mesh glTF), through the same checker as `vgeo check`, plus the builder's promises on sizes.
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "test_util.h"
+
+namespace vgeo {
+namespace {
+
+struct DagCase {
+  std::string name;
+  std::string path;
+  int subdiv;
+  bool closedConnected;
+};
+
+void PrintTo(const DagCase& c, std::ostream* os) { *os << c.name; }
+
+class Dag : public ::testing::TestWithParam<DagCase> {};
+
+TEST_P(Dag, InvariantsHold) {
+  const DagCase& c = GetParam();
+  SceneBuildStats stats;
+  VgeoData data = test::build(c.path, c.subdiv, 2, &stats);
+  // Invariant 1 and the per-level reduction.
+  for (const auto& cluster : data.clusters) {
+    EXPECT_LE(shaderio::clusterTriangleCount(cluster.counts), uint32_t(VGEO_MAX_CLUSTER_TRIANGLES));
+    EXPECT_LE(shaderio::clusterVertexCount(cluster.counts), uint32_t(VGEO_MAX_CLUSTER_VERTICES));
+  }
+  for (size_t l = 1; l < stats.levelTriangles.size(); l++)
+    EXPECT_LE(double(stats.levelTriangles[l]), 0.55 * double(stats.levelTriangles[l - 1])) << "level " << l;
+  if (c.closedConnected) {
+    EXPECT_EQ(stats.rootClusters, 1u);
+    EXPECT_EQ(stats.repair.boundaryEdges, 0u);
+  }
+  if (c.closedConnected && stats.leafTriangles >= 50000) {
+    EXPECT_GE(double(stats.levelTriangles[0]) / double(stats.leafClusters), 124.0);
+  }
+  // Invariants 2-5 on random cuts.
+  CheckResult result = checkVgeo(data, {24, 7});
+  EXPECT_TRUE(result.ok) << result.firstViolation;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Meshes, Dag,
+    ::testing::Values(DagCase{"CubeQuad0", test::cgalMesh("cube_quad.off"), 0, true},
+                      DagCase{"CubeQuad2", test::cgalMesh("cube_quad.off"), 2, true},
+                      DagCase{"CubeQuad4", test::cgalMesh("cube_quad.off"), 4, true},
+                      DagCase{"TorusQuad0", test::cgalMesh("torus_quad.off"), 0, true},
+                      DagCase{"TorusQuad2", test::cgalMesh("torus_quad.off"), 2, true},
+                      DagCase{"TorusQuad4", test::cgalMesh("torus_quad.off"), 4, true},
+                      DagCase{"Bunny0", test::cgalMesh("bunny00.off"), 0, true},
+                      DagCase{"Bunny1", test::cgalMesh("bunny00.off"), 1, true},
+                      DagCase{"Armadillo0", test::cgalMesh("armadillo.off"), 0, true},
+                      DagCase{"Armadillo1", test::cgalMesh("armadillo.off"), 1, true},
+                      DagCase{"HornedCube0", test::asset("horned_cube.obj"), 0, true},
+                      DagCase{"HornedCube2", test::asset("horned_cube.obj"), 2, true},
+                      DagCase{"HornedCube4", test::asset("horned_cube.obj"), 4, true},
+                      DagCase{"CylinderEngineGltf", test::assimpModel("2CylinderEngine-glTF-Binary/2CylinderEngine.glb"), 0, false},
+                      DagCase{"CylinderEngineGltf1", test::assimpModel("2CylinderEngine-glTF-Binary/2CylinderEngine.glb"), 1, false}),
+    [](const ::testing::TestParamInfo<DagCase>& info) { return info.param.name; });
+
+TEST(DagBuild, GltfMeshesUsedTwiceAreBuiltOnceAndInstanced) {
+  VgeoData data = test::build(test::assimpModel("2CylinderEngine-glTF-Binary/2CylinderEngine.glb"), 0);
+  EXPECT_GT(data.instances.size(), data.geometries.size());
+  for (const auto& inst : data.instances) EXPECT_LT(inst.geometry, data.geometries.size());
+}
+
+TEST(DagBuild, LeafClustersHoldWholeCageFaces) {
+  VgeoData data = test::build(test::asset("horned_cube.obj"), 2);
+  const auto& g = data.geometries[0];
+  EXPECT_EQ(g.cageFaceCount, 342u * 16u);
+  for (uint32_t f = g.cageFaceOffset; f < g.cageFaceOffset + g.cageFaceCount; f++) {
+    const auto& face = data.cageFaces[f];
+    EXPECT_EQ(face.vertexCount, 4u);
+    const auto& leaf = data.clusters[face.leafCluster];
+    ASSERT_EQ(leaf.producer, VGEO_NO_GROUP);
+    ASSERT_LE(face.firstTriangle + 2, shaderio::clusterTriangleCount(leaf.counts));
+    // The face's two triangles use exactly its four corners.
+    std::vector<uint32_t> corners(data.cageFaceVertices.begin() + face.firstVertex, data.cageFaceVertices.begin() + face.firstVertex + 4);
+    std::sort(corners.begin(), corners.end());
+    std::vector<uint32_t> used;
+    for (uint32_t t = face.firstTriangle; t < face.firstTriangle + 2; t++) {
+      uint32_t tri = data.clusterTriangles[leaf.triangleOffset + t];
+      for (int k = 0; k < 3; k++) used.push_back(data.clusterVertices[leaf.vertexOffset + ((tri >> (8 * k)) & 0xff)]);
+    }
+    std::sort(used.begin(), used.end());
+    used.erase(std::unique(used.begin(), used.end()), used.end());
+    EXPECT_EQ(used, corners);
+  }
+}
+
+TEST(DagBuild, StatsJsonHasEveryPromisedField) {
+  std::string dir = test::tempDir();
+  test::RunResult r = test::runVgeo("build '" + test::asset("horned_cube.obj") + "' --subdiv 2 -o " + dir + "/h.vgeo --stats " + dir +
+                                    "/s.json --threads 2 -q");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream in(dir + "/s.json");
+  nlohmann::json j = nlohmann::json::parse(in);
+  for (const char* key : {"input_triangles", "leaf_triangles", "levels", "clusters", "level_clusters", "level_triangles", "root_clusters",
+                          "avg_leaf_cluster_triangles", "avg_cluster_triangles", "relaxed_groups", "build_seconds", "total_seconds",
+                          "peak_rss_bytes", "threads"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["input_triangles"], 684);
+  EXPECT_EQ(j["leaf_triangles"], 684 * 16);
+  EXPECT_EQ(j["root_clusters"], 1);
+  EXPECT_EQ(j["threads"], 2);
+  test::RunResult check = test::runVgeo("check " + dir + "/h.vgeo --cuts 8");
+  EXPECT_EQ(check.exitCode, 0) << check.output;
+  EXPECT_NE(check.output.find("ok:"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace vgeo

@@ -1,0 +1,108 @@
+// test_format.cpp: .vgeo round trip, and rejection (never a crash) of truncated or damaged files.
+#include <cstring>
+#include <fstream>
+
+#include "test_util.h"
+
+namespace vgeo {
+namespace {
+
+VgeoData smallScene() { return test::build(test::asset("horned_cube.obj"), 1); }
+
+TEST(Format, RoundTripIsByteIdentical) {
+  VgeoData data = smallScene();
+  std::vector<uint8_t> bytes = serializeVgeo(data);
+  VgeoData parsed = parseVgeo(bytes.data(), bytes.size(), "memory");
+  EXPECT_EQ(serializeVgeo(parsed), bytes);
+  std::string path = test::tempDir() + "/scene.vgeo";
+  writeVgeo(data, path);
+  VgeoData read = readVgeo(path);
+  EXPECT_EQ(serializeVgeo(read), bytes);
+  EXPECT_EQ(read.clusters.size(), data.clusters.size());
+  EXPECT_EQ(read.nodes.size(), data.nodes.size());
+}
+
+TEST(Format, TruncatedFilesAreRejected) {
+  std::vector<uint8_t> bytes = serializeVgeo(smallScene());
+  for (size_t size : {size_t(0), size_t(7), size_t(31), size_t(100), bytes.size() / 2, bytes.size() - 1}) {
+    try {
+      parseVgeo(bytes.data(), size, "cut.vgeo");
+      ADD_FAILURE() << "accepted a file cut to " << size << " bytes";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("cut.vgeo: ", 0), 0u) << e.what();
+    }
+  }
+}
+
+TEST(Format, AFlippedByteInAnySectionIsRejectedByName) {
+  VgeoData data = smallScene();
+  std::vector<uint8_t> bytes = serializeVgeo(data);
+  // The section table starts at byte 32: { id, elementSize, offset, count, checksum } of 32 bytes each.
+  const uint32_t sections = uint32_t(Section::Count_) - 1;
+  for (uint32_t s = 0; s < sections; s++) {
+    uint64_t offset, count;
+    uint32_t elementSize;
+    std::memcpy(&elementSize, bytes.data() + 32 + 32 * s + 4, 4);
+    std::memcpy(&offset, bytes.data() + 32 + 32 * s + 8, 8);
+    std::memcpy(&count, bytes.data() + 32 + 32 * s + 16, 8);
+    if (count == 0) continue;
+    for (uint64_t at : {offset, offset + count * elementSize / 2, offset + count * elementSize - 1}) {
+      std::vector<uint8_t> damaged = bytes;
+      damaged[at] ^= 0x5a;
+      try {
+        parseVgeo(damaged.data(), damaged.size(), "bad.vgeo");
+        ADD_FAILURE() << "accepted a flipped byte in section " << sectionName(Section(s + 1));
+      } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(sectionName(Section(s + 1))), std::string::npos) << e.what();
+      }
+    }
+  }
+  // The header and the table themselves.
+  for (size_t at : {size_t(8), size_t(12), size_t(20), size_t(40), size_t(32 + 32 * 3 + 9)}) {
+    std::vector<uint8_t> damaged = bytes;
+    damaged[at] ^= 0x01;
+    EXPECT_THROW(parseVgeo(damaged.data(), damaged.size(), "bad.vgeo"), InputError) << "byte " << at;
+  }
+}
+
+TEST(Format, OtherVersionsGetAClearError) {
+  std::vector<uint8_t> bytes = serializeVgeo(smallScene());
+  uint32_t version = kVgeoVersion + 1;
+  std::memcpy(bytes.data() + 8, &version, 4);
+  try {
+    parseVgeo(bytes.data(), bytes.size(), "new.vgeo");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("unsupported .vgeo version"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Format, ChecksumsAreRecomputedButReferencesStillChecked) {
+  // A file whose checksums are right but whose contents lie (a cluster pointing past the vertex array)
+  // is still rejected: the loader checks references, not only bytes.
+  VgeoData data = smallScene();
+  data.clusterVertices[0] = uint32_t(data.vertexCount() + 5);
+  std::vector<uint8_t> bytes = serializeVgeo(data);
+  try {
+    parseVgeo(bytes.data(), bytes.size(), "lie.vgeo");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("uses a vertex out of range"), std::string::npos) << e.what();
+  }
+  data = smallScene();
+  data.nodes[0].childOffset = 0;  // the root's children include the root: a cycle
+  data.nodes[0].childCountAndFlags = 2;
+  bytes = serializeVgeo(data);
+  EXPECT_THROW(parseVgeo(bytes.data(), bytes.size(), "cycle.vgeo"), InputError);
+}
+
+TEST(Format, OutputIsTheSameForAnyThreadCount) {
+  std::vector<uint8_t> one = serializeVgeo(test::build(test::cgalMesh("bunny00.off"), 0, 1));
+  std::vector<uint8_t> two = serializeVgeo(test::build(test::cgalMesh("bunny00.off"), 0, 2));
+  std::vector<uint8_t> three = serializeVgeo(test::build(test::cgalMesh("bunny00.off"), 0, 3));
+  EXPECT_EQ(one, two);
+  EXPECT_EQ(one, three);
+}
+
+}  // namespace
+}  // namespace vgeo
