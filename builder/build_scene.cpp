@@ -3,7 +3,9 @@
 // subdivision so that a request too large for 32-bit indices is an error, not an out-of-memory.
 #include "build_scene.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "layout.h"
 
@@ -106,7 +108,10 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
     out.row1 = t[1];
     out.row2 = t[2];
     out.geometry = inst.mesh;
-    data.instances.push_back(out);
+    out.maxScale = std::sqrt(std::max({glm::dot(glm::vec3(inst.transform[0]), glm::vec3(inst.transform[0])),
+                                       glm::dot(glm::vec3(inst.transform[1]), glm::vec3(inst.transform[1])),
+                                       glm::dot(glm::vec3(inst.transform[2]), glm::vec3(inst.transform[2]))}));
+    if (out.maxScale > 0.0f && std::isfinite(out.maxScale)) data.instances.push_back(out);  // a zero scale shows nothing
   }
   stats.geometries = uint32_t(data.geometries.size());
   stats.instances = uint32_t(data.instances.size());

@@ -1,4 +1,4 @@
-// main.cpp: the `vgeo` executable: `vgeo build`, `vgeo check` (later `render`, `view`, `bench`).
+// main.cpp: the `vgeo` executable: `vgeo build`, `vgeo check`, `vgeo render` (later `view`, `bench`).
 // Every error ends here as one line on stderr and a non-zero exit.
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   int exitCode = 1;
   vgeo::addBuildCommand(app, exitCode);
   vgeo::addCheckCommand(app, exitCode);
+  vgeo::addRenderCommand(app, exitCode);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -186,6 +186,7 @@ VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name) {
   for (size_t i = 0; i < data.instances.size(); i++) {
     const auto& inst = data.instances[i];
     if (inst.geometry >= data.geometries.size()) fail("instance " + std::to_string(i) + " uses a missing geometry");
+    if (!(inst.maxScale > 0.0f) || !std::isfinite(inst.maxScale)) fail("instance " + std::to_string(i) + " has a bad scale");
     for (int r = 0; r < 4; r++)
       if (!std::isfinite(inst.row0[r]) || !std::isfinite(inst.row1[r]) || !std::isfinite(inst.row2[r]))
         fail("instance " + std::to_string(i) + " has a non-finite transform");

@@ -11,6 +11,7 @@
 namespace shaderio {
 using vec3 = glm::vec3;
 using vec4 = glm::vec4;
+using mat4 = glm::mat4;
 using uint = uint32_t;
 using glm::length;
 #endif
@@ -75,15 +76,16 @@ struct Geometry {
 };
 #define VGEO_GEOMETRY_CLOSED 1u
 
-// An instance: a row-major 3x4 object-to-world transform and the geometry it shows.
+// An instance: a row-major 3x4 object-to-world transform and the geometry it shows. maxScale is the
+// largest axis scale of the transform: object-space errors and radii times maxScale bound world ones.
 struct Instance {
   vec4 row0;
   vec4 row1;
   vec4 row2;
   uint geometry;
+  float maxScale;
   uint pad0;
   uint pad1;
-  uint pad2;
 };
 
 // A face of the level-N cage: its corner vertices are cageFaceVertices[first .. first+count).
@@ -92,6 +94,68 @@ struct CageFace {
   uint vertexCount;
   uint leafCluster;     // the leaf cluster holding the face
   uint firstTriangle;   // its first triangle within that cluster (a face's triangles are consecutive)
+};
+
+// ---- Renderer -------------------------------------------------------------------------------------
+
+// Debug shading modes (--mode).
+#define VGEO_MODE_LIT 0
+#define VGEO_MODE_NORMAL 1
+#define VGEO_MODE_CLUSTER 2
+#define VGEO_MODE_GROUP 3
+#define VGEO_MODE_LOD 4
+#define VGEO_MODE_TRIANGLE 5
+#define VGEO_MODE_INSTANCE 6
+#define VGEO_MODE_ERROR 7
+#define VGEO_MODE_WIRE 8
+#define VGEO_MODE_OVERDRAW 9
+#define VGEO_MODE_FROZEN_DIFF 10
+
+#define VGEO_INVALID 0xffffffffu
+#define VGEO_ITEM_GROUP_BIT 0x80000000u  // queue item names a group, not a BVH node
+#define VGEO_TRAVERSAL_WORKGROUP 64
+
+// Per-frame constants (a uniform buffer). The cull camera selects the cut and culls; the draw camera
+// makes the picture. They differ only with --freeze-camera.
+struct FrameData {
+  mat4 viewProjection;   // draw camera
+  vec4 frustum[6];       // cull camera's planes in world space: dot(xyz, p) + w >= 0 inside
+  vec4 cullEye;          // xyz
+  vec4 drawEye;          // xyz
+  float projScale;       // viewport height / (2 tan(fovY / 2)): object size to pixels at unit distance
+  float tau;             // allowed projected error, pixels
+  float znear;
+  uint mode;
+  uint instanceCount;
+  uint queueCapacity;    // items in the traversal queue
+  uint drawCapacity;     // entries in the draw list
+  uint iterationBudget;  // persistent traversal: leave after this many loop iterations (0: never)
+  uint maxClusters;      // largest cluster count of a geometry (flat traversal)
+  uint claimMode;        // persistent traversal: 0 claim past the frontier, 1 claim only reserved items
+  uint pad0;
+  uint pad1;
+};
+
+// GPU counters of one frame, and the indirect arguments built from them.
+struct Counters {
+  uint queueWrite;       // items reserved in the traversal queue
+  uint queueRead;        // items claimed by persistent workers
+  uint itemsDone;        // items processed (or dropped by overflow)
+  uint drawCount;        // draw list entries requested (may exceed the capacity: see drawOverflow)
+  uint queueOverflow;    // items that did not fit the queue
+  uint drawOverflow;     // clusters that did not fit the draw list
+  uint nodesVisited;     // BVH nodes and groups processed
+  uint clustersTested;
+  uint visibleInstances;
+  uint triangles;        // triangles of the listed clusters
+  uint levelStart;       // levels traversal: the window of the queue processed by one dispatch
+  uint levelEnd;
+  uint queueHighWater;   // largest queueWrite seen
+  uint workgroupsExited; // persistent traversal: workers that left
+  uint budgetExits;      // of those, left on the iteration budget (lavapipe)
+  uint pad0;
+  uint dispatch[4];      // indirect dispatch arguments (x, y, z) for levels and flat traversal
+  uint draw[4];          // VkDrawIndirectCommand: 384 vertices, instanceCount = listed clusters
 };
 
 // Packing of Cluster.counts: vertex count (9 bits), triangle count (8), level (7), cage face count (8).
@@ -146,6 +210,8 @@ static_assert(sizeof(BvhNode) == 32, "BvhNode layout");
 static_assert(sizeof(Geometry) == 64, "Geometry layout");
 static_assert(sizeof(Instance) == 64, "Instance layout");
 static_assert(sizeof(CageFace) == 16, "CageFace layout");
+static_assert(sizeof(FrameData) == 64 + 96 + 32 + 48, "FrameData layout");
+static_assert(sizeof(Counters) == 96, "Counters layout");
 }  // namespace shaderio
 #endif
 

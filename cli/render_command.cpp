@@ -1,0 +1,182 @@
+// render_command.cpp: `vgeo render INPUT -o OUT.png`: one frame of the GPU renderer, its stats, and
+// optionally the comparison with the CPU reference cut.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "../common/input_error.h"
+#include "../renderer/gpu_renderer.h"
+#include "../renderer/image.h"
+#include "commands.h"
+
+namespace vgeo {
+namespace {
+
+const std::map<std::string, uint32_t> kModes = {
+    {"lit", VGEO_MODE_LIT},         {"normal", VGEO_MODE_NORMAL},     {"cluster", VGEO_MODE_CLUSTER}, {"group", VGEO_MODE_GROUP},
+    {"lod", VGEO_MODE_LOD},         {"triangle", VGEO_MODE_TRIANGLE}, {"instance", VGEO_MODE_INSTANCE}, {"error", VGEO_MODE_ERROR},
+    {"wire", VGEO_MODE_WIRE},       {"overdraw", VGEO_MODE_OVERDRAW}, {"frozen-diff", VGEO_MODE_FROZEN_DIFF}};
+
+bool parseCamera(const std::string& text, Camera& camera) {
+  std::vector<float> v;
+  std::stringstream s(text);
+  std::string item;
+  while (std::getline(s, item, ',')) {
+    try {
+      v.push_back(std::stof(item));
+    } catch (...) {
+      return false;
+    }
+  }
+  if (v.size() != 6) return false;
+  camera.eye = {v[0], v[1], v[2]};
+  camera.target = {v[3], v[4], v[5]};
+  return camera.eye != camera.target;
+}
+
+struct RenderArgs {
+  std::string input, output, stats, camera, freezeCamera, mode = "lit", traversal = "persistent", size = "1280x720", device;
+  float fov = 60.0f, tau = 1.0f;
+  uint32_t grid = 1, frames = 2, queueCapacity = 0, drawCapacity = 0;
+  bool compareCpu = false, validate = false;
+};
+
+int runRender(const RenderArgs& a) {
+  uint32_t width = 0, height = 0;
+  if (std::sscanf(a.size.c_str(), "%ux%u", &width, &height) != 2 || width == 0 || height == 0 || width > 16384 || height > 16384)
+    throw std::runtime_error("--size: expected WxH, e.g. 1280x720");
+  if (!kModes.count(a.mode)) throw std::runtime_error("--mode: unknown mode '" + a.mode + "'");
+  Traversal traversal = a.traversal == "persistent" ? Traversal::Persistent : a.traversal == "levels" ? Traversal::Levels : Traversal::Flat;
+  if (a.traversal != "persistent" && a.traversal != "levels" && a.traversal != "flat")
+    throw std::runtime_error("--traversal: expected persistent, levels or flat");
+  if (!(a.tau > 0.0f)) throw std::runtime_error("--tau must be > 0");
+
+  RenderScene scene = loadRenderScene(a.input, a.grid);
+  Camera camera = defaultCamera(scene.bounds, a.fov);
+  if (!a.camera.empty() && !parseCamera(a.camera, camera)) throw std::runtime_error("--camera: expected eye_x,eye_y,eye_z,target_x,target_y,target_z");
+  camera.fovYDegrees = a.fov;
+  Camera cullCamera = camera;
+  if (!a.freezeCamera.empty() && !parseCamera(a.freezeCamera, cullCamera)) throw std::runtime_error("--freeze-camera: expected six numbers");
+  cullCamera.fovYDegrees = a.fov;
+
+  VulkanContext vk({a.device, a.validate});
+  GpuRenderer renderer(vk, scene, width, height);
+  if (a.queueCapacity || a.drawCapacity)
+    renderer.setCapacities(a.queueCapacity ? a.queueCapacity : renderer.queueCapacity(), a.drawCapacity ? a.drawCapacity : renderer.drawCapacity());
+  FrameSettings settings;
+  settings.drawView = makeView(camera, width, height, scene.bounds);
+  settings.cullView = makeView(cullCamera, width, height, scene.bounds);
+  settings.tau = a.tau;
+  settings.mode = kModes.at(a.mode);
+  settings.traversal = traversal;
+  settings.readDrawList = a.compareCpu;
+
+  // Frames until one is complete (an overflow grows the buffers for the next); the first frames warm
+  // the shader cache (GPU-NOTES 4), the last one is reported.
+  FrameResult result;
+  uint32_t queueOverflows = 0, drawOverflows = 0, frames = 0;
+  for (uint32_t f = 0; f < std::max(a.frames, 1u) || !result.complete; f++) {
+    if (f >= a.frames + 4) throw std::runtime_error("frames keep overflowing after growing the buffers 4 times");
+    result = renderer.renderFrame(settings);
+    frames++;
+    if (!result.complete) {
+      queueOverflows += result.counters.queueOverflow;
+      drawOverflows += result.counters.drawOverflow;
+      std::fprintf(stderr, "overflow in frame %u: %u queue items and %u draw entries did not fit; grown to %u queue items, %u draw entries\n",
+                   frames, result.counters.queueOverflow, result.counters.drawOverflow, renderer.queueCapacity(), renderer.drawCapacity());
+    }
+  }
+  writePng(a.output, width, height, result.rgba);
+
+  const auto& c = result.counters;
+  nlohmann::ordered_json j;
+  j["device"] = vk.deviceName();
+  j["driver"] = vk.driverName();
+  j["width"] = width;
+  j["height"] = height;
+  j["tau"] = a.tau;
+  j["mode"] = a.mode;
+  j["traversal"] = a.traversal;
+  j["instances_total"] = scene.data.instances.size();
+  j["instances_visible"] = c.visibleInstances;
+  j["virtual_triangles"] = scene.virtualTriangles;
+  j["nodes_visited"] = c.nodesVisited;
+  j["clusters_tested"] = c.clustersTested;
+  j["visible_clusters"] = std::min(c.drawCount, renderer.drawCapacity());
+  j["triangles"] = c.triangles;
+  j["queue_overflows"] = queueOverflows;
+  j["draw_overflows"] = drawOverflows;
+  j["queue_high_water"] = c.queueHighWater;
+  j["persistent_workgroups"] = renderer.persistentWorkgroups();
+  j["traversal_ms"] = result.traversalMs;
+  j["draw_ms"] = result.drawMs;
+  j["frame_ms"] = result.frameMs;
+  j["timing"] = result.timing;
+  j["frames"] = frames;
+  if (a.compareCpu) {
+    SceneCut reference = selectSceneCut(scene, settings.cullView, a.tau);
+    std::string difference;
+    bool equal = compareCuts(reference, result.drawList, difference);
+    j["cpu_cut_equal"] = equal;
+    j["cpu_clusters"] = reference.entries.size();
+    j["borderline_clusters"] = reference.borderline.size();
+    if (!equal) j["cpu_cut_difference"] = difference;
+  }
+  std::printf("%s: %ux%u on %s, %s traversal, tau %g: %u of %zu instances visible, %u clusters, %u triangles drawn of %llu virtual; "
+              "traversal %.2f ms, draw %.2f ms, frame %.2f ms (%s)\n",
+              a.output.c_str(), width, height, vk.deviceName().c_str(), a.traversal.c_str(), a.tau, c.visibleInstances,
+              scene.data.instances.size(), std::min(c.drawCount, renderer.drawCapacity()), c.triangles,
+              (unsigned long long)scene.virtualTriangles, result.traversalMs, result.drawMs, result.frameMs, result.timing.c_str());
+  if (a.compareCpu)
+    std::printf("cpu cut: %s (%zu clusters, %zu borderline)%s\n", j["cpu_cut_equal"].get<bool>() ? "equal" : "DIFFERENT",
+                size_t(j["cpu_clusters"]), size_t(j["borderline_clusters"]), j.contains("cpu_cut_difference") ? (": " + j["cpu_cut_difference"].get<std::string>()).c_str() : "");
+  if (!a.stats.empty()) {
+    std::ofstream out(a.stats);
+    out << j.dump(2) << "\n";
+    if (!out) throw std::runtime_error(a.stats + ": cannot write the stats file");
+  }
+  if (vk.validationMessages() > 0) {
+    std::fprintf(stderr, "validation: %u messages\n", vk.validationMessages());
+    return 3;
+  }
+  if (a.compareCpu && !j["cpu_cut_equal"].get<bool>()) return 2;
+  return 0;
+}
+
+}  // namespace
+
+void addRenderCommand(CLI::App& app, int& exitCode) {
+  auto* cmd = app.add_subcommand("render", "Render a .vgeo or a scene file (JSON) to a PNG with the GPU LOD renderer");
+  auto a = std::make_shared<RenderArgs>();
+  cmd->add_option("input", a->input, ".vgeo file or scene file (.json)")->required();
+  cmd->add_option("-o,--output", a->output, "Output PNG")->required();
+  cmd->add_option("--size", a->size, "Image size WxH")->capture_default_str();
+  cmd->add_option("--camera", a->camera, "eye_x,eye_y,eye_z,target_x,target_y,target_z (default: frames the scene)");
+  cmd->add_option("--fov", a->fov, "Vertical field of view, degrees")->capture_default_str();
+  cmd->add_option("--tau", a->tau, "Allowed projected error, pixels")->capture_default_str();
+  cmd->add_option("--mode", a->mode, "lit, normal, cluster, group, lod, triangle, instance, error, wire, overdraw, frozen-diff")->capture_default_str();
+  cmd->add_option("--grid", a->grid, "N x N instances of the input")->capture_default_str()->check(CLI::Range(1u, 4096u));
+  cmd->add_option("--traversal", a->traversal, "persistent, levels or flat")->capture_default_str();
+  cmd->add_option("--freeze-camera", a->freezeCamera, "Select and cull with this camera (six numbers), draw from --camera");
+  cmd->add_flag("--compare-cpu", a->compareCpu, "Compare the GPU draw list with the CPU reference cut (exit 2 if they differ)");
+  cmd->add_option("--stats", a->stats, "Write frame statistics as JSON to this file");
+  cmd->add_option("--device", a->device, "Use the first Vulkan device whose name contains this");
+  cmd->add_flag("--validate", a->validate, "Khronos validation layer with synchronization validation (exit 3 on any message)");
+  cmd->add_option("--frames", a->frames, "Frames to render; the last is reported (the first warms shader caches)")->capture_default_str();
+  cmd->add_option("--queue-capacity", a->queueCapacity, "Initial traversal queue capacity, items (debugging overflow)");
+  cmd->add_option("--draw-capacity", a->drawCapacity, "Initial draw list capacity, clusters (debugging overflow)");
+  cmd->callback([a, &exitCode] {
+    try {
+      exitCode = runRender(*a);
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw std::runtime_error(a->input + ": " + e.what());
+    }
+  });
+}
+
+}  // namespace vgeo

@@ -1,0 +1,86 @@
+// gpu_renderer.h: the frame, all on the GPU (gpu_renderer.cpp): instance culling, traversal (persistent,
+// per level or flat), one indirect draw of the listed clusters, read back once the frame is done.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "camera.h"
+#include "reference_cut.h"
+#include "scene.h"
+#include "vulkan_context.h"
+
+namespace vgeo {
+
+enum class Traversal { Persistent, Levels, Flat };
+
+struct FrameSettings {
+  View drawView;             // the picture
+  View cullView;             // selection and culling (== drawView unless the cut is frozen)
+  float tau = 1.0f;
+  uint32_t mode = VGEO_MODE_LIT;
+  Traversal traversal = Traversal::Persistent;
+  bool readDrawList = false; // copy the draw list back (tests, --compare-cpu)
+  bool readImage = true;
+};
+
+struct FrameResult {
+  shaderio::Counters counters{};
+  std::vector<CutEntry> drawList;  // when readDrawList
+  std::vector<uint8_t> rgba;       // when readImage: width x height x 4
+  double traversalMs = 0.0, drawMs = 0.0, frameMs = 0.0;
+  std::string timing;              // "gpu-timestamps" or "host-per-submission"
+  bool complete = true;            // no overflow and the traversal drained its queue
+};
+
+class GpuRenderer {
+ public:
+  GpuRenderer(VulkanContext& context, const RenderScene& scene, uint32_t width, uint32_t height);
+  ~GpuRenderer();
+  GpuRenderer(const GpuRenderer&) = delete;
+  GpuRenderer& operator=(const GpuRenderer&) = delete;
+
+  // Renders one frame. Overflow of the queue or the draw list is reported in the result and grows the
+  // buffers for the next frame.
+  FrameResult renderFrame(const FrameSettings& settings);
+
+  uint32_t queueCapacity() const { return queueCapacity_; }
+  uint32_t drawCapacity() const { return drawCapacity_; }
+  // Sets the capacities (tests use a tiny queue to provoke overflow).
+  void setCapacities(uint32_t queueItems, uint32_t drawEntries);
+  uint32_t persistentWorkgroups() const { return persistentWorkgroups_; }
+
+ private:
+  void createTargets();
+  void createPipelines();
+  void createQueueAndDrawList();
+  void writeDescriptors();
+  void recordTraversal(VkCommandBuffer cmd, const FrameSettings& settings);
+  void recordDraw(VkCommandBuffer cmd, const FrameSettings& settings);
+
+  VulkanContext& vk_;
+  const RenderScene& scene_;
+  uint32_t width_, height_;
+  uint32_t queueCapacity_ = 1u << 20, drawCapacity_ = 1u << 20;
+  uint32_t persistentWorkgroups_ = 0, iterationBudget_ = 0, claimMode_ = 0;
+
+  Buffer frameData_, counters_, countersReadback_, queue_, drawList_, drawListReadback_, imageReadback_;
+  std::vector<Buffer> sceneBuffers_;  // bindings 1..9
+  VkImage color_ = VK_NULL_HANDLE, depth_ = VK_NULL_HANDLE;
+  VkDeviceMemory colorMemory_ = VK_NULL_HANDLE, depthMemory_ = VK_NULL_HANDLE;
+  VkImageView colorView_ = VK_NULL_HANDLE, depthView_ = VK_NULL_HANDLE;
+  VkRenderPass renderPass_ = VK_NULL_HANDLE;
+  VkFramebuffer framebuffer_ = VK_NULL_HANDLE;
+  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
+  VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
+  VkDescriptorSet set_ = VK_NULL_HANDLE;
+  VkPipelineLayout layout_ = VK_NULL_HANDLE;
+  VkPipeline cull_ = VK_NULL_HANDLE, persistent_ = VK_NULL_HANDLE, level_ = VK_NULL_HANDLE, prepareLevel_ = VK_NULL_HANDLE,
+             flat_ = VK_NULL_HANDLE, prepareFlat_ = VK_NULL_HANDLE, finalize_ = VK_NULL_HANDLE, draw_ = VK_NULL_HANDLE,
+             drawOverdraw_ = VK_NULL_HANDLE;
+  VkQueryPool queries_ = VK_NULL_HANDLE;
+};
+
+const char* traversalName(Traversal t);
+
+}  // namespace vgeo

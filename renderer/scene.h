@@ -1,0 +1,29 @@
+// scene.h: what the renderer draws: every geometry and instance of one or more .vgeo files, merged into
+// one set of arrays (scene.cpp).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "../common/vgeo_file.h"
+
+namespace vgeo {
+
+struct RenderScene {
+  VgeoData data;                  // merged arrays, as uploaded to the GPU
+  std::vector<uint32_t> bvhDepth; // per geometry: levels of BVH nodes from the root to the groups
+  uint32_t maxBvhDepth = 0;
+  uint32_t maxClusters = 0;       // largest cluster count of a geometry
+  glm::vec4 bounds{0.0f};         // world-space sphere around every instance
+  uint64_t virtualTriangles = 0;  // leaf triangles summed over instances
+};
+
+// Loads a .vgeo, or a scene file (JSON, see README: geometries by path, instances with transforms),
+// then repeats the instances on an N x N grid when grid > 1. Throws InputError for bad files.
+RenderScene loadRenderScene(const std::string& path, uint32_t grid = 1);
+// Appends `src` to `dst`, shifting every index; returns the index of src's first geometry in dst.
+uint32_t appendVgeo(VgeoData& dst, const VgeoData& src);
+// Recomputes the derived fields (depths, bounds, counts) after instances changed.
+void finishScene(RenderScene& scene);
+
+}  // namespace vgeo

@@ -1,0 +1,244 @@
+// vulkan_context.cpp: instance, device choice, queue, memory and submission helpers.
+// Device choice: --device SUBSTRING wins; otherwise a discrete GPU, then integrated, then virtual, then
+// a CPU device (Mesa lavapipe, the default when there is no GPU, as in CI).
+#include "vulkan_context.h"
+
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+
+namespace vgeo {
+
+void vkCheck(VkResult result, const char* what) {
+  if (result != VK_SUCCESS) throw std::runtime_error(std::string("vulkan: ") + what + " failed (VkResult " + std::to_string(int(result)) + ")");
+}
+
+VKAPI_ATTR VkBool32 VKAPI_CALL VulkanContext::debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT,
+                                                           const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
+  if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
+    static_cast<VulkanContext*>(user)->validationMessages_++;
+    std::fprintf(stderr, "validation: %s\n", data->pMessage);
+  }
+  return VK_FALSE;
+}
+
+namespace {
+
+int deviceRank(VkPhysicalDeviceType type) {
+  switch (type) {
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 4;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 3;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 1;
+    default: return 0;
+  }
+}
+
+}  // namespace
+
+VulkanContext::VulkanContext(const ContextOptions& options) {
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+  app.pApplicationName = "vgeo";
+  app.apiVersion = VK_API_VERSION_1_2;
+  std::vector<const char*> layers, extensions;
+  if (options.validation) {
+    uint32_t count = 0;
+    vkEnumerateInstanceLayerProperties(&count, nullptr);
+    std::vector<VkLayerProperties> available(count);
+    vkEnumerateInstanceLayerProperties(&count, available.data());
+    bool found = false;
+    for (auto& l : available) found |= std::strcmp(l.layerName, "VK_LAYER_KHRONOS_validation") == 0;
+    if (!found) throw std::runtime_error("vulkan: --validate needs VK_LAYER_KHRONOS_validation (Debian: vulkan-validationlayers)");
+    layers.push_back("VK_LAYER_KHRONOS_validation");
+    extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  }
+  VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+  VkValidationFeaturesEXT features{VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT};
+  features.enabledValidationFeatureCount = 1;
+  features.pEnabledValidationFeatures = enables;
+  VkDebugUtilsMessengerCreateInfoEXT messengerInfo{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+  messengerInfo.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  messengerInfo.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                              VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+  messengerInfo.pfnUserCallback = debugCallback;
+  messengerInfo.pUserData = this;
+  features.pNext = &messengerInfo;
+
+  VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+  info.pApplicationInfo = &app;
+  info.enabledLayerCount = uint32_t(layers.size());
+  info.ppEnabledLayerNames = layers.data();
+  info.enabledExtensionCount = uint32_t(extensions.size());
+  info.ppEnabledExtensionNames = extensions.data();
+  if (options.validation) info.pNext = &features;
+  vkCheck(vkCreateInstance(&info, nullptr, &instance_), "vkCreateInstance (is a Vulkan driver installed? Debian: mesa-vulkan-drivers)");
+  if (options.validation) {
+    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
+    if (create) vkCheck(create(instance_, &messengerInfo, nullptr, &messenger_), "vkCreateDebugUtilsMessengerEXT");
+  }
+
+  uint32_t count = 0;
+  vkEnumeratePhysicalDevices(instance_, &count, nullptr);
+  std::vector<VkPhysicalDevice> devices(count);
+  vkEnumeratePhysicalDevices(instance_, &count, devices.data());
+  if (devices.empty()) throw std::runtime_error("vulkan: no Vulkan device (install mesa-vulkan-drivers for lavapipe)");
+  int bestRank = -1;
+  std::string names;
+  for (VkPhysicalDevice d : devices) {
+    VkPhysicalDeviceProperties p;
+    vkGetPhysicalDeviceProperties(d, &p);
+    names += std::string(names.empty() ? "" : ", ") + p.deviceName;
+    if (p.apiVersion < VK_API_VERSION_1_2) continue;
+    int rank = deviceRank(p.deviceType);
+    if (!options.deviceSubstring.empty()) rank = std::strstr(p.deviceName, options.deviceSubstring.c_str()) ? 100 - int(&d - devices.data()) : -1;
+    if (rank > bestRank) {
+      bestRank = rank;
+      physical_ = d;
+    }
+  }
+  if (!physical_ || bestRank < 0)
+    throw std::runtime_error("vulkan: no Vulkan 1.2 device" + (options.deviceSubstring.empty() ? std::string() : " named like '" + options.deviceSubstring + "'") +
+                             " among: " + names);
+  vkGetPhysicalDeviceProperties(physical_, &properties_);
+  vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
+  VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+  VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+  props2.pNext = &driver;
+  vkGetPhysicalDeviceProperties2(physical_, &props2);
+  driverId_ = driver.driverID;
+  driverName_ = std::string(driver.driverName) + " " + driver.driverInfo;
+
+  uint32_t families = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(physical_, &families, nullptr);
+  std::vector<VkQueueFamilyProperties> familyProps(families);
+  vkGetPhysicalDeviceQueueFamilyProperties(physical_, &families, familyProps.data());
+  queueFamily_ = UINT32_MAX;
+  for (uint32_t i = 0; i < families; i++)
+    if ((familyProps[i].queueFlags & (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) == (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) {
+      queueFamily_ = i;
+      timestampValidBits_ = familyProps[i].timestampValidBits;
+      break;
+    }
+  if (queueFamily_ == UINT32_MAX) throw std::runtime_error("vulkan: no queue with graphics and compute on " + deviceName());
+
+  float priority = 1.0f;
+  VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+  queueInfo.queueFamilyIndex = queueFamily_;
+  queueInfo.queueCount = 1;
+  queueInfo.pQueuePriorities = &priority;
+  VkPhysicalDeviceFeatures supported{};
+  vkGetPhysicalDeviceFeatures(physical_, &supported);
+  VkPhysicalDeviceFeatures enabled{};
+  enabled.fillModeNonSolid = supported.fillModeNonSolid;
+  enabled.vertexPipelineStoresAndAtomics = supported.vertexPipelineStoresAndAtomics;
+  enabled.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
+  enabled.tessellationShader = supported.tessellationShader;
+  VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+  deviceInfo.queueCreateInfoCount = 1;
+  deviceInfo.pQueueCreateInfos = &queueInfo;
+  deviceInfo.pEnabledFeatures = &enabled;
+  vkCheck(vkCreateDevice(physical_, &deviceInfo, nullptr, &device_), "vkCreateDevice");
+  vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
+
+  VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+  poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+  poolInfo.queueFamilyIndex = queueFamily_;
+  vkCheck(vkCreateCommandPool(device_, &poolInfo, nullptr, &pool_), "vkCreateCommandPool");
+}
+
+VulkanContext::~VulkanContext() {
+  if (device_) {
+    vkDeviceWaitIdle(device_);
+    vkDestroyCommandPool(device_, pool_, nullptr);
+    vkDestroyDevice(device_, nullptr);
+  }
+  if (messenger_) {
+    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+    if (destroy) destroy(instance_, messenger_, nullptr);
+  }
+  if (instance_) vkDestroyInstance(instance_, nullptr);
+}
+
+uint32_t VulkanContext::memoryType(uint32_t bits, VkMemoryPropertyFlags flags) const {
+  for (uint32_t i = 0; i < memory_.memoryTypeCount; i++)
+    if ((bits & (1u << i)) && (memory_.memoryTypes[i].propertyFlags & flags) == flags) return i;
+  throw std::runtime_error("vulkan: no suitable memory type");
+}
+
+Buffer VulkanContext::createBuffer(VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible) {
+  Buffer b;
+  b.size = std::max<VkDeviceSize>(size, 16);
+  VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  info.size = b.size;
+  info.usage = usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+  vkCheck(vkCreateBuffer(device_, &info, nullptr, &b.buffer), "vkCreateBuffer");
+  VkMemoryRequirements req;
+  vkGetBufferMemoryRequirements(device_, b.buffer, &req);
+  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  alloc.allocationSize = req.size;
+  alloc.memoryTypeIndex = memoryType(req.memoryTypeBits, hostVisible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
+                                                                     : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  VkResult r = vkAllocateMemory(device_, &alloc, nullptr, &b.memory);
+  if (r != VK_SUCCESS) {
+    vkDestroyBuffer(device_, b.buffer, nullptr);
+    throw std::runtime_error("vulkan: out of device memory allocating " + std::to_string(b.size >> 20) + " MiB");
+  }
+  vkCheck(vkBindBufferMemory(device_, b.buffer, b.memory, 0), "vkBindBufferMemory");
+  if (hostVisible) vkCheck(vkMapMemory(device_, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped), "vkMapMemory");
+  return b;
+}
+
+void VulkanContext::destroyBuffer(Buffer& b) {
+  if (b.buffer) vkDestroyBuffer(device_, b.buffer, nullptr);
+  if (b.memory) vkFreeMemory(device_, b.memory, nullptr);
+  b = Buffer{};
+}
+
+void VulkanContext::upload(const Buffer& dst, const void* data, VkDeviceSize size, VkDeviceSize offset) {
+  if (size == 0) return;
+  Buffer staging = createBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+  std::memcpy(staging.mapped, data, size_t(size));
+  VkCommandBuffer cmd = beginCommands();
+  VkBufferCopy region{0, offset, size};
+  vkCmdCopyBuffer(cmd, staging.buffer, dst.buffer, 1, &region);
+  submitAndWait(cmd);
+  destroyBuffer(staging);
+}
+
+VkCommandBuffer VulkanContext::beginCommands() {
+  VkCommandBufferAllocateInfo info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  info.commandPool = pool_;
+  info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  info.commandBufferCount = 1;
+  VkCommandBuffer cmd;
+  vkCheck(vkAllocateCommandBuffers(device_, &info, &cmd), "vkAllocateCommandBuffers");
+  VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  vkCheck(vkBeginCommandBuffer(cmd, &begin), "vkBeginCommandBuffer");
+  return cmd;
+}
+
+void VulkanContext::submitAndWait(VkCommandBuffer cmd) {
+  vkCheck(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
+  VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VkFence fence;
+  vkCheck(vkCreateFence(device_, &fenceInfo, nullptr, &fence), "vkCreateFence");
+  VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  submit.commandBufferCount = 1;
+  submit.pCommandBuffers = &cmd;
+  vkCheck(vkQueueSubmit(queue_, 1, &submit, fence), "vkQueueSubmit");
+  vkCheck(vkWaitForFences(device_, 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+  vkDestroyFence(device_, fence, nullptr);
+  vkFreeCommandBuffers(device_, pool_, 1, &cmd);
+}
+
+VkShaderModule VulkanContext::createShaderModule(const uint32_t* code, size_t bytes) {
+  VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  info.codeSize = bytes;
+  info.pCode = code;
+  VkShaderModule module;
+  vkCheck(vkCreateShaderModule(device_, &info, nullptr, &module), "vkCreateShaderModule");
+  return module;
+}
+
+}  // namespace vgeo

@@ -1,0 +1,82 @@
+// vulkan_context.h: the Vulkan device the renderer runs on, and the few helpers every pass needs
+// (buffers, one-shot submissions, shader modules, timestamps). Headless: no surface, no swapchain.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vgeo {
+
+struct ContextOptions {
+  std::string deviceSubstring;  // pick the first device whose name contains it; empty: best available
+  bool validation = false;      // Khronos validation layer with synchronization validation
+};
+
+struct Buffer {
+  VkBuffer buffer = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkDeviceSize size = 0;
+  void* mapped = nullptr;  // host-visible buffers stay mapped
+};
+
+class VulkanContext {
+ public:
+  explicit VulkanContext(const ContextOptions& options);
+  ~VulkanContext();
+  VulkanContext(const VulkanContext&) = delete;
+  VulkanContext& operator=(const VulkanContext&) = delete;
+
+  VkDevice device() const { return device_; }
+  VkPhysicalDevice physicalDevice() const { return physical_; }
+  VkQueue queue() const { return queue_; }
+  uint32_t queueFamily() const { return queueFamily_; }
+  const VkPhysicalDeviceProperties& properties() const { return properties_; }
+  std::string deviceName() const { return properties_.deviceName; }
+  std::string driverName() const { return driverName_; }
+  bool isLavapipe() const { return driverId_ == VK_DRIVER_ID_MESA_LLVMPIPE; }
+  // Nanoseconds per timestamp tick; 0 when the queue has no timestamps.
+  double timestampPeriod() const { return timestampValidBits_ ? double(properties_.limits.timestampPeriod) : 0.0; }
+  // Validation messages seen so far (warnings and errors); each is also printed to stderr.
+  uint32_t validationMessages() const { return validationMessages_; }
+
+  // Device-local buffer (usage | transfer dst/src), or host-visible and mapped when `hostVisible`.
+  Buffer createBuffer(VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible = false);
+  void destroyBuffer(Buffer& buffer);
+  // Copies host data into a device-local buffer through a staging buffer (blocking).
+  void upload(const Buffer& dst, const void* data, VkDeviceSize size, VkDeviceSize offset = 0);
+
+  VkCommandBuffer beginCommands();
+  // Ends, submits and waits for the command buffer (one submission), then frees it.
+  void submitAndWait(VkCommandBuffer cmd);
+
+  VkShaderModule createShaderModule(const uint32_t* code, size_t bytes);
+
+  static VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                     VkDebugUtilsMessageTypeFlagsEXT types,
+                                                     const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
+
+ private:
+  uint32_t memoryType(uint32_t bits, VkMemoryPropertyFlags flags) const;
+
+  VkInstance instance_ = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkPhysicalDevice physical_ = VK_NULL_HANDLE;
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  uint32_t queueFamily_ = 0;
+  uint32_t timestampValidBits_ = 0;
+  VkCommandPool pool_ = VK_NULL_HANDLE;
+  VkPhysicalDeviceProperties properties_{};
+  VkPhysicalDeviceMemoryProperties memory_{};
+  VkDriverId driverId_{};
+  std::string driverName_;
+  uint32_t validationMessages_ = 0;
+};
+
+// Throws std::runtime_error naming the call when a Vulkan call fails.
+void vkCheck(VkResult result, const char* what);
+
+}  // namespace vgeo

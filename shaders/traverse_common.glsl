@@ -1,0 +1,92 @@
+// traverse_common.glsl: one step of the traversal, shared by the persistent, per-level and flat passes,
+// so all three produce the same draw list.
+//   node item:  test the node's children (nodes or groups) and queue those that may hold drawn clusters
+//   group item: test each member cluster with the cut rule and append the drawn ones to the draw list
+
+void countHighWater(uint end) { atomicMax(counters.queueHighWater, end); }
+
+// Reserves `count` queue slots; returns the first. Slots past the capacity are dropped, counted as
+// overflow and as done (so the traversal still terminates), and reported to the host.
+uint reserveQueue(uint count) {
+  uint first = atomicAdd(counters.queueWrite, count);
+  countHighWater(first + count);
+  if (first + count > frame.queueCapacity) {
+    uint lost = min(count, first + count - max(first, frame.queueCapacity));
+    atomicAdd(counters.queueOverflow, lost);
+    atomicAdd(counters.itemsDone, lost);
+  }
+  return first;
+}
+
+void writeQueue(uint slot, uint instance, uint code) {
+  if (slot >= frame.queueCapacity) return;
+  queue[2 * slot + 1] = code;
+  memoryBarrierBuffer();
+  atomicExchange(queue[2 * slot], instance);  // publishes the item
+}
+
+// Reads slot `slot` if it has been written; resets it for the next frame.
+bool takeQueue(uint slot, out uint instance, out uint code) {
+  instance = atomicOr(queue[2 * slot], 0u);
+  if (instance == VGEO_INVALID) return false;
+  memoryBarrierBuffer();
+  code = queue[2 * slot + 1];
+  queue[2 * slot + 1] = VGEO_INVALID;
+  queue[2 * slot] = VGEO_INVALID;
+  return true;
+}
+
+void appendDraw(uint instance, uint cluster) {
+  uint index = atomicAdd(counters.drawCount, 1u);
+  if (index < frame.drawCapacity) {
+    drawList[2 * index] = instance;
+    drawList[2 * index + 1] = cluster;
+    atomicAdd(counters.triangles, clusterTriangleCount(clusters[cluster].counts));
+  } else {
+    atomicAdd(counters.drawOverflow, 1u);
+  }
+}
+
+// The cut rule for one cluster of one instance, with frustum culling of its self sphere.
+void testCluster(uint instance, uint cluster) {
+  Instance inst = instances[instance];
+  Cluster c = clusters[cluster];
+  atomicAdd(counters.clustersTested, 1u);
+  if (!sphereInFrustum(worldSphere(inst, c.selfSphere))) return;
+  float self = projectedErrorWorld(inst, c.selfSphere, c.selfError);
+  float parent = projectedErrorWorld(inst, c.parentSphere, c.parentError);
+  if (self <= frame.tau && frame.tau < parent) appendDraw(instance, cluster);
+}
+
+// May anything below this (sphere, error) be drawn? Pruned only when clearly outside the frustum, or when
+// even the largest parent error below projects clearly under tau.
+bool mayHoldDrawn(Instance inst, vec4 sphere, float maxError) {
+  vec4 s = worldSphere(inst, sphere);
+  s.w *= kPruneSlack;
+  if (!sphereInFrustum(s)) return false;
+  return projectedErrorWorld(inst, sphere, maxError) * kPruneSlack > frame.tau;
+}
+
+void processItem(uint instance, uint code) {
+  atomicAdd(counters.nodesVisited, 1u);
+  Instance inst = instances[instance];
+  if ((code & VGEO_ITEM_GROUP_BIT) != 0u) {
+    Group g = groups[code & ~VGEO_ITEM_GROUP_BIT];
+    for (uint i = 0u; i < g.clusterCount; i++) testCluster(instance, g.clusterOffset + i);
+    return;
+  }
+  BvhNode node = nodes[code];
+  uint count = node.childCountAndFlags & ~VGEO_NODE_LEAF_BIT;
+  bool leaf = (node.childCountAndFlags & VGEO_NODE_LEAF_BIT) != 0u;
+  uint keep[VGEO_BVH_WIDTH];
+  uint kept = 0u;
+  for (uint i = 0u; i < count; i++) {
+    uint child = node.childOffset + i;
+    bool may = leaf ? mayHoldDrawn(inst, groups[child].sphere, groups[child].error)
+                    : mayHoldDrawn(inst, nodes[child].sphere, nodes[child].maxError);
+    if (may) keep[kept++] = leaf ? (child | VGEO_ITEM_GROUP_BIT) : child;
+  }
+  if (kept == 0u) return;
+  uint first = reserveQueue(kept);
+  for (uint i = 0u; i < kept; i++) writeQueue(first + i, instance, keep[i]);
+}
