@@ -101,6 +101,8 @@ class EdgeSet {
   size_t capacity_ = 0, mask_ = 0, count_ = 0;
 };
 
+constexpr uint64_t kSmallestRoot = 16;  // triangles
+
 }  // namespace
 
 Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
@@ -128,7 +130,10 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
   const double totalWork = double(dag.levelTriangles[0]) * 2.0;
   double doneWork = 0.0;
 
-  for (uint32_t round = 1; active.size() > 1; round++) {
+  // Go on while more than one cluster is left, and then keep halving the last one down to a few
+  // triangles: far away, an instance costs only its root, so a small root keeps the triangles drawn
+  // in proportion to the pixels covered.
+  for (uint32_t round = 1; active.size() > 1 || (active.size() == 1 && triangleCount(dag.clusters, active) > kSmallestRoot); round++) {
     report(doneWork / totalWork, "simplifying");
     std::vector<GroupPlan> plans = groupClusters(dag.clusters, active, options.groupSize, options.threads);
     struct Outcome {

@@ -12,8 +12,9 @@
 //   the DAG builder forbids chords that another cluster already has or that a neighbouring group of the
 //   same round could also make, since the cut would then hold that edge four times.
 // Locked border vertices never move, so the edges a group shares with its neighbours stay identical.
-// The error of a collapse is the root mean square distance, weighted by area, of the target position to
-// the planes of the triangles merged into the vertex; the group's error is the largest such distance.
+// Collapses are ordered by the root mean square distance, weighted by area, of the target position to
+// the planes of the triangles merged into the vertex. The group's error is the larger of the largest
+// such distance and the one-sided Hausdorff distance of the removed vertices to the result.
 #include <algorithm>
 #include <cmath>
 #include <queue>
@@ -25,6 +26,7 @@ namespace {
 
 constexpr float kHalvedRatio = 0.55f;
 constexpr double kBoundedError = 0.02;  // of the group's bounding box diagonal: beyond it, "relaxed"
+constexpr double kShadingWeight = 1.0;  // error per unit travelled at a normal change of 1 - cos = 1
 
 struct Quadric {
   double a[10] = {};  // xx xy xz xw yy yz yw zz zw ww
@@ -52,6 +54,27 @@ struct Quadric {
   }
 };
 
+// Distance from p to the triangle abc (Ericson, Real-Time Collision Detection, 5.1.5).
+double pointTriangleDistance(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
+  glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
+  double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return glm::length(ap);
+  glm::dvec3 bp = p - b;
+  double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return glm::length(bp);
+  double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return glm::length(p - (a + ab * (d1 / (d1 - d3))));
+  glm::dvec3 cp = p - c;
+  double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return glm::length(cp);
+  double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return glm::length(p - (a + ac * (d2 / (d2 - d6))));
+  double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return glm::length(p - (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)))));
+  double denom = 1.0 / (va + vb + vc);
+  return glm::length(p - (a + ab * (vb * denom) + ac * (vc * denom)));
+}
+
 struct Candidate {
   double cost;
   uint32_t from, to, version;
@@ -70,6 +93,7 @@ class Simplifier {
     const size_t n = p_.size(), m = tri_.size() / 3;
     alive_.assign(m, 1);
     removed_.assign(n, 0);
+    collapsedInto_.assign(n, UINT32_MAX);
     aliveCount_ = m;
     // Triangle lists of the vertices in one pool: list v is pool_[start_[v] .. start_[v] + size_[v]),
     // with room up to capacity_[v]; a list that outgrows its room moves to the pool's end.
@@ -120,6 +144,49 @@ class Simplifier {
   }
 
   size_t triangleCount() const { return aliveCount_; }
+
+  // One-sided Hausdorff error: for every removed vertex, the distance from its position to the nearest
+  // final triangle around the vertex it ended up in (an upper bound of its distance to the simplified
+  // surface). The quadric's mean distance alone let coarse levels deviate by more than their error.
+  // Shading error: where the surface turns, a collapse also moves the normals that shading
+  // interpolates, which shows more than the geometric distance. For every removed vertex, the length it
+  // travelled times the change of normal between its vertex in the input and its vertex in the result
+  // (1 - cos) is counted as error too, so that creases stay fine until they are small on screen.
+  double removedVertexError(const std::vector<glm::dvec3>& inputNormals) {
+    std::vector<glm::dvec3> outputNormals(p_.size(), glm::dvec3(0.0));
+    for (size_t t = 0; t < alive_.size(); t++)
+      if (alive_[t]) {
+        glm::dvec3 n = glm::cross(p_[tri_[3 * t + 1]] - p_[tri_[3 * t]], p_[tri_[3 * t + 2]] - p_[tri_[3 * t]]);
+        for (int k = 0; k < 3; k++) outputNormals[tri_[3 * t + k]] += n;
+      }
+    double worst = 0.0;
+    for (uint32_t u = 0; u < p_.size(); u++) {
+      if (!removed_[u]) continue;
+      uint32_t w = u;
+      while (removed_[w]) w = collapsedInto_[w];
+      double best = INFINITY;
+      for (uint32_t i = 0; i < size_[w]; i++) {
+        uint32_t t = trianglesOf(w)[i];
+        if (alive_[t]) best = std::min(best, pointTriangleDistance(p_[u], p_[tri_[3 * t]], p_[tri_[3 * t + 1]], p_[tri_[3 * t + 2]]));
+      }
+      if (std::isfinite(best)) worst = std::max(worst, best);
+      double lu = glm::length(inputNormals[u]), lw = glm::length(outputNormals[w]);
+      if (lu > 0.0 && lw > 0.0) {
+        double turn = 1.0 - glm::dot(inputNormals[u], outputNormals[w]) / (lu * lw);
+        worst = std::max(worst, kShadingWeight * turn * glm::distance(p_[u], p_[w]));
+      }
+    }
+    return worst;
+  }
+  std::vector<glm::dvec3> vertexNormals() const {
+    std::vector<glm::dvec3> normals(p_.size(), glm::dvec3(0.0));
+    for (size_t t = 0; t < alive_.size(); t++)
+      if (alive_[t]) {
+        glm::dvec3 n = glm::cross(p_[tri_[3 * t + 1]] - p_[tri_[3 * t]], p_[tri_[3 * t + 2]] - p_[tri_[3 * t]]);
+        for (int k = 0; k < 3; k++) normals[tri_[3 * t + k]] += n;
+      }
+    return normals;
+  }
   std::vector<uint32_t> triangles() const {
     std::vector<uint32_t> out;
     out.reserve(aliveCount_ * 3);
@@ -246,6 +313,7 @@ class Simplifier {
     }
     size_[u] = 0;
     removed_[u] = 1;
+    collapsedInto_[u] = v;
     quadric_[v].add(quadric_[u]);
     // All of v's candidates changed; a neighbour's only if it was aiming at u or v (its other candidates
     // keep their cost, and its collapse onto v only got dearer by v's grown quadric, or so little
@@ -266,6 +334,7 @@ class Simplifier {
   std::vector<uint8_t> locked_;
   std::function<bool(uint32_t, uint32_t)> chordAllowed_;
   std::vector<uint8_t> alive_, removed_;
+  std::vector<uint32_t> collapsedInto_;
   size_t aliveCount_ = 0;
   std::vector<uint32_t> pool_, start_, size_, capacity_;
   std::vector<Quadric> quadric_;
@@ -319,7 +388,9 @@ SimplifiedGroup simplifyGroup(const std::vector<uint32_t>& indices, const std::v
   const size_t triangles = indices.size() / 3;
   Simplifier s(std::move(local), std::move(points), std::move(locked),
                [&](uint32_t a, uint32_t b) { return chordAllowed(globals[a], globals[b]); });
+  std::vector<glm::dvec3> inputNormals = s.vertexNormals();
   double error = s.run(triangles / 2);
+  error = std::max(error, s.removedVertexError(inputNormals));
   SimplifiedGroup result;
   result.error = float(error);
   result.halved = s.triangleCount() <= size_t(float(triangles) * kHalvedRatio);

@@ -55,7 +55,7 @@ int runRender(const RenderArgs& a) {
   if (!(a.tau > 0.0f)) throw std::runtime_error("--tau must be > 0");
 
   RenderScene scene = loadRenderScene(a.input, a.grid);
-  Camera camera = defaultCamera(scene.bounds, a.fov);
+  Camera camera = defaultCamera(scene.bounds, scene.boxMin, scene.boxMax, a.fov);
   if (!a.camera.empty() && !parseCamera(a.camera, camera)) throw std::runtime_error("--camera: expected eye_x,eye_y,eye_z,target_x,target_y,target_z");
   camera.fovYDegrees = a.fov;
   Camera cullCamera = camera;

@@ -1,5 +1,5 @@
-// camera.cpp: view and projection matrices (Vulkan conventions) and frustum planes extracted from the
-// view-projection matrix (Gribb & Hartmann 2001).
+// camera.cpp: view and projection matrices (Vulkan conventions, reversed infinite depth) and frustum
+// planes extracted from the view-projection matrix (Gribb & Hartmann 2001).
 #include "camera.h"
 
 #include <algorithm>
@@ -15,25 +15,39 @@ View makeView(const Camera& camera, uint32_t width, uint32_t height, glm::vec4 b
   float fov = glm::radians(camera.fovYDegrees);
   float radius = std::max(bounds.w, 1e-6f);
   float distance = glm::distance(camera.eye, glm::vec3(bounds));
-  v.zfar = distance + 2.0f * radius;
-  v.znear = std::max(v.zfar * 1e-6f, 1e-6f * radius);
+  v.znear = std::max(1e-4f * (distance + radius), 1e-6f * radius);
   glm::vec3 forward = glm::normalize(camera.target - camera.eye);
   glm::vec3 up = std::abs(forward.y) > 0.999f ? glm::vec3(0, 0, 1) : glm::vec3(0, 1, 0);
   glm::mat4 view = glm::lookAtRH(camera.eye, camera.target, up);
-  glm::mat4 proj = glm::perspectiveRH_ZO(fov, float(width) / float(height), v.znear, v.zfar);
-  proj[1][1] *= -1.0f;  // Vulkan's y points down
+  // Reversed depth with an infinite far plane: depth = znear / distance, so float depth keeps its
+  // precision all the way out (with standard depth, far surfaces showed through near ones in speckles).
+  float f = 1.0f / std::tan(0.5f * fov);
+  glm::mat4 proj(0.0f);
+  proj[0][0] = f / (float(width) / float(height));
+  proj[1][1] = -f;  // Vulkan's y points down
+  proj[2][3] = -1.0f;
+  proj[3][2] = v.znear;
   v.viewProjection = proj * view;
   v.projScale = float(height) / (2.0f * std::tan(0.5f * fov));
   glm::mat4 m = glm::transpose(v.viewProjection);  // rows of the matrix
-  glm::vec4 planes[6] = {m[3] + m[0], m[3] - m[0], m[3] + m[1], m[3] - m[1], m[2], m[3] - m[2]};
-  for (int i = 0; i < 6; i++) v.planes[i] = planes[i] / glm::length(glm::vec3(planes[i]));
+  // Left, right, bottom, top, near; the far plane is at infinity and culls nothing.
+  glm::vec4 planes[6] = {m[3] + m[0], m[3] - m[0], m[3] + m[1], m[3] - m[1], m[3] - m[2], glm::vec4(0.0f, 0.0f, 0.0f, 1.0f)};
+  for (int i = 0; i < 5; i++) v.planes[i] = planes[i] / glm::length(glm::vec3(planes[i]));
+  v.planes[5] = glm::vec4(0.0f, 1.0f, 0.0f, INFINITY);
   return v;
 }
 
-Camera defaultCamera(glm::vec4 bounds, float fovYDegrees) {
+Camera defaultCamera(glm::vec4 bounds, glm::vec3 boxMin, glm::vec3 boxMax, float fovYDegrees) {
   Camera c;
   c.fovYDegrees = fovYDegrees;
   c.target = glm::vec3(bounds);
+  glm::vec3 extent = boxMax - boxMin;
+  float wide = std::max(extent.x, extent.z);
+  if (extent.y < 0.25f * wide) {
+    c.eye = glm::vec3(boxMax.x, boxMax.y + 0.12f * wide, boxMax.z) + glm::vec3(0.05f, 0.0f, 0.05f) * wide;
+    c.target = glm::vec3(bounds) - glm::vec3(0.1f, 0.0f, 0.1f) * wide;
+    return c;
+  }
   float distance = std::max(bounds.w, 1e-6f) / std::sin(0.5f * glm::radians(fovYDegrees)) * 1.05f;
   c.eye = c.target + glm::normalize(glm::vec3(0.55f, 0.6f, 0.9f)) * distance;
   return c;

@@ -21,6 +21,7 @@
 #include "shaders/finalize_comp.h"
 #include "shaders/prepare_flat_comp.h"
 #include "shaders/prepare_level_comp.h"
+#include "shaders/reset_flat_comp.h"
 #include "shaders/traverse_flat_comp.h"
 #include "shaders/traverse_level_comp.h"
 #include "shaders/traverse_persistent_comp.h"
@@ -32,7 +33,7 @@ constexpr uint32_t kSceneBindings = 9;  // bindings 1..9: geometries .. BVH node
 constexpr uint32_t kBindings = 13;
 // lavapipe ends every loop after 65,535 iterations per invocation (GPU-NOTES 1): persistent workers
 // leave on their own well before, holding nothing, and enough of them are dispatched to carry on.
-constexpr uint32_t kLavapipeIterationBudget = 60000;
+constexpr uint32_t kLavapipeIterationBudget = 50000;
 constexpr uint32_t kLavapipeWorkgroups = 128;
 
 void globalBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags srcAccess, VkPipelineStageFlags dst, VkAccessFlags dstAccess) {
@@ -111,6 +112,25 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
   createQueueAndDrawList();
   createPipelines();
   writeDescriptors();
+  // Warm-up: one persistent dispatch over an empty queue (all workers leave at once). On lavapipe the
+  // first dispatch of a pipeline also compiles it, and in that first run workers were measured to
+  // starve and be cut off; later runs were sound.
+  {
+    shaderio::FrameData frame{};
+    frame.claimMode = claimMode_;
+    frame.iterationBudget = iterationBudget_;
+    frame.queueCapacity = queueCapacity_;
+    std::memcpy(frameData_.mapped, &frame, sizeof(frame));
+    VkCommandBuffer cmd = vk_.beginCommands();
+    shaderio::Counters zero{};
+    vkCmdUpdateBuffer(cmd, counters_.buffer, 0, sizeof(zero), &zero);
+    globalBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, persistent_);
+    vkCmdDispatch(cmd, persistentWorkgroups_, 1, 1);
+    vk_.submitAndWait(cmd);
+  }
   VkQueryPoolCreateInfo q{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
   q.queryType = VK_QUERY_TYPE_TIMESTAMP;
   q.queryCount = 3;
@@ -120,7 +140,7 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
 GpuRenderer::~GpuRenderer() {
   VkDevice dev = vk_.device();
   vkDeviceWaitIdle(dev);
-  for (VkPipeline p : {cull_, persistent_, level_, prepareLevel_, flat_, prepareFlat_, finalize_, draw_, drawOverdraw_}) vkDestroyPipeline(dev, p, nullptr);
+  for (VkPipeline p : {cull_, persistent_, level_, prepareLevel_, flat_, prepareFlat_, resetFlat_, finalize_, draw_, drawOverdraw_}) vkDestroyPipeline(dev, p, nullptr);
   vkDestroyPipelineLayout(dev, layout_, nullptr);
   vkDestroyDescriptorPool(dev, descriptorPool_, nullptr);
   vkDestroyDescriptorSetLayout(dev, setLayout_, nullptr);
@@ -291,6 +311,7 @@ void GpuRenderer::createPipelines() {
   prepareLevel_ = compute(prepare_level_comp, sizeof(prepare_level_comp));
   flat_ = compute(traverse_flat_comp, sizeof(traverse_flat_comp));
   prepareFlat_ = compute(prepare_flat_comp, sizeof(prepare_flat_comp));
+  resetFlat_ = compute(reset_flat_comp, sizeof(reset_flat_comp));
   finalize_ = compute(finalize_comp, sizeof(finalize_comp));
 
   VkShaderModule vert = vk_.createShaderModule(draw_vert, sizeof(draw_vert));
@@ -318,7 +339,7 @@ void GpuRenderer::createPipelines() {
   VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
   depth.depthTestEnable = VK_TRUE;
   depth.depthWriteEnable = VK_TRUE;
-  depth.depthCompareOp = VK_COMPARE_OP_LESS;
+  depth.depthCompareOp = VK_COMPARE_OP_GREATER;  // reversed depth (camera.cpp)
   VkPipelineColorBlendAttachmentState blend{};
   blend.colorWriteMask = 0xf;
   VkPipelineColorBlendStateCreateInfo blendState{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
@@ -400,6 +421,9 @@ void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& sett
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, flat_);
     vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, dispatch));
     computeToCompute(cmd);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, resetFlat_);
+    vkCmdDispatch(cmd, (uint32_t(scene_.data.instances.size()) + 63) / 64, 1, 1);
+    computeToCompute(cmd);
   }
   // 4. Draw arguments.
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, finalize_);
@@ -414,7 +438,7 @@ void GpuRenderer::recordDraw(VkCommandBuffer cmd, const FrameSettings& settings)
   // 5. One indirect draw.
   VkClearValue clears[2];
   clears[0].color = {{0.02f, 0.025f, 0.035f, 1.0f}};
-  clears[1].depthStencil = {1.0f, 0};
+  clears[1].depthStencil = {0.0f, 0};
   VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
   begin.renderPass = renderPass_;
   begin.framebuffer = framebuffer_;
@@ -515,7 +539,8 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
   result.complete = c.queueOverflow == 0 && c.drawOverflow == 0 && drained;
   if (!drained && c.queueOverflow == 0)
     throw std::runtime_error("traversal did not drain its queue (" + std::to_string(c.itemsDone) + " of " + std::to_string(c.queueWrite) +
-                             " items done): persistent workers left too early");
+                             " items done, " + std::to_string(c.queueRead) + " claimed; " + std::to_string(c.workgroupsExited) + " of " +
+                             std::to_string(persistentWorkgroups_) + " workers left, " + std::to_string(c.budgetExits) + " on their budget)");
   // Grow what overflowed, for the next frame.
   if (c.queueOverflow || c.drawOverflow) {
     uint64_t queueWant = c.queueOverflow ? std::max<uint64_t>(uint64_t(queueCapacity_) * 2, uint64_t(c.queueHighWater) * 5 / 4) : queueCapacity_;

@@ -210,6 +210,8 @@ void finishScene(RenderScene& scene) {
     radius = std::max(radius, glm::distance(centre, c) + s.w * inst.maxScale);
   }
   scene.bounds = d.instances.empty() ? glm::vec4(0, 0, 0, 1) : glm::vec4(centre, radius);
+  scene.boxMin = lo;
+  scene.boxMax = hi;
 }
 
 RenderScene loadRenderScene(const std::string& path, uint32_t grid) {

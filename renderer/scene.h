@@ -15,6 +15,7 @@ struct RenderScene {
   uint32_t maxBvhDepth = 0;
   uint32_t maxClusters = 0;       // largest cluster count of a geometry
   glm::vec4 bounds{0.0f};         // world-space sphere around every instance
+  glm::vec3 boxMin{0.0f}, boxMax{0.0f};  // world-space box around every instance's sphere
   uint64_t virtualTriangles = 0;  // leaf triangles summed over instances
 };
 

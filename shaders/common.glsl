@@ -30,11 +30,12 @@ vec4 worldSphere(Instance inst, vec4 sphere) {
   return vec4(toWorld(inst, sphere.xyz), sphere.w * inst.maxScale);
 }
 
-// Outside when wholly behind one plane of the cull camera's frustum (conservative).
+// Outside when wholly behind one plane of the cull camera's frustum (conservative). Written without a
+// loop: lavapipe counts every loop iteration against its per-invocation limit (GPU-NOTES 1).
 bool sphereInFrustum(vec4 s) {
-  for (int i = 0; i < 6; i++)
-    if (dot(frame.frustum[i].xyz, s.xyz) + frame.frustum[i].w < -s.w) return false;
-  return true;
+  return dot(frame.frustum[0].xyz, s.xyz) + frame.frustum[0].w >= -s.w && dot(frame.frustum[1].xyz, s.xyz) + frame.frustum[1].w >= -s.w &&
+         dot(frame.frustum[2].xyz, s.xyz) + frame.frustum[2].w >= -s.w && dot(frame.frustum[3].xyz, s.xyz) + frame.frustum[3].w >= -s.w &&
+         dot(frame.frustum[4].xyz, s.xyz) + frame.frustum[4].w >= -s.w && dot(frame.frustum[5].xyz, s.xyz) + frame.frustum[5].w >= -s.w;
 }
 
 float projectedErrorWorld(Instance inst, vec4 sphere, float error) {

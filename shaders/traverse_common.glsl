@@ -3,6 +3,9 @@
 //   node item:  test the node's children (nodes or groups) and queue those that may hold drawn clusters
 //   group item: test each member cluster with the cut rule and append the drawn ones to the draw list
 
+// Loop iterations this invocation has run: the persistent traversal leaves before lavapipe's limit.
+uint gLoops = 0u;
+
 void countHighWater(uint end) { atomicMax(counters.queueHighWater, end); }
 
 // Reserves `count` queue slots; returns the first. Slots past the capacity are dropped, counted as
@@ -72,7 +75,10 @@ void processItem(uint instance, uint code) {
   Instance inst = instances[instance];
   if ((code & VGEO_ITEM_GROUP_BIT) != 0u) {
     Group g = groups[code & ~VGEO_ITEM_GROUP_BIT];
-    for (uint i = 0u; i < g.clusterCount; i++) testCluster(instance, g.clusterOffset + i);
+    for (uint i = 0u; i < g.clusterCount; i++) {
+      gLoops++;
+      testCluster(instance, g.clusterOffset + i);
+    }
     return;
   }
   BvhNode node = nodes[code];
@@ -81,6 +87,7 @@ void processItem(uint instance, uint code) {
   uint keep[VGEO_BVH_WIDTH];
   uint kept = 0u;
   for (uint i = 0u; i < count; i++) {
+    gLoops++;
     uint child = node.childOffset + i;
     bool may = leaf ? mayHoldDrawn(inst, groups[child].sphere, groups[child].error)
                     : mayHoldDrawn(inst, nodes[child].sphere, nodes[child].maxError);
@@ -88,5 +95,8 @@ void processItem(uint instance, uint code) {
   }
   if (kept == 0u) return;
   uint first = reserveQueue(kept);
-  for (uint i = 0u; i < kept; i++) writeQueue(first + i, instance, keep[i]);
+  for (uint i = 0u; i < kept; i++) {
+    gLoops++;
+    writeQueue(first + i, instance, keep[i]);
+  }
 }

@@ -7,9 +7,11 @@
 // Claiming (frame.claimMode):
 //   0  past the frontier (GPUs): one atomicAdd claims 64 slots, produced or not; each lane keeps its slot
 //      until a producer fills it. One atomic a batch scaled to 16k workgroups on an H100 (GPU-NOTES 9).
-//   1  reserved items only (lavapipe): compare-and-swap over slots already reserved, whose producers are
-//      running and fill them at once; a workgroup holds nothing between iterations, so it can leave on
-//      the iteration budget (lavapipe ends loops silently after 65,535 iterations, GPU-NOTES 1).
+//   1  written items only (lavapipe): the lanes find the written prefix after the read position and
+//      lane 0 claims it by compare-and-swap; nobody waits on a slot, a workgroup holds nothing between
+//      iterations, so it can leave on
+//      the iteration budget (lavapipe ends loops silently after 65,535 iterations per invocation, all
+//      loops counted, GPU-NOTES 1: every loop of the traversal counts into gLoops).
 // Termination: itemsDone == queueWrite (read in that order) means nothing is in flight and nothing can
 // be produced any more; overflowed items count as done.
 #extension GL_GOOGLE_include_directive : require
@@ -21,6 +23,9 @@ shared uint sBase;     // first slot of the batch claimed this iteration
 shared uint sCount;    // slots claimed this iteration (0: none)
 shared uint sExit;
 shared uint sHolding;  // lanes still holding a slot (claim mode 0)
+shared uint sLoops;    // loop iterations so far, as lavapipe counts them (see below)
+shared uint sRound;    // the most inner-loop iterations any lane ran this iteration
+shared uint sRead, sReserved, sWritten, sClaiming;  // claim mode 1
 
 bool quiescent() {
   uint done = atomicOr(counters.itemsDone, 0u);
@@ -32,15 +37,19 @@ bool quiescent() {
 void main() {
   const uint lane = gl_LocalInvocationIndex;
   uint slot = VGEO_INVALID;  // the slot this lane holds (claim mode 0)
-  uint iterations = 0u;
-  if (lane == 0u) sHolding = 0u;
+  if (lane == 0u) {
+    sHolding = 0u;
+    sLoops = 0u;
+    sRound = 0u;
+    sClaiming = 0u;
+  }
   for (;;) {
     barrier();
     if (lane == 0u) {
       sExit = 0u;
       sCount = 0u;
       if (sHolding == 0u) {
-        if (frame.iterationBudget != 0u && iterations >= frame.iterationBudget) {
+        if (frame.iterationBudget != 0u && sLoops >= frame.iterationBudget) {
           sExit = 2u;
         } else if (frame.claimMode == 0u) {
           if (quiescent()) sExit = 1u;
@@ -49,21 +58,32 @@ void main() {
             sCount = VGEO_TRAVERSAL_WORKGROUP;
           }
         } else {
-          uint read = atomicOr(counters.queueRead, 0u);
-          uint reserved = min(atomicOr(counters.queueWrite, 0u), frame.queueCapacity);
-          if (read < reserved) {
-            uint want = min(uint(VGEO_TRAVERSAL_WORKGROUP), reserved - read);
-            if (atomicCompSwap(counters.queueRead, read, read + want) == read) {
-              sBase = read;
-              sCount = want;
-            }
-          } else if (quiescent()) {
-            sExit = 1u;
-          }
+          sRead = atomicOr(counters.queueRead, 0u);
+          sReserved = min(atomicOr(counters.queueWrite, 0u), frame.queueCapacity);
+          sWritten = VGEO_TRAVERSAL_WORKGROUP;
+          sClaiming = 1u;
         }
       }
     }
     barrier();
+    if (sClaiming != 0u) {
+      // Claim mode 1: only the written prefix of the slots after the read position, found by all lanes
+      // at once, is claimed, so no lane ever waits on a slot. (Waiting on reserved slots, the first
+      // version, sometimes stalled on lavapipe until every worker ran out of iterations.)
+      uint s = sRead + lane;
+      if (s >= sReserved || atomicOr(queue[2 * s], 0u) == VGEO_INVALID) atomicMin(sWritten, lane);
+      barrier();
+      if (lane == 0u) {
+        sClaiming = 0u;
+        if (sWritten > 0u && atomicCompSwap(counters.queueRead, sRead, sRead + sWritten) == sRead) {
+          sBase = sRead;
+          sCount = sWritten;
+        } else if (sRead >= sReserved && quiescent()) {
+          sExit = 1u;
+        }
+      }
+      barrier();
+    }
     if (sExit != 0u) {
       if (lane == 0u) {
         atomicAdd(counters.workgroupsExited, 1u);
@@ -71,18 +91,17 @@ void main() {
       }
       break;
     }
-    iterations++;
+    gLoops = 0u;
     if (lane < sCount) slot = sBase + lane;
 
     uint instance, code;
     if (frame.claimMode == 1u) {
-      // Reserved slots are being written by running producers: wait for this one, then process it.
-      if (slot != VGEO_INVALID) {
-        while (!takeQueue(slot, instance, code)) {}
+      // Claimed slots are written (above).
+      if (slot != VGEO_INVALID && takeQueue(slot, instance, code)) {
         processItem(instance, code);
         atomicAdd(counters.itemsDone, 1u);
-        slot = VGEO_INVALID;
       }
+      slot = VGEO_INVALID;
     } else if (slot != VGEO_INVALID) {
       if (slot < frame.queueCapacity && takeQueue(slot, instance, code)) {
         processItem(instance, code);
@@ -93,7 +112,15 @@ void main() {
       }
     }
     if (lane == 0u) sHolding = 0u;
+    atomicMax(sRound, gLoops);
     barrier();
     if (slot != VGEO_INVALID) atomicAdd(sHolding, 1u);
+    // lavapipe counts a loop iteration for a whole SIMD vector of lanes whenever any of them iterates,
+    // over every loop inside the outermost one: bound that by this iteration and the most inner
+    // iterations any lane ran, plus, as a margin, one count per barrier and vector of 8 lanes.
+    if (lane == 0u) {
+      sLoops += 1u + sRound + 5u * (VGEO_TRAVERSAL_WORKGROUP / 8u);
+      sRound = 0u;
+    }
   }
 }

@@ -1,0 +1,14 @@
+#version 450
+// reset_flat.comp: after the flat traversal, which reads the visible instances from the first queue
+// slots without taking them, puts those slots back to unwritten and counts them done.
+#extension GL_GOOGLE_include_directive : require
+layout(local_size_x = 64) in;
+#include "common.glsl"
+
+void main() {
+  uint slot = gl_GlobalInvocationID.x;
+  if (slot >= counters.visibleInstances || slot >= frame.queueCapacity) return;
+  queue[2 * slot] = VGEO_INVALID;
+  queue[2 * slot + 1] = VGEO_INVALID;
+  atomicAdd(counters.itemsDone, 1u);
+}

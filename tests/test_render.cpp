@@ -1,0 +1,201 @@
+// test_render.cpp: the GPU renderer on lavapipe (or any device), with the Khronos validation layer and
+// synchronization validation on: every test fails on any validation message.
+#include <cmath>
+
+#include "../renderer/gpu_renderer.h"
+#include "test_util.h"
+
+namespace vgeo {
+namespace {
+
+constexpr uint32_t kW = 256, kH = 192;
+
+// One Vulkan device (with validation) for the whole suite, and the scenes it draws.
+class Render : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    vk = new VulkanContext({"", true});
+    std::string dir = std::filesystem::temp_directory_path() / "vgeo_render_tests";
+    std::filesystem::create_directories(dir);
+    writeVgeo(test::build(test::asset("horned_cube.obj"), 3), dir + "/horned.vgeo");
+    writeVgeo(test::build(test::cgalMesh("armadillo.off"), 0), dir + "/armadillo.vgeo");
+    single = new RenderScene(loadRenderScene(dir + "/horned.vgeo"));
+    grid = new RenderScene(loadRenderScene(dir + "/horned.vgeo", 4));
+    armadillo = new RenderScene(loadRenderScene(dir + "/armadillo.vgeo"));
+  }
+  static void TearDownTestSuite() {
+    delete single;
+    delete grid;
+    delete armadillo;
+    delete vk;
+  }
+  void TearDown() override { EXPECT_EQ(vk->validationMessages(), 0u) << "validation messages (see stderr)"; }
+
+  static FrameSettings settingsFor(const RenderScene& scene, const Camera& camera, float tau, Traversal t = Traversal::Persistent) {
+    FrameSettings s;
+    s.drawView = s.cullView = makeView(camera, kW, kH, scene.bounds);
+    s.tau = tau;
+    s.traversal = t;
+    s.readDrawList = true;
+    return s;
+  }
+  static Camera orbit(const RenderScene& scene, float azimuth, float elevation, float distanceInRadii) {
+    Camera c;
+    c.target = glm::vec3(scene.bounds);
+    c.eye = c.target + scene.bounds.w * distanceInRadii *
+                           glm::vec3(std::cos(elevation) * std::cos(azimuth), std::sin(elevation), std::cos(elevation) * std::sin(azimuth));
+    return c;
+  }
+  // Pixels that are not the clear colour.
+  static std::vector<uint8_t> coverage(const FrameResult& r) {
+    std::vector<uint8_t> mask(kW * kH);
+    for (uint32_t i = 0; i < kW * kH; i++) mask[i] = r.rgba[4 * i] > 12 || r.rgba[4 * i + 1] > 12 || r.rgba[4 * i + 2] > 16;
+    return mask;
+  }
+
+  static VulkanContext* vk;
+  static RenderScene *single, *grid, *armadillo;
+};
+VulkanContext* Render::vk = nullptr;
+RenderScene* Render::single = nullptr;
+RenderScene* Render::grid = nullptr;
+RenderScene* Render::armadillo = nullptr;
+
+TEST_F(Render, GpuDrawListEqualsCpuCutForAllTraversals) {
+  for (const RenderScene* scene : {single, grid}) {
+    GpuRenderer renderer(*vk, *scene, kW, kH);
+    glm::vec3 c(scene->bounds);
+    float r = scene->bounds.w;
+    std::vector<Camera> cameras = {defaultCamera(scene->bounds, scene->boxMin, scene->boxMax, 60.0f), orbit(*scene, 0.7f, 0.4f, 1.4f),
+                                   orbit(*scene, 2.5f, -0.3f, 6.0f)};
+    Camera inside;  // inside the scene, looking along it
+    inside.eye = c + glm::vec3(0.1f, 0.05f, 0.2f) * r;
+    inside.target = c + glm::vec3(1.0f, 0.0f, 0.3f) * r;
+    cameras.push_back(inside);
+    Camera away;  // outside, looking away from it
+    away.eye = c + glm::vec3(0.0f, 0.0f, 2.0f) * r;
+    away.target = c + glm::vec3(0.0f, 0.0f, 4.0f) * r;
+    cameras.push_back(away);
+    for (Traversal t : {Traversal::Persistent, Traversal::Levels, Traversal::Flat})
+      for (size_t k = 0; k < cameras.size(); k++)
+        for (float tau : {0.5f, 1.0f, 4.0f, 16.0f}) {
+          SCOPED_TRACE(std::string(traversalName(t)) + " camera " + std::to_string(k) + " tau " + std::to_string(tau) +
+                       (scene == grid ? " grid" : " single"));
+          FrameSettings s = settingsFor(*scene, cameras[k], tau, t);
+          s.readImage = false;
+          FrameResult result;
+          ASSERT_NO_THROW(result = renderer.renderFrame(s));
+          ASSERT_TRUE(result.complete);
+          SceneCut reference = selectSceneCut(*scene, s.cullView, tau);
+          std::string difference;
+          EXPECT_TRUE(compareCuts(reference, result.drawList, difference))
+              << traversalName(t) << " camera " << k << " tau " << tau << ": " << difference;
+          EXPECT_LE(reference.borderline.size(), std::max<size_t>(1, reference.entries.size() / 1000))
+              << "borderline clusters over 0.1% of the visible ones";
+          if (k == 4) {
+            EXPECT_EQ(result.counters.drawCount, 0u) << "looking away draws nothing";
+          }
+        }
+  }
+}
+
+TEST_F(Render, NoCracksAtTau1And8) {
+  // Background inside the silhouette of the full-detail render (tau 0) would be a crack. The picture
+  // may shrink by up to tau pixels at the silhouette (that much error is allowed), so the full-detail
+  // mask is eroded by ceil(tau) + 1 pixels first.
+  for (const RenderScene* scene : {single, armadillo}) {
+    GpuRenderer renderer(*vk, *scene, kW, kH);
+    for (int view = 0; view < 6; view++) {
+      Camera camera = orbit(*scene, 1.1f * float(view), 0.9f * std::sin(float(view)), view % 2 ? 1.6f : 2.6f);
+      std::vector<uint8_t> full = coverage(renderer.renderFrame(settingsFor(*scene, camera, 0.0f)));
+      for (float tau : {1.0f, 8.0f}) {
+        std::vector<uint8_t> lod = coverage(renderer.renderFrame(settingsFor(*scene, camera, tau)));
+        int erode = int(std::ceil(tau)) + 1, leaks = 0;
+        for (int y = erode; y < int(kH) - erode; y++)
+          for (int x = erode; x < int(kW) - erode; x++) {
+            bool deep = true;
+            for (int dy = -erode; dy <= erode && deep; dy++)
+              for (int dx = -erode; dx <= erode && deep; dx++) deep = full[size_t((y + dy) * int(kW) + x + dx)];
+            if (deep && !lod[size_t(y * int(kW) + x)]) leaks++;
+          }
+        EXPECT_EQ(leaks, 0) << "view " << view << " tau " << tau;
+      }
+    }
+  }
+}
+
+TEST_F(Render, FidelityAtTau1AndTrianglesFallWithDistance) {
+  // A pixel differs when any channel differs by more than 32/255; at tau = 1 at most 0.5% may.
+  GpuRenderer renderer(*vk, *armadillo, kW, kH);
+  Camera camera = orbit(*armadillo, 0.5f, 0.3f, 2.2f);
+  FrameResult full = renderer.renderFrame(settingsFor(*armadillo, camera, 0.0f));
+  FrameResult lod = renderer.renderFrame(settingsFor(*armadillo, camera, 1.0f));
+  size_t differ = 0;
+  for (size_t i = 0; i < size_t(kW) * kH; i++)
+    for (int ch = 0; ch < 3; ch++)
+      if (std::abs(int(full.rgba[4 * i + ch]) - int(lod.rgba[4 * i + ch])) > 32) {
+        differ++;
+        break;
+      }
+  EXPECT_LE(double(differ), 0.005 * kW * kH) << differ << " pixels differ";
+  EXPECT_LT(lod.counters.triangles, full.counters.triangles);
+  uint32_t previous = UINT32_MAX;
+  for (float distance : {1.5f, 3.0f, 6.0f, 12.0f, 24.0f}) {
+    FrameResult r = renderer.renderFrame(settingsFor(*armadillo, orbit(*armadillo, 0.5f, 0.3f, distance), 1.0f));
+    EXPECT_LT(r.counters.triangles, previous) << "at " << distance << " radii";
+    previous = r.counters.triangles;
+  }
+}
+
+TEST_F(Render, OverflowIsReportedAndTheNextFrameIsComplete) {
+  FrameSettings s = settingsFor(*grid, orbit(*grid, 0.3f, 0.5f, 1.2f), 1.0f);
+  for (bool tinyQueue : {true, false}) {
+    GpuRenderer renderer(*vk, *grid, kW, kH);
+    renderer.setCapacities(tinyQueue ? 4 : 1u << 16, tinyQueue ? 1u << 16 : 8);
+    FrameResult first = renderer.renderFrame(s);
+    EXPECT_FALSE(first.complete);
+    if (tinyQueue) {
+      EXPECT_GT(first.counters.queueOverflow, 0u);
+      EXPECT_GT(renderer.queueCapacity(), 4u);
+    } else {
+      EXPECT_GT(first.counters.drawOverflow, 0u);
+      EXPECT_GT(renderer.drawCapacity(), 8u);
+    }
+    FrameResult next = renderer.renderFrame(s);
+    for (int i = 0; i < 4 && !next.complete; i++) next = renderer.renderFrame(s);
+    EXPECT_TRUE(next.complete);
+    std::string difference;
+    EXPECT_TRUE(compareCuts(selectSceneCut(*grid, s.cullView, 1.0f), next.drawList, difference)) << difference;
+  }
+}
+
+TEST_F(Render, EveryDebugModeRenders) {
+  GpuRenderer renderer(*vk, *grid, kW, kH);
+  FrameSettings s = settingsFor(*grid, orbit(*grid, 0.3f, 0.5f, 1.2f), 1.0f);
+  s.readDrawList = false;
+  std::vector<std::vector<uint8_t>> images;
+  for (uint32_t mode = VGEO_MODE_LIT; mode <= VGEO_MODE_FROZEN_DIFF; mode++) {
+    s.mode = mode;
+    FrameResult r = renderer.renderFrame(s);
+    std::vector<uint8_t> mask = coverage(r);
+    EXPECT_GT(std::count(mask.begin(), mask.end(), 1), 500) << "mode " << mode << " drew almost nothing";
+    for (size_t k = 0; k < images.size(); k++) EXPECT_NE(images[k], r.rgba) << "mode " << mode << " looks like mode " << k;
+    images.push_back(r.rgba);
+  }
+}
+
+TEST_F(Render, FrozenCutFollowsTheFreezeCamera) {
+  GpuRenderer renderer(*vk, *grid, kW, kH);
+  Camera a = orbit(*grid, 0.3f, 0.5f, 1.2f), b = orbit(*grid, 2.0f, 0.2f, 3.0f);
+  FrameSettings s = settingsFor(*grid, b, 1.0f);
+  s.cullView = makeView(a, kW, kH, grid->bounds);
+  s.mode = VGEO_MODE_FROZEN_DIFF;
+  FrameResult r = renderer.renderFrame(s);
+  std::string difference;
+  EXPECT_TRUE(compareCuts(selectSceneCut(*grid, s.cullView, 1.0f), r.drawList, difference)) << difference;
+  SceneCut live = selectSceneCut(*grid, s.drawView, 1.0f);
+  EXPECT_NE(live.entries.size(), r.drawList.size()) << "the two cameras should pick different cuts";
+}
+
+}  // namespace
+}  // namespace vgeo
