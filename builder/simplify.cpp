@@ -26,7 +26,6 @@ namespace {
 
 constexpr float kHalvedRatio = 0.55f;
 constexpr double kBoundedError = 0.02;  // of the group's bounding box diagonal: beyond it, "relaxed"
-constexpr double kShadingWeight = 1.0;  // error per unit travelled at a normal change of 1 - cos = 1
 
 struct Quadric {
   double a[10] = {};  // xx xy xz xw yy yz yw zz zw ww
@@ -148,17 +147,7 @@ class Simplifier {
   // One-sided Hausdorff error: for every removed vertex, the distance from its position to the nearest
   // final triangle around the vertex it ended up in (an upper bound of its distance to the simplified
   // surface). The quadric's mean distance alone let coarse levels deviate by more than their error.
-  // Shading error: where the surface turns, a collapse also moves the normals that shading
-  // interpolates, which shows more than the geometric distance. For every removed vertex, the length it
-  // travelled times the change of normal between its vertex in the input and its vertex in the result
-  // (1 - cos) is counted as error too, so that creases stay fine until they are small on screen.
-  double removedVertexError(const std::vector<glm::dvec3>& inputNormals) {
-    std::vector<glm::dvec3> outputNormals(p_.size(), glm::dvec3(0.0));
-    for (size_t t = 0; t < alive_.size(); t++)
-      if (alive_[t]) {
-        glm::dvec3 n = glm::cross(p_[tri_[3 * t + 1]] - p_[tri_[3 * t]], p_[tri_[3 * t + 2]] - p_[tri_[3 * t]]);
-        for (int k = 0; k < 3; k++) outputNormals[tri_[3 * t + k]] += n;
-      }
+  double removedVertexError() {
     double worst = 0.0;
     for (uint32_t u = 0; u < p_.size(); u++) {
       if (!removed_[u]) continue;
@@ -170,22 +159,8 @@ class Simplifier {
         if (alive_[t]) best = std::min(best, pointTriangleDistance(p_[u], p_[tri_[3 * t]], p_[tri_[3 * t + 1]], p_[tri_[3 * t + 2]]));
       }
       if (std::isfinite(best)) worst = std::max(worst, best);
-      double lu = glm::length(inputNormals[u]), lw = glm::length(outputNormals[w]);
-      if (lu > 0.0 && lw > 0.0) {
-        double turn = 1.0 - glm::dot(inputNormals[u], outputNormals[w]) / (lu * lw);
-        worst = std::max(worst, kShadingWeight * turn * glm::distance(p_[u], p_[w]));
-      }
     }
     return worst;
-  }
-  std::vector<glm::dvec3> vertexNormals() const {
-    std::vector<glm::dvec3> normals(p_.size(), glm::dvec3(0.0));
-    for (size_t t = 0; t < alive_.size(); t++)
-      if (alive_[t]) {
-        glm::dvec3 n = glm::cross(p_[tri_[3 * t + 1]] - p_[tri_[3 * t]], p_[tri_[3 * t + 2]] - p_[tri_[3 * t]]);
-        for (int k = 0; k < 3; k++) normals[tri_[3 * t + k]] += n;
-      }
-    return normals;
   }
   std::vector<uint32_t> triangles() const {
     std::vector<uint32_t> out;
@@ -388,9 +363,8 @@ SimplifiedGroup simplifyGroup(const std::vector<uint32_t>& indices, const std::v
   const size_t triangles = indices.size() / 3;
   Simplifier s(std::move(local), std::move(points), std::move(locked),
                [&](uint32_t a, uint32_t b) { return chordAllowed(globals[a], globals[b]); });
-  std::vector<glm::dvec3> inputNormals = s.vertexNormals();
   double error = s.run(triangles / 2);
-  error = std::max(error, s.removedVertexError(inputNormals));
+  error = std::max(error, s.removedVertexError());
   SimplifiedGroup result;
   result.error = float(error);
   result.halved = s.triangleCount() <= size_t(float(triangles) * kHalvedRatio);

@@ -90,6 +90,9 @@ int runRender(const RenderArgs& a) {
     }
   }
   writePng(a.output, width, height, result.rgba);
+  // Pixels covered: not the clear colour (draw.frag never outputs it: its darkest lit value is brighter).
+  uint64_t covered = 0;
+  for (size_t i = 0; i + 3 < result.rgba.size(); i += 4) covered += result.rgba[i] > 12 || result.rgba[i + 1] > 12 || result.rgba[i + 2] > 16;
 
   const auto& c = result.counters;
   nlohmann::ordered_json j;
@@ -107,6 +110,8 @@ int runRender(const RenderArgs& a) {
   j["clusters_tested"] = c.clustersTested;
   j["visible_clusters"] = std::min(c.drawCount, renderer.drawCapacity());
   j["triangles"] = c.triangles;
+  j["pixels_covered"] = covered;
+  j["triangles_per_covered_pixel"] = covered ? double(c.triangles) / double(covered) : 0.0;
   j["queue_overflows"] = queueOverflows;
   j["draw_overflows"] = drawOverflows;
   j["queue_high_water"] = c.queueHighWater;

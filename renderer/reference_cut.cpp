@@ -32,7 +32,7 @@ SceneCut selectSceneCut(const RenderScene& scene, const View& cull, float tau, f
     const auto& g = d.geometries[inst.geometry];
     glm::vec4 bounds = worldSphere(inst, g.boundsSphere);
     float boundsMargin = frustumMargin(cull, bounds);
-    if (boundsMargin < -epsilon * bounds.w * 4.0f) continue;  // clearly outside: the GPU culls it too
+    if (boundsMargin < -epsilon * bounds.w) continue;  // clearly outside: the GPU culls it too
     for (uint32_t c = g.clusterOffset; c < g.clusterOffset + g.clusterCount; c++) {
       const auto& cl = d.clusters[c];
       glm::vec4 self = worldSphere(inst, cl.selfSphere);
@@ -41,7 +41,7 @@ SceneCut selectSceneCut(const RenderScene& scene, const View& cull, float tau, f
       float parentError = shaderio::projectedError(worldSphere(inst, cl.parentSphere), cl.parentError * inst.maxScale, cull.eye,
                                                    cull.projScale, cull.znear);
       bool drawn = margin >= 0.0f && selfError <= tau && tau < parentError;
-      bool borderline = std::abs(margin) <= epsilon * std::max(self.w, 1e-30f) * 4.0f || std::abs(boundsMargin) <= epsilon * bounds.w * 4.0f ||
+      bool borderline = std::abs(margin) <= epsilon * std::max(self.w, 1e-30f) || std::abs(boundsMargin) <= epsilon * bounds.w ||
                         std::abs(selfError - tau) <= epsilon * tau || std::abs(parentError - tau) <= epsilon * tau;
       if (borderline) cut.borderline.push_back({i, c});
       else if (drawn) cut.entries.push_back({i, c});

@@ -18,7 +18,7 @@ struct SceneCut {
   std::vector<CutEntry> borderline;  // some test within epsilon of its boundary: may go either way
 };
 // The cut the GPU must produce for the cull view `cull` and `tau` (pixels); `epsilon` is relative.
-SceneCut selectSceneCut(const RenderScene& scene, const View& cull, float tau, float epsilon = 1e-4f);
+SceneCut selectSceneCut(const RenderScene& scene, const View& cull, float tau, float epsilon = 1e-5f);
 // True when the GPU list equals the reference as a set, borderline entries either way; else says why.
 bool compareCuts(const SceneCut& reference, std::vector<CutEntry> gpu, std::string& firstDifference);
 
