@@ -56,6 +56,8 @@ SourceScene loadObj(const std::string& path);
 SourceScene loadOff(const std::string& path);
 SourceScene loadPly(const std::string& path);
 SourceScene loadGltf(const std::string& path);
+// The scene of a single-mesh format: the mesh, shown once with the identity transform.
+SourceScene singleMeshScene(PolygonMesh mesh);
 
 // ---- repair.cpp -------------------------------------------------------------------------------------
 struct RepairReport {

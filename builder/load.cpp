@@ -18,6 +18,14 @@ std::string readWholeFile(const std::string& path) {
   return std::move(data).str();
 }
 
+SourceScene singleMeshScene(PolygonMesh mesh) {
+  SourceScene scene;
+  scene.meshes.push_back(std::move(mesh));
+  scene.meshNames.push_back("mesh");
+  scene.instances.push_back({});
+  return scene;
+}
+
 SourceScene loadMeshFile(const std::string& path) {
   std::string ext = path.substr(path.find_last_of('.') == std::string::npos ? path.size() : path.find_last_of('.'));
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });

@@ -51,11 +51,7 @@ SourceScene loadObj(const std::string& path) {
         throw InputError(path, "line " + std::to_string(faceLines[f]) + ": face index " +
                                    std::to_string(mesh.face(f)[i] + 1) + " is out of range (" +
                                    std::to_string(mesh.positions.size()) + " vertices)");
-  SourceScene scene;
-  scene.meshes.push_back(std::move(mesh));
-  scene.meshNames.push_back("mesh");
-  scene.instances.push_back({});
-  return scene;
+  return singleMeshScene(std::move(mesh));
 }
 
 }  // namespace vgeo

@@ -44,11 +44,7 @@ SourceScene loadOff(const std::string& path) {
     mesh.addFace(corners.data(), corners.size());
     in.skipLine();  // optional face colour
   }
-  SourceScene scene;
-  scene.meshes.push_back(std::move(mesh));
-  scene.meshNames.push_back("mesh");
-  scene.instances.push_back({});
-  return scene;
+  return singleMeshScene(std::move(mesh));
 }
 
 }  // namespace vgeo

@@ -172,11 +172,7 @@ SourceScene loadPly(const std::string& path) {
     }
   }
   if (!sawVertices) throw InputError(path, "no vertex element");
-  SourceScene scene;
-  scene.meshes.push_back(std::move(mesh));
-  scene.meshNames.push_back("mesh");
-  scene.instances.push_back({});
-  return scene;
+  return singleMeshScene(std::move(mesh));
 }
 
 }  // namespace vgeo

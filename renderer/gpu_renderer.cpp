@@ -122,11 +122,7 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
     frame.queueCapacity = queueCapacity_;
     std::memcpy(frameData_.mapped, &frame, sizeof(frame));
     VkCommandBuffer cmd = vk_.beginCommands();
-    shaderio::Counters zero{};
-    vkCmdUpdateBuffer(cmd, counters_.buffer, 0, sizeof(zero), &zero);
-    globalBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
+    recordCounterReset(cmd);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, persistent_);
     vkCmdDispatch(cmd, persistentWorkgroups_, 1, 1);
     vk_.submitAndWait(cmd);
@@ -386,8 +382,9 @@ void GpuRenderer::writeDescriptors() {
   vkUpdateDescriptorSets(vk_.device(), kBindings, writes, 0, nullptr);
 }
 
-void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& settings) {
-  // 1. Reset the counters (earlier submissions are ordered before this by the opening barrier).
+// Zeroes the counters (earlier submissions are ordered before it by the opening barrier) and binds the
+// descriptor set for the compute passes.
+void GpuRenderer::recordCounterReset(VkCommandBuffer cmd) {
   globalBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT,
                 VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
   shaderio::Counters zero{};
@@ -395,6 +392,11 @@ void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& sett
   globalBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                 VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
+}
+
+void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& settings) {
+  // 1. Reset the counters.
+  recordCounterReset(cmd);
   // 2. Instance culling.
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cull_);
   vkCmdDispatch(cmd, (uint32_t(scene_.data.instances.size()) + 63) / 64, 1, 1);

@@ -55,6 +55,7 @@ class GpuRenderer {
   void createPipelines();
   void createQueueAndDrawList();
   void writeDescriptors();
+  void recordCounterReset(VkCommandBuffer cmd);
   void recordTraversal(VkCommandBuffer cmd, const FrameSettings& settings);
   void recordDraw(VkCommandBuffer cmd, const FrameSettings& settings);
 

@@ -9,4 +9,5 @@ void main() {
   counters.draw[1] = min(counters.drawCount, frame.drawCapacity);
   counters.draw[2] = 0u;
   counters.draw[3] = 0u;
+  counters.queueHighWater = counters.queueWrite;  // the queue is never reused within a frame
 }

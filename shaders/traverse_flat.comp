@@ -8,10 +8,13 @@ layout(local_size_x = VGEO_TRAVERSAL_WORKGROUP) in;
 #include "traverse_common.glsl"
 
 void main() {
+  beginStats();
   uint visible = gl_WorkGroupID.y + gl_WorkGroupID.z * 65535u;
-  if (visible >= counters.visibleInstances) return;
-  uint instance = queue[2 * visible];
-  Geometry g = geometries[instances[instance].geometry];
-  uint i = gl_GlobalInvocationID.x;
-  if (i < g.clusterCount) testCluster(instance, g.clusterOffset + i);
+  if (visible < counters.visibleInstances) {
+    uint instance = queue[2 * visible];
+    Geometry g = geometries[instances[instance].geometry];
+    uint i = gl_GlobalInvocationID.x;
+    if (i < g.clusterCount) testCluster(instance, g.clusterOffset + i);
+  }
+  flushStats();
 }

@@ -7,11 +7,12 @@ layout(local_size_x = VGEO_TRAVERSAL_WORKGROUP) in;
 #include "traverse_common.glsl"
 
 void main() {
+  beginStats();
   uint slot = counters.levelStart + gl_GlobalInvocationID.x;
-  if (slot >= counters.levelEnd) return;
   uint instance, code;
-  if (takeQueue(slot, instance, code)) {
+  if (slot < counters.levelEnd && takeQueue(slot, instance, code)) {
     processItem(instance, code);
     atomicAdd(counters.itemsDone, 1u);
   }
+  flushStats();
 }

@@ -26,6 +26,8 @@ shared uint sHolding;  // lanes still holding a slot (claim mode 0)
 shared uint sLoops;    // loop iterations so far, as lavapipe counts them (see below)
 shared uint sRound;    // the most inner-loop iterations any lane ran this iteration
 shared uint sRead, sReserved, sWritten, sClaiming;  // claim mode 1
+shared uint sDone;     // items this workgroup finished this iteration (added to itemsDone once)
+shared uint sQuiet;    // claim mode 0: nothing is in flight any more (checked by lane 0 for all)
 
 bool quiescent() {
   uint done = atomicOr(counters.itemsDone, 0u);
@@ -35,6 +37,7 @@ bool quiescent() {
 }
 
 void main() {
+  beginStats();
   const uint lane = gl_LocalInvocationIndex;
   uint slot = VGEO_INVALID;  // the slot this lane holds (claim mode 0)
   if (lane == 0u) {
@@ -42,12 +45,14 @@ void main() {
     sLoops = 0u;
     sRound = 0u;
     sClaiming = 0u;
+    sDone = 0u;
   }
   for (;;) {
     barrier();
     if (lane == 0u) {
       sExit = 0u;
       sCount = 0u;
+      sQuiet = sHolding != 0u && quiescent() ? 1u : 0u;
       if (sHolding == 0u) {
         if (frame.iterationBudget != 0u && sLoops >= frame.iterationBudget) {
           sExit = 2u;
@@ -89,7 +94,7 @@ void main() {
         atomicAdd(counters.workgroupsExited, 1u);
         if (sExit == 2u) atomicAdd(counters.budgetExits, 1u);
       }
-      break;
+      break;  // uniform: sExit is shared
     }
     gLoops = 0u;
     if (lane < sCount) slot = sBase + lane;
@@ -99,15 +104,15 @@ void main() {
       // Claimed slots are written (above).
       if (slot != VGEO_INVALID && takeQueue(slot, instance, code)) {
         processItem(instance, code);
-        atomicAdd(counters.itemsDone, 1u);
+        atomicAdd(sDone, 1u);
       }
       slot = VGEO_INVALID;
     } else if (slot != VGEO_INVALID) {
       if (slot < frame.queueCapacity && takeQueue(slot, instance, code)) {
         processItem(instance, code);
-        atomicAdd(counters.itemsDone, 1u);
+        atomicAdd(sDone, 1u);
         slot = VGEO_INVALID;
-      } else if (quiescent()) {
+      } else if (sQuiet != 0u) {
         slot = VGEO_INVALID;  // will never be filled
       }
     }
@@ -121,6 +126,10 @@ void main() {
     if (lane == 0u) {
       sLoops += 1u + sRound + 5u * (VGEO_TRAVERSAL_WORKGROUP / 8u);
       sRound = 0u;
+      // After the barrier: every child these items produced was reserved before they count as done.
+      if (sDone != 0u) atomicAdd(counters.itemsDone, sDone);
+      sDone = 0u;
     }
   }
+  flushStats();
 }
