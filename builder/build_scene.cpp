@@ -102,15 +102,7 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
   }
   stats.buildSeconds = secondsSince(buildStart);
   for (const SourceInstance& inst : scene.instances) {
-    shaderio::Instance out{};
-    glm::mat4 t = glm::transpose(inst.transform);  // rows of the 3x4 part
-    out.row0 = t[0];
-    out.row1 = t[1];
-    out.row2 = t[2];
-    out.geometry = inst.mesh;
-    out.maxScale = std::sqrt(std::max({glm::dot(glm::vec3(inst.transform[0]), glm::vec3(inst.transform[0])),
-                                       glm::dot(glm::vec3(inst.transform[1]), glm::vec3(inst.transform[1])),
-                                       glm::dot(glm::vec3(inst.transform[2]), glm::vec3(inst.transform[2]))}));
+    shaderio::Instance out = makeInstance(inst.transform, inst.mesh, closed[inst.mesh]);
     if (out.maxScale > 0.0f && std::isfinite(out.maxScale)) data.instances.push_back(out);  // a zero scale shows nothing
   }
   stats.geometries = uint32_t(data.geometries.size());

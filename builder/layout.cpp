@@ -9,6 +9,33 @@
 #include "layout.h"
 
 namespace vgeo {
+namespace {
+
+// The cone of a cluster's triangle normals (shaderio.h, clusterFacesAway): axis the normalised mean of
+// the unit normals, w the sine of the widest angle from it, -1 when that angle reaches 90 degrees.
+glm::vec4 normalCone(const std::vector<uint32_t>& indices, const std::vector<glm::vec3>& positions) {
+  std::vector<glm::dvec3> normals;
+  glm::dvec3 sum(0.0);
+  for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+    glm::dvec3 a(positions[indices[t]]), b(positions[indices[t + 1]]), c(positions[indices[t + 2]]);
+    glm::dvec3 n = glm::cross(b - a, c - a);
+    double len = glm::length(n);
+    if (len == 0.0) continue;  // degenerate: faces nowhere, culling it is harmless
+    normals.push_back(n / len);
+    sum += n / len;
+  }
+  double len = glm::length(sum);
+  if (normals.empty() || len < 1e-9) return glm::vec4(0.0f, 0.0f, 1.0f, -1.0f);
+  glm::dvec3 axis = sum / len;
+  double minCos = 1.0;
+  for (const auto& n : normals) minCos = std::min(minCos, glm::dot(axis, n));
+  if (minCos <= 0.02) return glm::vec4(glm::vec3(axis), -1.0f);
+  double sine = std::sqrt(std::max(0.0, 1.0 - minCos * minCos));
+  // Rounded up a little so that float tests never cull a cluster that has a triangle facing the eye.
+  return glm::vec4(glm::vec3(axis), float(std::min(1.0, sine * 1.0001 + 1e-6)));
+}
+
+}  // namespace
 
 void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh, bool closed) {
   Bvh bvh = buildBvh(dag.groups);
@@ -78,6 +105,10 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
       for (uint32_t k = 0; k < face.vertexCount; k++) file.cageFaceVertices.push_back(vertexOffset + leafMesh.face(f)[k]);
       file.cageFaces.push_back(face);
     }
+    shaderio::ClusterCone cone;
+    cone.cone = normalCone(c.indices, leafMesh.positions);
+    cone.sphere = c.level == 0 ? c.selfSphere : sphereOfPoints(leafMesh.positions, local.data(), local.size());
+    file.clusterCones.push_back(cone);
     out.counts = shaderio::packClusterCounts(uint32_t(local.size()), uint32_t(c.indices.size() / 3), c.level, uint32_t(c.cageFaces.size()));
     file.clusters.push_back(out);
   }

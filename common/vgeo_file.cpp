@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -70,6 +71,7 @@ std::vector<SectionView> views(const VgeoData& d) {
       {d.nodes.data(), sizeof(shaderio::BvhNode), d.nodes.size()},
       {d.cageFaces.data(), sizeof(shaderio::CageFace), d.cageFaces.size()},
       {d.cageFaceVertices.data(), 4, d.cageFaceVertices.size()},
+      {d.clusterCones.data(), sizeof(shaderio::ClusterCone), d.clusterCones.size()},
   };
 }
 
@@ -77,7 +79,7 @@ std::vector<SectionView> views(const VgeoData& d) {
 
 const char* sectionName(Section s) {
   static const char* names[] = {"?", "geometries", "instances", "positions", "normals", "clusters", "cluster vertices",
-                                "cluster triangles", "groups", "BVH nodes", "cage faces", "cage face vertices"};
+                                "cluster triangles", "groups", "BVH nodes", "cage faces", "cage face vertices", "cluster cones"};
   uint32_t i = uint32_t(s);
   return i < uint32_t(Section::Count_) ? names[i] : "?";
 }
@@ -163,6 +165,7 @@ VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name) {
       case Section::BvhNodes: copy(data.nodes, e.count); break;
       case Section::CageFaces: copy(data.cageFaces, e.count); break;
       case Section::CageFaceVertices: copy(data.cageFaceVertices, e.count); break;
+      case Section::ClusterCones: copy(data.clusterCones, e.count); break;
       default: break;
     }
   }
@@ -173,6 +176,10 @@ VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name) {
   const uint64_t vertices = data.vertexCount();
   auto within = [](uint64_t offset, uint64_t n, uint64_t size) { return offset <= size && n <= size - offset; };
   if (data.normals.size() != vertices) fail("normals and positions differ in count");
+  if (data.clusterCones.size() != data.clusters.size()) fail("cluster cones and clusters differ in count");
+  for (const auto& c : data.clusterCones)
+    for (int k = 0; k < 4; k++)
+      if (!std::isfinite(c.cone[k]) || !std::isfinite(c.sphere[k])) fail("a cluster cone is not finite");
   for (size_t v = 0; v < data.positions.size(); v++)
     if (!std::isfinite(data.positions[v])) fail("vertex " + std::to_string(v / 3) + " has a non-finite position");
   for (size_t i = 0; i < data.geometries.size(); i++) {
@@ -266,6 +273,20 @@ VgeoData readVgeo(const std::string& path) {
   if (!in) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
   std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   return parseVgeo(bytes.data(), bytes.size(), path);
+}
+
+shaderio::Instance makeInstance(const glm::mat4& m, uint32_t geometry, bool geometryClosed) {
+  shaderio::Instance inst{};
+  glm::mat4 t = glm::transpose(m);
+  inst.row0 = t[0];
+  inst.row1 = t[1];
+  inst.row2 = t[2];
+  inst.geometry = geometry;
+  float sx = glm::length(glm::vec3(m[0])), sy = glm::length(glm::vec3(m[1])), sz = glm::length(glm::vec3(m[2]));
+  inst.maxScale = std::max({sx, sy, sz});
+  bool uniform = std::abs(sx - sy) <= 1e-5f * inst.maxScale && std::abs(sx - sz) <= 1e-5f * inst.maxScale;
+  inst.flags = uniform && geometryClosed ? VGEO_INSTANCE_CONE_CULL : 0u;
+  return inst;
 }
 
 uint32_t encodeNormal(glm::vec3 n) {

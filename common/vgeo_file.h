@@ -18,7 +18,7 @@
 
 namespace vgeo {
 
-constexpr uint32_t kVgeoVersion = 1;
+constexpr uint32_t kVgeoVersion = 2;  // 2: cluster normal cones
 
 enum class Section : uint32_t {
   Geometries = 1,
@@ -32,6 +32,7 @@ enum class Section : uint32_t {
   BvhNodes,
   CageFaces,
   CageFaceVertices,  // absolute vertex index per cage face corner
+  ClusterCones,      // shaderio::ClusterCone per cluster (normal cone and tight sphere)
   Count_
 };
 const char* sectionName(Section s);
@@ -48,6 +49,7 @@ struct VgeoData {
   std::vector<shaderio::BvhNode> nodes;
   std::vector<shaderio::CageFace> cageFaces;
   std::vector<uint32_t> cageFaceVertices;
+  std::vector<shaderio::ClusterCone> clusterCones;
 
   size_t vertexCount() const { return positions.size() / 3; }
   glm::vec3 position(uint32_t v) const { return {positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]}; }
@@ -61,6 +63,10 @@ VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name);
 // Throws std::runtime_error("path: cause") when that fails.
 void writeVgeo(const VgeoData& data, const std::string& path);
 VgeoData readVgeo(const std::string& path);
+
+// An instance of `geometry` placed by `transform`, with its largest axis scale; flagged for normal-cone
+// culling when the scale is uniform and the geometry closed.
+shaderio::Instance makeInstance(const glm::mat4& transform, uint32_t geometry, bool geometryClosed);
 
 // Octahedral encoding of unit normals (Cigolle et al. 2014), 16 bits a component.
 uint32_t encodeNormal(glm::vec3 n);

@@ -29,8 +29,8 @@
 namespace vgeo {
 namespace {
 
-constexpr uint32_t kSceneBindings = 9;  // bindings 1..9: geometries .. BVH nodes
-constexpr uint32_t kBindings = 13;
+constexpr uint32_t kSceneBindings = 10;  // bindings 1..9: geometries .. BVH nodes; 13: cluster cones
+constexpr uint32_t kBindings = 14;
 // lavapipe ends every loop after 65,535 iterations per invocation (GPU-NOTES 1): persistent workers
 // leave on their own well before, holding nothing, and enough of them are dispatched to carry on.
 constexpr uint32_t kLavapipeIterationBudget = 50000;
@@ -75,6 +75,7 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
       {d.clusterTriangles.data(), d.clusterTriangles.size() * sizeof(uint32_t)},
       {d.groups.data(), d.groups.size() * sizeof(shaderio::Group)},
       {d.nodes.data(), d.nodes.size() * sizeof(shaderio::BvhNode)},
+      {d.clusterCones.data(), d.clusterCones.size() * sizeof(shaderio::ClusterCone)},
   };
   for (const auto& s : sections) {
     if (s.bytes > range)
@@ -368,10 +369,11 @@ void GpuRenderer::createPipelines() {
 
 void GpuRenderer::writeDescriptors() {
   std::vector<const Buffer*> buffers{&frameData_};
-  for (const Buffer& b : sceneBuffers_) buffers.push_back(&b);
+  for (uint32_t i = 0; i < 9; i++) buffers.push_back(&sceneBuffers_[i]);
   buffers.push_back(&counters_);
   buffers.push_back(&queue_);
   buffers.push_back(&drawList_);
+  buffers.push_back(&sceneBuffers_[9]);
   VkDescriptorBufferInfo infos[kBindings];
   VkWriteDescriptorSet writes[kBindings];
   for (uint32_t i = 0; i < kBindings; i++) {

@@ -66,7 +66,7 @@ class GpuRenderer {
   uint32_t persistentWorkgroups_ = 0, iterationBudget_ = 0, claimMode_ = 0;
 
   Buffer frameData_, counters_, countersReadback_, queue_, drawList_, drawListReadback_, imageReadback_;
-  std::vector<Buffer> sceneBuffers_;  // bindings 1..9
+  std::vector<Buffer> sceneBuffers_;  // bindings 1..9, then 13
   VkImage color_ = VK_NULL_HANDLE, depth_ = VK_NULL_HANDLE;
   VkDeviceMemory colorMemory_ = VK_NULL_HANDLE, depthMemory_ = VK_NULL_HANDLE;
   VkImageView colorView_ = VK_NULL_HANDLE, depthView_ = VK_NULL_HANDLE;

@@ -43,6 +43,18 @@ SceneCut selectSceneCut(const RenderScene& scene, const View& cull, float tau, f
       bool drawn = margin >= 0.0f && selfError <= tau && tau < parentError;
       bool borderline = std::abs(margin) <= epsilon * std::max(self.w, 1e-30f) || std::abs(boundsMargin) <= epsilon * bounds.w ||
                         std::abs(selfError - tau) <= epsilon * tau || std::abs(parentError - tau) <= epsilon * tau;
+      if ((inst.flags & VGEO_INSTANCE_CONE_CULL) && drawn) {
+        const shaderio::ClusterCone& cc = d.clusterCones[c];
+        glm::vec3 axis = glm::normalize(glm::vec3(glm::dot(glm::vec3(inst.row0), glm::vec3(cc.cone)), glm::dot(glm::vec3(inst.row1), glm::vec3(cc.cone)),
+                                                  glm::dot(glm::vec3(inst.row2), glm::vec3(cc.cone))));
+        glm::vec4 tight = worldSphere(inst, cc.sphere);
+        drawn = !shaderio::clusterFacesAway(glm::vec4(axis, cc.cone.w), tight, cull.eye);
+        if (cc.cone.w >= 0.0f) {
+          glm::vec3 v = glm::vec3(tight) - cull.eye;
+          float coneMargin = glm::dot(v, axis) - (cc.cone.w * glm::length(v) + tight.w * (1.0f + cc.cone.w));
+          borderline = borderline || std::abs(coneMargin) <= epsilon * (glm::length(v) + tight.w);
+        }
+      }
       if (borderline) cut.borderline.push_back({i, c});
       else if (drawn) cut.entries.push_back({i, c});
     }

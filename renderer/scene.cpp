@@ -67,6 +67,7 @@ uint32_t appendVgeo(VgeoData& dst, const VgeoData& src) {
     dst.cageFaces.push_back(f);
   }
   for (uint32_t v : src.cageFaceVertices) dst.cageFaceVertices.push_back(v + vertexBase);
+  dst.clusterCones.insert(dst.clusterCones.end(), src.clusterCones.begin(), src.clusterCones.end());
   return geometryBase;
 }
 
@@ -80,18 +81,6 @@ glm::mat4 instanceMatrix(const shaderio::Instance& inst) {
     m[c][2] = inst.row2[c];
   }
   return m;
-}
-
-shaderio::Instance makeInstance(const glm::mat4& m, uint32_t geometry) {
-  shaderio::Instance inst{};
-  glm::mat4 t = glm::transpose(m);
-  inst.row0 = t[0];
-  inst.row1 = t[1];
-  inst.row2 = t[2];
-  inst.geometry = geometry;
-  inst.maxScale = std::sqrt(std::max({glm::dot(glm::vec3(m[0]), glm::vec3(m[0])), glm::dot(glm::vec3(m[1]), glm::vec3(m[1])),
-                                      glm::dot(glm::vec3(m[2]), glm::vec3(m[2]))}));
-  return inst;
 }
 
 glm::mat4 parseTransform(const nlohmann::json& j, const std::string& path, size_t index) {
@@ -153,7 +142,8 @@ RenderScene loadSceneFile(const std::string& path) {
       if (file >= files.size()) throw InputError(path, "instance " + std::to_string(k) + " uses geometry " + std::to_string(file) + ", which is not listed");
       glm::mat4 m = parseTransform(placements[k], path, k);
       for (const auto& inst : files[file].instances) {
-        shaderio::Instance placed = makeInstance(m * instanceMatrix(inst), base[file] + inst.geometry);
+        uint32_t geometry = base[file] + inst.geometry;
+        shaderio::Instance placed = makeInstance(m * instanceMatrix(inst), geometry, merged.geometries[geometry].flags & VGEO_GEOMETRY_CLOSED);
         if (!(placed.maxScale > 0.0f) || !std::isfinite(placed.maxScale)) throw InputError(path, "instance " + std::to_string(k) + " has a degenerate transform");
         merged.instances.push_back(placed);
       }
@@ -230,7 +220,9 @@ RenderScene loadRenderScene(const std::string& path, uint32_t grid) {
       for (uint32_t x = 0; x < grid; x++) {
         glm::mat4 t = glm::translate(glm::mat4(1.0f), glm::vec3((float(x) - 0.5f * float(grid - 1)) * spacing, 0.0f,
                                                                 (float(z) - 0.5f * float(grid - 1)) * spacing));
-        for (const auto& inst : original) scene.data.instances.push_back(makeInstance(t * instanceMatrix(inst), inst.geometry));
+        for (const auto& inst : original)
+          scene.data.instances.push_back(makeInstance(t * instanceMatrix(inst), inst.geometry,
+                                                      scene.data.geometries[inst.geometry].flags & VGEO_GEOMETRY_CLOSED));
       }
     finishScene(scene);
   }

@@ -14,6 +14,7 @@ using vec4 = glm::vec4;
 using mat4 = glm::mat4;
 using uint = uint32_t;
 using glm::length;
+using glm::dot;
 #endif
 
 #define VGEO_MAX_CLUSTER_TRIANGLES 128
@@ -84,9 +85,29 @@ struct Instance {
   vec4 row2;
   uint geometry;
   float maxScale;
-  uint pad0;
+  uint flags;           // VGEO_INSTANCE_CONE_CULL: uniform scale of a closed geometry (back-facing clusters may go)
   uint pad1;
 };
+#define VGEO_INSTANCE_CONE_CULL 1u
+
+// Cluster normal cone (its own section): xyz the unit axis, w = sin of the cone's half angle (every
+// triangle normal is within it), or -1 when the normals spread over 90 degrees; and the cluster's own
+// tight bounding sphere (self spheres are their whole group's). A cluster in sphere (c, r) faces wholly
+// away from an eye e when, with v = c - e,
+//   dot(v, axis) >= w |v| + r (1 + w)
+// (conservative: every point of the sphere then sees every normal of the cone from behind).
+struct ClusterCone {
+  vec4 cone;
+  vec4 sphere;
+};
+#ifdef __cplusplus
+inline
+#endif
+bool clusterFacesAway(vec4 cone, vec4 sphere, vec3 eye) {
+  if (cone.w < 0.0f) return false;
+  vec3 v = vec3(sphere.x, sphere.y, sphere.z) - eye;
+  return dot(v, vec3(cone.x, cone.y, cone.z)) >= cone.w * length(v) + sphere.w * (1.0f + cone.w);
+}
 
 // A face of the level-N cage: its corner vertices are cageFaceVertices[first .. first+count).
 struct CageFace {
@@ -210,6 +231,7 @@ static_assert(sizeof(BvhNode) == 32, "BvhNode layout");
 static_assert(sizeof(Geometry) == 64, "Geometry layout");
 static_assert(sizeof(Instance) == 64, "Instance layout");
 static_assert(sizeof(CageFace) == 16, "CageFace layout");
+static_assert(sizeof(ClusterCone) == 32, "ClusterCone layout");
 static_assert(sizeof(FrameData) == 64 + 96 + 32 + 48, "FrameData layout");
 static_assert(sizeof(Counters) == 96, "Counters layout");
 }  // namespace shaderio

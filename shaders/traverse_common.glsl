@@ -81,7 +81,14 @@ void testCluster(uint instance, uint cluster) {
   if (!sphereInFrustum(worldSphere(inst, c.selfSphere))) return;
   float self = projectedErrorWorld(inst, c.selfSphere, c.selfError);
   float parent = projectedErrorWorld(inst, c.parentSphere, c.parentError);
-  if (self <= frame.tau && frame.tau < parent) appendDraw(instance, cluster);
+  if (!(self <= frame.tau && frame.tau < parent)) return;
+  // Closed, uniformly scaled: a cluster whose every triangle faces away cannot be seen.
+  if ((inst.flags & VGEO_INSTANCE_CONE_CULL) != 0u) {
+    ClusterCone cc = clusterCones[cluster];
+    vec3 axis = normalize(vec3(dot(inst.row0.xyz, cc.cone.xyz), dot(inst.row1.xyz, cc.cone.xyz), dot(inst.row2.xyz, cc.cone.xyz)));
+    if (clusterFacesAway(vec4(axis, cc.cone.w), worldSphere(inst, cc.sphere), frame.cullEye.xyz)) return;
+  }
+  appendDraw(instance, cluster);
 }
 
 // May anything below this (sphere, error) be drawn? Pruned only when clearly outside the frustum, or when

@@ -202,3 +202,28 @@ TEST_F(Render, FrozenCutFollowsTheFreezeCamera) {
 
 }  // namespace
 }  // namespace vgeo
+
+namespace vgeo {
+namespace {
+
+TEST_F(Render, ConeCullingDropsOnlyClustersThatFaceAway) {
+  // Closed, uniformly scaled instances skip clusters whose every triangle faces away: fewer clusters,
+  // the same picture.
+  RenderScene withoutCones = *armadillo;
+  for (auto& inst : withoutCones.data.instances) inst.flags = 0;
+  ASSERT_TRUE(armadillo->data.instances[0].flags & VGEO_INSTANCE_CONE_CULL);
+  GpuRenderer culled(*vk, *armadillo, kW, kH), plain(*vk, withoutCones, kW, kH);
+  for (float distance : {1.4f, 3.0f}) {
+    Camera camera = orbit(*armadillo, 0.9f, 0.2f, distance);
+    FrameResult a = culled.renderFrame(settingsFor(*armadillo, camera, 1.0f));
+    FrameResult b = plain.renderFrame(settingsFor(withoutCones, camera, 1.0f));
+    EXPECT_LT(a.counters.drawCount, b.counters.drawCount) << "at " << distance << " radii";
+    std::vector<uint8_t> ma = coverage(a), mb = coverage(b);
+    size_t differ = 0;
+    for (size_t i = 0; i < ma.size(); i++) differ += ma[i] != mb[i];
+    EXPECT_EQ(differ, 0u) << "at " << distance << " radii";
+  }
+}
+
+}  // namespace
+}  // namespace vgeo
