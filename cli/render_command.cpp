@@ -40,7 +40,7 @@ bool parseCamera(const std::string& text, Camera& camera) {
 struct RenderArgs {
   std::string input, output, stats, camera, freezeCamera, mode = "lit", traversal = "persistent", size = "1280x720", device;
   float fov = 60.0f, tau = 1.0f;
-  uint32_t grid = 1, frames = 2, queueCapacity = 0, drawCapacity = 0;
+  uint32_t grid = 1, frames = 2, queueCapacity = 0, drawCapacity = 0, workgroups = 0;
   bool compareCpu = false, validate = false;
 };
 
@@ -64,6 +64,7 @@ int runRender(const RenderArgs& a) {
 
   VulkanContext vk({a.device, a.validate});
   GpuRenderer renderer(vk, scene, width, height);
+  if (a.workgroups) renderer.setPersistentWorkgroups(a.workgroups);
   if (a.queueCapacity || a.drawCapacity)
     renderer.setCapacities(a.queueCapacity ? a.queueCapacity : renderer.queueCapacity(), a.drawCapacity ? a.drawCapacity : renderer.drawCapacity());
   FrameSettings settings;
@@ -173,6 +174,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--frames", a->frames, "Frames to render; the last is reported (the first warms shader caches)")->capture_default_str();
   cmd->add_option("--queue-capacity", a->queueCapacity, "Initial traversal queue capacity, items (debugging overflow)");
   cmd->add_option("--draw-capacity", a->drawCapacity, "Initial draw list capacity, clusters (debugging overflow)");
+  cmd->add_option("--workgroups", a->workgroups, "Persistent traversal workgroups (default: as many as the device runs at once)");
   cmd->callback([a, &exitCode] {
     try {
       exitCode = runRender(*a);

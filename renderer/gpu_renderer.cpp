@@ -94,8 +94,11 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
     iterationBudget_ = kLavapipeIterationBudget;
     persistentWorkgroups_ = kLavapipeWorkgroups;
   } else {
-    // As many workgroups as the device runs at once: from the SM count where NVIDIA tells it.
-    persistentWorkgroups_ = 1024;
+    // Four workgroups an SM where NVIDIA tells the SM count. Measured on an H100 (132 SMs), armadillo
+    // --subdiv 2 at 1920x1080: 10k instances 0.24 ms with 4,224 workgroups (all the device holds),
+    // 0.09 ms with 528, 0.08 with 264; 100k instances 0.29 / 0.11 / 0.15 ms. Claiming past the frontier
+    // makes every extra workgroup a poller of empty slots; four an SM keeps the SMs busy without that.
+    persistentWorkgroups_ = 512;
     uint32_t count = 0;
     vkEnumerateDeviceExtensionProperties(vk_.physicalDevice(), nullptr, &count, nullptr);
     std::vector<VkExtensionProperties> extensions(count);
@@ -106,7 +109,7 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
         VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
         props.pNext = &sm;
         vkGetPhysicalDeviceProperties2(vk_.physicalDevice(), &props);
-        persistentWorkgroups_ = std::max(1u, sm.shaderSMCount * sm.shaderWarpsPerSM * 32u / VGEO_TRAVERSAL_WORKGROUP);
+        persistentWorkgroups_ = std::max(1u, sm.shaderSMCount * 4u);
       }
   }
   createTargets();

@@ -49,6 +49,9 @@ class GpuRenderer {
   // Sets the capacities (tests use a tiny queue to provoke overflow).
   void setCapacities(uint32_t queueItems, uint32_t drawEntries);
   uint32_t persistentWorkgroups() const { return persistentWorkgroups_; }
+  // Overrides the persistent traversal's workgroup count (benchmarks; the default is what the device
+  // runs at once).
+  void setPersistentWorkgroups(uint32_t count) { persistentWorkgroups_ = std::max(count, 1u); }
 
  private:
   void createTargets();
