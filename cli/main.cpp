@@ -1,4 +1,4 @@
-// main.cpp: the `vgeo` executable: `vgeo build`, `vgeo check`, `vgeo render` (later `view`, `bench`).
+// main.cpp: the `vgeo` executable: `vgeo build`, `vgeo check`, `vgeo render`, `vgeo bench` (later `view`).
 // Every error ends here as one line on stderr and a non-zero exit.
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   vgeo::addBuildCommand(app, exitCode);
   vgeo::addCheckCommand(app, exitCode);
   vgeo::addRenderCommand(app, exitCode);
+  vgeo::addBenchCommand(app, exitCode);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -443,6 +443,24 @@ void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& sett
 
 void GpuRenderer::recordDraw(VkCommandBuffer cmd, const FrameSettings& settings) {
   // 5. One indirect draw.
+  if (settings.draw) recordRenderPass(cmd, settings);
+  // 6. Copies back.
+  VkBufferCopy all{0, 0, sizeof(shaderio::Counters)};
+  vkCmdCopyBuffer(cmd, counters_.buffer, countersReadback_.buffer, 1, &all);
+  if (settings.readImage && settings.draw) {
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {width_, height_, 1};
+    vkCmdCopyImageToBuffer(cmd, color_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, imageReadback_.buffer, 1, &region);
+  }
+  if (settings.readDrawList) {
+    VkBufferCopy list{0, 0, drawList_.size};
+    vkCmdCopyBuffer(cmd, drawList_.buffer, drawListReadback_.buffer, 1, &list);
+  }
+  globalBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+}
+
+void GpuRenderer::recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings) {
   VkClearValue clears[2];
   clears[0].color = {{0.02f, 0.025f, 0.035f, 1.0f}};
   clears[1].depthStencil = {0.0f, 0};
@@ -457,20 +475,6 @@ void GpuRenderer::recordDraw(VkCommandBuffer cmd, const FrameSettings& settings)
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
   vkCmdDrawIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, draw), 1, sizeof(VkDrawIndirectCommand));
   vkCmdEndRenderPass(cmd);
-  // 6. Copies back.
-  VkBufferCopy all{0, 0, sizeof(shaderio::Counters)};
-  vkCmdCopyBuffer(cmd, counters_.buffer, countersReadback_.buffer, 1, &all);
-  if (settings.readImage) {
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {width_, height_, 1};
-    vkCmdCopyImageToBuffer(cmd, color_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, imageReadback_.buffer, 1, &region);
-  }
-  if (settings.readDrawList) {
-    VkBufferCopy list{0, 0, drawList_.size};
-    vkCmdCopyBuffer(cmd, drawList_.buffer, drawListReadback_.buffer, 1, &list);
-  }
-  globalBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
 }
 
 FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
@@ -532,7 +536,7 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
 
   std::memcpy(&result.counters, countersReadback_.mapped, sizeof(result.counters));
   const auto& c = result.counters;
-  if (settings.readImage) {
+  if (settings.readImage && settings.draw) {
     result.rgba.resize(size_t(width_) * height_ * 4);
     std::memcpy(result.rgba.data(), imageReadback_.mapped, result.rgba.size());
   }

@@ -22,6 +22,7 @@ struct FrameSettings {
   Traversal traversal = Traversal::Persistent;
   bool readDrawList = false; // copy the draw list back (tests, --compare-cpu)
   bool readImage = true;
+  bool draw = true;          // false: selection only (cut benchmarks); no image
 };
 
 struct FrameResult {
@@ -61,6 +62,7 @@ class GpuRenderer {
   void recordCounterReset(VkCommandBuffer cmd);
   void recordTraversal(VkCommandBuffer cmd, const FrameSettings& settings);
   void recordDraw(VkCommandBuffer cmd, const FrameSettings& settings);
+  void recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings);
 
   VulkanContext& vk_;
   const RenderScene& scene_;

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <random>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -202,6 +203,31 @@ void finishScene(RenderScene& scene) {
   scene.bounds = d.instances.empty() ? glm::vec4(0, 0, 0, 1) : glm::vec4(centre, radius);
   scene.boxMin = lo;
   scene.boxMax = hi;
+}
+
+RenderScene makeBenchScene(const RenderScene& base, uint32_t count, bool scatter, uint64_t seed) {
+  RenderScene scene;
+  scene.data = base.data;
+  scene.data.instances.clear();
+  const auto& g = base.data.geometries[0];
+  const bool closed = g.flags & VGEO_GEOMETRY_CLOSED;
+  const float spacing = 2.5f * g.boundsSphere.w;
+  const uint32_t side = uint32_t(std::ceil(std::sqrt(double(std::max(count, 1u)))));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (uint32_t i = 0; i < count; i++) {
+    glm::vec3 at((float(i % side) - 0.5f * float(side - 1)) * spacing, 0.0f, (float(i / side) - 0.5f * float(side - 1)) * spacing);
+    glm::mat4 m = glm::translate(glm::mat4(1.0f), at - glm::vec3(g.boundsSphere));
+    if (scatter) {
+      at = glm::vec3((unit(rng) - 0.5f) * float(side) * spacing, 0.0f, (unit(rng) - 0.5f) * float(side) * spacing);
+      float scale = 0.7f + 0.6f * unit(rng);
+      m = glm::translate(glm::mat4(1.0f), at) * glm::rotate(glm::mat4(1.0f), 6.2831853f * unit(rng), glm::vec3(0, 1, 0)) *
+          glm::scale(glm::mat4(1.0f), glm::vec3(scale)) * glm::translate(glm::mat4(1.0f), -glm::vec3(g.boundsSphere));
+    }
+    scene.data.instances.push_back(makeInstance(m, 0, closed));
+  }
+  finishScene(scene);
+  return scene;
 }
 
 RenderScene loadRenderScene(const std::string& path, uint32_t grid) {

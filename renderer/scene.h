@@ -26,5 +26,8 @@ RenderScene loadRenderScene(const std::string& path, uint32_t grid = 1);
 uint32_t appendVgeo(VgeoData& dst, const VgeoData& src);
 // Recomputes the derived fields (depths, bounds, counts) after instances changed.
 void finishScene(RenderScene& scene);
+// `count` instances of the first geometry of `base` (benchmarks): a square grid, or a random scatter
+// (seeded; random yaw and uniform scale 0.7..1.3) over the same area, on the x-z plane.
+RenderScene makeBenchScene(const RenderScene& base, uint32_t count, bool scatter, uint64_t seed);
 
 }  // namespace vgeo

@@ -1,0 +1,176 @@
+// bench_command.cpp: `vgeo bench cut`: LOD-cut selection measured across scene sizes, layouts, cameras,
+// tau and traversal modes (and the CPU reference), one JSON record each. bench/plot_cut.py plots them.
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "../renderer/gpu_renderer.h"
+#include "commands.h"
+
+#ifndef VGEO_COMMIT
+#define VGEO_COMMIT "unknown"
+#endif
+
+namespace vgeo {
+namespace {
+
+template <class T>
+std::vector<T> parseList(const std::string& text) {
+  std::vector<T> out;
+  std::stringstream s(text);
+  std::string item;
+  while (std::getline(s, item, ',')) {
+    std::stringstream v(item);
+    T x;
+    if (!(v >> x)) throw std::runtime_error("bad list item '" + item + "'");
+    out.push_back(x);
+  }
+  return out;
+}
+
+// The camera path: far away (the whole scene small), over its near corner, low inside it, a close-up of
+// one instance, and inside looking out of it.
+std::vector<std::pair<std::string, Camera>> cameraPath(const RenderScene& scene, float fov) {
+  glm::vec3 c(scene.bounds), lo = scene.boxMin, hi = scene.boxMax;
+  float r = scene.bounds.w, wide = std::max(hi.x - lo.x, hi.z - lo.z);
+  float object = scene.data.geometries[0].boundsSphere.w;
+  std::vector<std::pair<std::string, Camera>> path;
+  Camera far;
+  far.eye = c + glm::normalize(glm::vec3(0.3f, 0.5f, 1.0f)) * (6.0f * r);
+  far.target = c;
+  path.push_back({"far", far});
+  path.push_back({"corner", defaultCamera(scene.bounds, lo, hi, fov)});
+  Camera inside;
+  inside.eye = c + glm::vec3(0.05f * wide, 1.5f * object, 0.03f * wide);
+  inside.target = inside.eye + glm::vec3(1.0f, -0.15f, 0.35f);
+  path.push_back({"inside", inside});
+  const auto& i0 = scene.data.instances[scene.data.instances.size() / 2];
+  glm::vec3 at(i0.row0.w, i0.row1.w, i0.row2.w);
+  Camera close;
+  close.eye = at + glm::vec3(0.4f, 0.6f, 1.4f) * object;
+  close.target = at;
+  path.push_back({"closeup", close});
+  Camera away;
+  away.eye = glm::vec3(hi.x, c.y + object, hi.z) + glm::vec3(0.1f) * wide;
+  away.target = away.eye + glm::vec3(1.0f, 0.0f, 1.0f);
+  path.push_back({"away", away});
+  for (auto& [name, cam] : path) cam.fovYDegrees = fov;
+  return path;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+struct BenchArgs {
+  std::string input, output, sizes = "1,10,100,1000,10000,100000", layouts = "grid,scatter", taus = "1,4",
+                             traversals = "persistent,levels,flat,cpu", size = "1920x1080", device;
+  uint32_t frames = 5, cpuMaxInstances = 1000, flatMaxInstances = 10000;
+  float fov = 60.0f;
+};
+
+void runBenchCut(const BenchArgs& a) {
+  uint32_t width = 0, height = 0;
+  if (std::sscanf(a.size.c_str(), "%ux%u", &width, &height) != 2 || !width || !height) throw std::runtime_error("--size: expected WxH");
+  RenderScene base = loadRenderScene(a.input);
+  VulkanContext vk({a.device, false});
+  nlohmann::ordered_json records = nlohmann::json::array();
+  for (const std::string& layout : parseList<std::string>(a.layouts)) {
+    if (layout != "grid" && layout != "scatter") throw std::runtime_error("--layouts: grid or scatter");
+    for (uint32_t count : parseList<uint32_t>(a.sizes)) {
+      RenderScene scene = makeBenchScene(base, count, layout == "scatter", 7);
+      GpuRenderer renderer(vk, scene, width, height);
+      for (const auto& [cameraName, camera] : cameraPath(scene, a.fov))
+        for (float tau : parseList<float>(a.taus))
+          for (const std::string& mode : parseList<std::string>(a.traversals)) {
+            FrameSettings s;
+            s.drawView = s.cullView = makeView(camera, width, height, scene.bounds);
+            s.tau = tau;
+            s.draw = false;
+            s.readImage = false;
+            nlohmann::ordered_json r;
+            r["layout"] = layout;
+            r["instances"] = count;
+            r["camera"] = cameraName;
+            r["tau"] = tau;
+            r["mode"] = mode;
+            if (mode == "cpu") {
+              if (uint64_t(count) > a.cpuMaxInstances) continue;
+              std::vector<double> ms;
+              SceneCut cut;
+              for (uint32_t f = 0; f < std::max(1u, a.frames / 2); f++) {
+                auto start = std::chrono::steady_clock::now();
+                cut = selectSceneCut(scene, s.cullView, tau);
+                ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+              }
+              r["traversal_ms"] = median(ms);
+              r["timing"] = "host";
+              r["visible_clusters"] = cut.entries.size() + cut.borderline.size();
+            } else {
+              s.traversal = mode == "persistent" ? Traversal::Persistent : mode == "levels" ? Traversal::Levels : Traversal::Flat;
+              if (s.traversal == Traversal::Flat && count > a.flatMaxInstances) continue;
+              if (mode != "persistent" && mode != "levels" && mode != "flat") throw std::runtime_error("--traversals: unknown '" + mode + "'");
+              FrameResult f = renderer.renderFrame(s);  // warm-up (and growth after an overflow)
+              while (!f.complete) f = renderer.renderFrame(s);
+              std::vector<double> ms;
+              for (uint32_t i = 0; i < a.frames; i++) {
+                f = renderer.renderFrame(s);
+                ms.push_back(f.traversalMs);
+              }
+              const auto& c = f.counters;
+              r["traversal_ms"] = median(ms);
+              r["timing"] = f.timing;
+              r["nodes_visited"] = c.nodesVisited;
+              r["clusters_tested"] = c.clustersTested;
+              r["visible_clusters"] = std::min(c.drawCount, renderer.drawCapacity());
+              r["triangles"] = c.triangles;
+              r["instances_visible"] = c.visibleInstances;
+              r["queue_high_water"] = c.queueHighWater;
+              if (s.traversal == Traversal::Persistent) r["workgroups"] = renderer.persistentWorkgroups();
+            }
+            r["device"] = mode == "cpu" ? std::string("host CPU") : vk.deviceName();
+            r["driver"] = mode == "cpu" ? std::string("") : vk.driverName();
+            r["width"] = width;
+            r["height"] = height;
+            r["commit"] = VGEO_COMMIT;
+            std::fprintf(stderr, "%-7s %6u instances %-8s tau %-3g %-10s %9.3f ms %8s clusters\n", layout.c_str(), count, cameraName.c_str(), tau,
+                         mode.c_str(), r["traversal_ms"].get<double>(), std::to_string(r["visible_clusters"].get<uint64_t>()).c_str());
+            records.push_back(r);
+          }
+    }
+  }
+  std::ofstream out(a.output);
+  out << records.dump(1) << "\n";
+  if (!out) throw std::runtime_error(a.output + ": cannot write");
+}
+
+}  // namespace
+
+void addBenchCommand(CLI::App& app, int& exitCode) {
+  auto* bench = app.add_subcommand("bench", "Benchmarks");
+  bench->require_subcommand(1);
+  auto* cut = bench->add_subcommand("cut", "LOD-cut selection across scene sizes, layouts, cameras, tau and traversal modes");
+  auto a = std::make_shared<BenchArgs>();
+  cut->add_option("input", a->input, ".vgeo whose first geometry is instanced")->required();
+  cut->add_option("-o,--output", a->output, "JSON records")->required();
+  cut->add_option("--sizes", a->sizes, "Instance counts")->capture_default_str();
+  cut->add_option("--layouts", a->layouts, "grid and/or scatter")->capture_default_str();
+  cut->add_option("--taus", a->taus, "Allowed projected errors, pixels")->capture_default_str();
+  cut->add_option("--traversals", a->traversals, "persistent, levels, flat, cpu")->capture_default_str();
+  cut->add_option("--frames", a->frames, "Measured frames per record (median)")->capture_default_str();
+  cut->add_option("--size", a->size, "Viewport WxH")->capture_default_str();
+  cut->add_option("--cpu-max-instances", a->cpuMaxInstances, "Largest scene the CPU reference runs on")->capture_default_str();
+  cut->add_option("--flat-max-instances", a->flatMaxInstances, "Largest scene the flat traversal runs on")->capture_default_str();
+  cut->add_option("--device", a->device, "Use the first Vulkan device whose name contains this");
+  cut->callback([a, &exitCode] {
+    runBenchCut(*a);
+    exitCode = 0;
+  });
+}
+
+}  // namespace vgeo
