@@ -23,8 +23,7 @@ struct Bisector {
   const Graph& graph;
   const std::vector<uint8_t>& weights;
   const std::vector<glm::vec3>& positions;
-  uint32_t maxWeight;
-  uint32_t targetWeight;  // sets are cut into ceil(weight / targetWeight) parts, each <= maxWeight
+  uint32_t targetWeight;  // sets are cut into ceil(weight / targetWeight) parts
   const std::function<bool(const uint32_t*, size_t)>& fits;
   std::vector<uint32_t>& order;
   std::vector<uint32_t> stamp;   // the end of the segment a node lives in; kTaken|end while being taken
@@ -241,7 +240,7 @@ Partition partitionGraph(const Graph& graph, const std::vector<uint8_t>& weights
   if (n == 0) return result;
   result.order.resize(n);
   for (uint32_t i = 0; i < n; i++) result.order[i] = i;
-  Bisector b{graph, weights, positions, maxWeight, targetWeight, fits, result.order, std::vector<uint32_t>(n, n), std::vector<uint8_t>(n, 0)};
+  Bisector b{graph, weights, positions, targetWeight, fits, result.order, std::vector<uint32_t>(n, n), std::vector<uint8_t>(n, 0)};
   int depth = 0;
   while ((1 << depth) < threads) depth++;
   b.split(0, n, depth);

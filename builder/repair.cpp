@@ -223,7 +223,8 @@ RepairReport repairMesh(PolygonMesh& mesh, const std::string& file) {
       remap[v] = uint32_t(compact.size());
       compact.push_back(out.positions[v]);
     }
-  report.unusedVertices = out.positions.size() - compact.size();
+  // Vertices welded into another are not referenced any more either; count only the others.
+  report.unusedVertices = out.positions.size() - compact.size() - report.weldedVertices;
   for (uint32_t& v : out.faceVertices) v = remap[v];
   out.positions = std::move(compact);
 
