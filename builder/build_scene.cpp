@@ -38,6 +38,18 @@ void predictSize(const PolygonMesh& mesh, size_t boundaryEdges, int levels, doub
   triangles = levels > 0 ? 2.0 * f : double(mesh.triangleCount());
 }
 
+// Six times the signed volume enclosed by the faces (fanned from their first corner).
+double signedVolume(const PolygonMesh& mesh) {
+  double volume = 0.0;
+  for (size_t f = 0; f < mesh.faceCount(); f++) {
+    const uint32_t* c = mesh.face(f);
+    glm::dvec3 a(mesh.positions[c[0]]);
+    for (uint32_t k = 1; k + 1 < mesh.faceSize(f); k++)
+      volume += glm::dot(a, glm::cross(glm::dvec3(mesh.positions[c[k]]), glm::dvec3(mesh.positions[c[k + 1]])));
+  }
+  return volume;
+}
+
 }  // namespace
 
 VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, SceneBuildStats& stats) {
@@ -54,8 +66,10 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
     const std::string where = scene.meshes.size() > 1 ? path + " (mesh '" + scene.meshNames[m] + "')" : path;
     RepairReport report = repairMesh(mesh, where);
     add(stats.repair, report);
-    // Closed: no boundary edge, and no vertex split by repair (so positions identify vertices).
-    closed[m] = report.boundaryEdges == 0 && report.splitVertices == 0;
+    // Closed: no boundary edge, no vertex split by repair (so positions identify vertices), and facing
+    // out (positive signed volume): the renderer drops back faces of closed instances, which would drop
+    // the visible side of a mesh that is inside out.
+    closed[m] = report.boundaryEdges == 0 && report.splitVertices == 0 && signedVolume(mesh) > 0.0;
     double vertices = 0, triangles = 0;
     predictSize(mesh, report.boundaryEdges, options.subdivisionLevels, vertices, triangles);
     // Cluster triangles over all levels (~2x the leaves) and vertices must stay addressable by uint32.

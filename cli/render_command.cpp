@@ -40,8 +40,8 @@ bool parseCamera(const std::string& text, Camera& camera) {
 struct RenderArgs {
   std::string input, output, stats, camera, freezeCamera, mode = "lit", traversal = "persistent", size = "1280x720", device;
   float fov = 60.0f, tau = 1.0f;
-  uint32_t grid = 1, frames = 2, queueCapacity = 0, drawCapacity = 0, workgroups = 0;
-  bool compareCpu = false, validate = false;
+  uint32_t grid = 1, frames = 2, queueCapacity = 0, drawCapacity = 0, triangleCapacity = 0, workgroups = 0;
+  bool compareCpu = false, validate = false, noTriangleCull = false;
 };
 
 int runRender(const RenderArgs& a) {
@@ -65,8 +65,9 @@ int runRender(const RenderArgs& a) {
   VulkanContext vk({a.device, a.validate});
   GpuRenderer renderer(vk, scene, width, height);
   if (a.workgroups) renderer.setPersistentWorkgroups(a.workgroups);
-  if (a.queueCapacity || a.drawCapacity)
-    renderer.setCapacities(a.queueCapacity ? a.queueCapacity : renderer.queueCapacity(), a.drawCapacity ? a.drawCapacity : renderer.drawCapacity());
+  if (a.queueCapacity || a.drawCapacity || a.triangleCapacity)
+    renderer.setCapacities(a.queueCapacity ? a.queueCapacity : renderer.queueCapacity(), a.drawCapacity ? a.drawCapacity : renderer.drawCapacity(),
+                           a.triangleCapacity ? a.triangleCapacity : renderer.triangleCapacity());
   FrameSettings settings;
   settings.drawView = makeView(camera, width, height, scene.bounds);
   settings.cullView = makeView(cullCamera, width, height, scene.bounds);
@@ -74,11 +75,12 @@ int runRender(const RenderArgs& a) {
   settings.mode = kModes.at(a.mode);
   settings.traversal = traversal;
   settings.readDrawList = a.compareCpu;
+  settings.triangleCull = !a.noTriangleCull;
 
   // Frames until one is complete (an overflow grows the buffers for the next); the first frames warm
   // the shader cache (GPU-NOTES 4), the last one is reported.
   FrameResult result;
-  uint32_t queueOverflows = 0, drawOverflows = 0, frames = 0;
+  uint32_t queueOverflows = 0, drawOverflows = 0, triangleOverflows = 0, frames = 0;
   for (uint32_t f = 0; f < std::max(a.frames, 1u) || !result.complete; f++) {
     if (f >= a.frames + 4) throw std::runtime_error("frames keep overflowing after growing the buffers 4 times");
     result = renderer.renderFrame(settings);
@@ -86,8 +88,12 @@ int runRender(const RenderArgs& a) {
     if (!result.complete) {
       queueOverflows += result.counters.queueOverflow;
       drawOverflows += result.counters.drawOverflow;
-      std::fprintf(stderr, "overflow in frame %u: %u queue items and %u draw entries did not fit; grown to %u queue items, %u draw entries\n",
-                   frames, result.counters.queueOverflow, result.counters.drawOverflow, renderer.queueCapacity(), renderer.drawCapacity());
+      triangleOverflows += result.counters.triangleOverflow;
+      std::fprintf(stderr,
+                   "overflow in frame %u: %u queue items, %u draw entries and %u triangles did not fit; grown to %u queue items, %u draw "
+                   "entries, %u triangles\n",
+                   frames, result.counters.queueOverflow, result.counters.drawOverflow, result.counters.triangleOverflow, renderer.queueCapacity(),
+                   renderer.drawCapacity(), renderer.triangleCapacity());
     }
   }
   writePng(a.output, width, height, result.rgba);
@@ -110,14 +116,23 @@ int runRender(const RenderArgs& a) {
   j["nodes_visited"] = c.nodesVisited;
   j["clusters_tested"] = c.clustersTested;
   j["visible_clusters"] = std::min(c.drawCount, renderer.drawCapacity());
+  // triangles: of the listed clusters (the cut); triangles_drawn: sent to the rasterizer, after triangle
+  // culling dropped those that cannot make a fragment (equal to triangles with --no-triangle-cull).
+  const uint32_t drawn = settings.triangleCull ? std::min(c.trianglesDrawn, renderer.triangleCapacity()) : c.triangles;
   j["triangles"] = c.triangles;
+  j["triangles_drawn"] = drawn;
+  j["triangle_cull"] = settings.triangleCull;
   j["pixels_covered"] = covered;
-  j["triangles_per_covered_pixel"] = covered ? double(c.triangles) / double(covered) : 0.0;
+  j["triangles_per_covered_pixel"] = covered ? double(drawn) / double(covered) : 0.0;
+  j["cut_triangles_per_covered_pixel"] = covered ? double(c.triangles) / double(covered) : 0.0;
   j["queue_overflows"] = queueOverflows;
   j["draw_overflows"] = drawOverflows;
+  j["triangle_overflows"] = triangleOverflows;
   j["queue_high_water"] = c.queueHighWater;
   j["persistent_workgroups"] = renderer.persistentWorkgroups();
+  j["instance_cull_ms"] = result.instanceCullMs;
   j["traversal_ms"] = result.traversalMs;
+  j["triangle_cull_ms"] = result.triangleCullMs;
   j["draw_ms"] = result.drawMs;
   j["frame_ms"] = result.frameMs;
   j["timing"] = result.timing;
@@ -131,11 +146,12 @@ int runRender(const RenderArgs& a) {
     j["borderline_clusters"] = reference.borderline.size();
     if (!equal) j["cpu_cut_difference"] = difference;
   }
-  std::printf("%s: %ux%u on %s, %s traversal, tau %g: %u of %zu instances visible, %u clusters, %u triangles drawn of %llu virtual; "
-              "traversal %.2f ms, draw %.2f ms, frame %.2f ms (%s)\n",
+  std::printf("%s: %ux%u on %s, %s traversal, tau %g: %u of %zu instances visible, %u clusters, %u triangles in the cut of %llu virtual, "
+              "%u drawn (%.2f a covered pixel); instance culling %.2f ms, traversal %.2f ms, triangle culling %.2f ms, draw %.2f ms, frame %.2f ms (%s)\n",
               a.output.c_str(), width, height, vk.deviceName().c_str(), a.traversal.c_str(), a.tau, c.visibleInstances,
               scene.data.instances.size(), std::min(c.drawCount, renderer.drawCapacity()), c.triangles,
-              (unsigned long long)scene.virtualTriangles, result.traversalMs, result.drawMs, result.frameMs, result.timing.c_str());
+              (unsigned long long)scene.virtualTriangles, drawn, j["triangles_per_covered_pixel"].get<double>(), result.instanceCullMs, result.traversalMs,
+              result.triangleCullMs, result.drawMs, result.frameMs, result.timing.c_str());
   if (a.compareCpu)
     std::printf("cpu cut: %s (%zu clusters, %zu borderline)%s\n", j["cpu_cut_equal"].get<bool>() ? "equal" : "DIFFERENT",
                 size_t(j["cpu_clusters"]), size_t(j["borderline_clusters"]), j.contains("cpu_cut_difference") ? (": " + j["cpu_cut_difference"].get<std::string>()).c_str() : "");
@@ -174,6 +190,9 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--frames", a->frames, "Frames to render; the last is reported (the first warms shader caches)")->capture_default_str();
   cmd->add_option("--queue-capacity", a->queueCapacity, "Initial traversal queue capacity, items (debugging overflow)");
   cmd->add_option("--draw-capacity", a->drawCapacity, "Initial draw list capacity, clusters (debugging overflow)");
+  cmd->add_option("--triangle-capacity", a->triangleCapacity, "Initial triangle list capacity, triangles (debugging overflow)");
+  cmd->add_flag("--no-triangle-cull", a->noTriangleCull,
+                "Draw every triangle of the listed clusters (default: drop those that cannot make a fragment first)");
   cmd->add_option("--workgroups", a->workgroups, "Persistent traversal workgroups (default: as many as the device runs at once)");
   cmd->callback([a, &exitCode] {
     try {

@@ -4,9 +4,12 @@
 //   3. traversal                 persistent: one dispatch of resident workgroups draining the queue
 //                                levels: per depth, prepare_level.comp then traverse_level.comp (indirect)
 //                                flat: prepare_flat.comp then traverse_flat.comp (one thread a cluster)
-//   4. finalize.comp             indirect draw arguments from the draw-list count
-//   5. render pass: one vkCmdDrawIndirect of 384 vertices x listed clusters (draw.vert, draw.frag)
-//   6. copies back: counters (and the image / draw list when asked), read once the frame is done
+//   4. finalize.comp             triangle-culling dispatch (or draw) arguments from the draw-list count
+//   5. cull_triangles.comp       one workgroup a listed cluster -> triangle list of what can make fragments
+//      finalize_triangles.comp   indirect draw arguments from the triangle count
+//   6. render pass: one vkCmdDrawIndirect of the listed triangles (draw.vert, draw.frag); without
+//      triangle culling, of 384 vertices x listed clusters
+//   7. copies back: counters (and the image / draw list when asked), read once the frame is done
 // No host read-back happens inside the frame; the host reads the counters after it, and a frame that
 // overflowed grows the buffers for the next one.
 #include "gpu_renderer.h"
@@ -15,26 +18,17 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "shaders/cull_instances_comp.h"
-#include "shaders/draw_frag.h"
-#include "shaders/draw_vert.h"
-#include "shaders/finalize_comp.h"
-#include "shaders/prepare_flat_comp.h"
-#include "shaders/prepare_level_comp.h"
-#include "shaders/reset_flat_comp.h"
-#include "shaders/traverse_flat_comp.h"
-#include "shaders/traverse_level_comp.h"
-#include "shaders/traverse_persistent_comp.h"
 
 namespace vgeo {
 namespace {
 
 constexpr uint32_t kSceneBindings = 10;  // bindings 1..9: geometries .. BVH nodes; 13: cluster cones
-constexpr uint32_t kBindings = 14;
 // lavapipe ends every loop after 65,535 iterations per invocation (GPU-NOTES 1): persistent workers
 // leave on their own well before, holding nothing, and enough of them are dispatched to carry on.
 constexpr uint32_t kLavapipeIterationBudget = 50000;
 constexpr uint32_t kLavapipeWorkgroups = 128;
+// Frame start, then the end of instance culling, traversal, triangle culling and the draw.
+constexpr uint32_t kTimestamps = 5;
 
 void globalBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags srcAccess, VkPipelineStageFlags dst, VkAccessFlags dstAccess) {
   VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
@@ -133,14 +127,16 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
   }
   VkQueryPoolCreateInfo q{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
   q.queryType = VK_QUERY_TYPE_TIMESTAMP;
-  q.queryCount = 3;
+  q.queryCount = kTimestamps;
   vkCheck(vkCreateQueryPool(vk_.device(), &q, nullptr, &queries_), "vkCreateQueryPool");
 }
 
 GpuRenderer::~GpuRenderer() {
   VkDevice dev = vk_.device();
   vkDeviceWaitIdle(dev);
-  for (VkPipeline p : {cull_, persistent_, level_, prepareLevel_, flat_, prepareFlat_, resetFlat_, finalize_, draw_, drawOverdraw_}) vkDestroyPipeline(dev, p, nullptr);
+  for (VkPipeline p : {cull_, persistent_, level_, prepareLevel_, flat_, prepareFlat_, resetFlat_, finalize_, cullTriangles_, finalizeTriangles_,
+                       draw_, drawOverdraw_})
+    vkDestroyPipeline(dev, p, nullptr);
   vkDestroyPipelineLayout(dev, layout_, nullptr);
   vkDestroyDescriptorPool(dev, descriptorPool_, nullptr);
   vkDestroyDescriptorSetLayout(dev, setLayout_, nullptr);
@@ -153,221 +149,36 @@ GpuRenderer::~GpuRenderer() {
   vkDestroyImage(dev, depth_, nullptr);
   vkFreeMemory(dev, colorMemory_, nullptr);
   vkFreeMemory(dev, depthMemory_, nullptr);
-  for (Buffer* b : {&frameData_, &counters_, &countersReadback_, &queue_, &drawList_, &drawListReadback_, &imageReadback_}) vk_.destroyBuffer(*b);
+  for (Buffer* b : {&frameData_, &counters_, &countersReadback_, &queue_, &drawList_, &drawListReadback_, &imageReadback_, &triangleList_})
+    vk_.destroyBuffer(*b);
   for (Buffer& b : sceneBuffers_) vk_.destroyBuffer(b);
-}
-
-void GpuRenderer::createTargets() {
-  VkDevice dev = vk_.device();
-  auto makeImage = [&](VkFormat format, VkImageUsageFlags usage, VkImageAspectFlags aspect, VkImage& image, VkDeviceMemory& memory, VkImageView& view) {
-    VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-    info.imageType = VK_IMAGE_TYPE_2D;
-    info.format = format;
-    info.extent = {width_, height_, 1};
-    info.mipLevels = 1;
-    info.arrayLayers = 1;
-    info.samples = VK_SAMPLE_COUNT_1_BIT;
-    info.tiling = VK_IMAGE_TILING_OPTIMAL;
-    info.usage = usage;
-    vkCheck(vkCreateImage(dev, &info, nullptr, &image), "vkCreateImage");
-    VkMemoryRequirements req;
-    vkGetImageMemoryRequirements(dev, image, &req);
-    VkPhysicalDeviceMemoryProperties mem;
-    vkGetPhysicalDeviceMemoryProperties(vk_.physicalDevice(), &mem);
-    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    alloc.allocationSize = req.size;
-    for (uint32_t i = 0; i < mem.memoryTypeCount; i++)
-      if ((req.memoryTypeBits & (1u << i)) && (mem.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) {
-        alloc.memoryTypeIndex = i;
-        break;
-      }
-    vkCheck(vkAllocateMemory(dev, &alloc, nullptr, &memory), "vkAllocateMemory (image)");
-    vkCheck(vkBindImageMemory(dev, image, memory, 0), "vkBindImageMemory");
-    VkImageViewCreateInfo v{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-    v.image = image;
-    v.viewType = VK_IMAGE_VIEW_TYPE_2D;
-    v.format = format;
-    v.subresourceRange = {aspect, 0, 1, 0, 1};
-    vkCheck(vkCreateImageView(dev, &v, nullptr, &view), "vkCreateImageView");
-  };
-  makeImage(VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT, color_, colorMemory_, colorView_);
-  makeImage(VK_FORMAT_D32_SFLOAT, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT, depth_, depthMemory_, depthView_);
-
-  VkAttachmentDescription attachments[2] = {};
-  attachments[0].format = VK_FORMAT_R8G8B8A8_UNORM;
-  attachments[0].samples = VK_SAMPLE_COUNT_1_BIT;
-  attachments[0].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  attachments[0].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-  attachments[0].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-  attachments[0].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  attachments[0].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  attachments[0].finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-  attachments[1] = attachments[0];
-  attachments[1].format = VK_FORMAT_D32_SFLOAT;
-  attachments[1].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  attachments[1].finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-  VkAttachmentReference colorRef{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL}, depthRef{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
-  VkSubpassDescription subpass{};
-  subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-  subpass.colorAttachmentCount = 1;
-  subpass.pColorAttachments = &colorRef;
-  subpass.pDepthStencilAttachment = &depthRef;
-  // Earlier frames' copy of the colour image and depth use finish before this pass writes them again.
-  VkSubpassDependency deps[2] = {};
-  deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
-  deps[0].dstSubpass = 0;
-  deps[0].srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
-  deps[0].srcAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-  deps[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT;
-  deps[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
-                          VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT;
-  deps[1].srcSubpass = 0;
-  deps[1].dstSubpass = VK_SUBPASS_EXTERNAL;
-  deps[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-  deps[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-  deps[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
-  deps[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-  VkRenderPassCreateInfo rp{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-  rp.attachmentCount = 2;
-  rp.pAttachments = attachments;
-  rp.subpassCount = 1;
-  rp.pSubpasses = &subpass;
-  rp.dependencyCount = 2;
-  rp.pDependencies = deps;
-  vkCheck(vkCreateRenderPass(dev, &rp, nullptr, &renderPass_), "vkCreateRenderPass");
-  VkImageView views[2] = {colorView_, depthView_};
-  VkFramebufferCreateInfo fb{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
-  fb.renderPass = renderPass_;
-  fb.attachmentCount = 2;
-  fb.pAttachments = views;
-  fb.width = width_;
-  fb.height = height_;
-  fb.layers = 1;
-  vkCheck(vkCreateFramebuffer(dev, &fb, nullptr, &framebuffer_), "vkCreateFramebuffer");
 }
 
 void GpuRenderer::createQueueAndDrawList() {
   VkDeviceSize range = vk_.properties().limits.maxStorageBufferRange;
   queueCapacity_ = uint32_t(std::min<VkDeviceSize>(queueCapacity_, range / 8));
-  drawCapacity_ = uint32_t(std::min<VkDeviceSize>(drawCapacity_, range / 8));
+  // A triangle-list entry holds the draw-list entry in 25 bits.
+  drawCapacity_ = uint32_t(std::min<VkDeviceSize>({drawCapacity_, range / 8, VGEO_MAX_DRAW_ENTRIES}));
+  triangleCapacity_ = uint32_t(std::min<VkDeviceSize>(triangleCapacity_, range / 4));
   queue_ = vk_.createBuffer(VkDeviceSize(queueCapacity_) * 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   drawList_ = vk_.createBuffer(VkDeviceSize(drawCapacity_) * 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  triangleList_ = vk_.createBuffer(VkDeviceSize(triangleCapacity_) * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   // Every queue slot starts unwritten; consumers put them back that way.
   VkCommandBuffer cmd = vk_.beginCommands();
   vkCmdFillBuffer(cmd, queue_.buffer, 0, VK_WHOLE_SIZE, VGEO_INVALID);
   vk_.submitAndWait(cmd);
 }
 
-void GpuRenderer::setCapacities(uint32_t queueItems, uint32_t drawEntries) {
+void GpuRenderer::setCapacities(uint32_t queueItems, uint32_t drawEntries, uint32_t triangles) {
   vkDeviceWaitIdle(vk_.device());
   vk_.destroyBuffer(queue_);
   vk_.destroyBuffer(drawList_);
+  vk_.destroyBuffer(triangleList_);
   queueCapacity_ = std::max(queueItems, 1u);
   drawCapacity_ = std::max(drawEntries, 1u);
+  triangleCapacity_ = std::max(triangles, 1u);
   createQueueAndDrawList();
   writeDescriptors();
-}
-
-void GpuRenderer::createPipelines() {
-  VkDevice dev = vk_.device();
-  VkDescriptorSetLayoutBinding bindings[kBindings];
-  for (uint32_t i = 0; i < kBindings; i++) {
-    bindings[i] = {i, i == 0 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
-                   VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
-  }
-  VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  setInfo.bindingCount = kBindings;
-  setInfo.pBindings = bindings;
-  vkCheck(vkCreateDescriptorSetLayout(dev, &setInfo, nullptr, &setLayout_), "vkCreateDescriptorSetLayout");
-  VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBindings - 1}};
-  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  poolInfo.maxSets = 1;
-  poolInfo.poolSizeCount = 2;
-  poolInfo.pPoolSizes = sizes;
-  vkCheck(vkCreateDescriptorPool(dev, &poolInfo, nullptr, &descriptorPool_), "vkCreateDescriptorPool");
-  VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-  alloc.descriptorPool = descriptorPool_;
-  alloc.descriptorSetCount = 1;
-  alloc.pSetLayouts = &setLayout_;
-  vkCheck(vkAllocateDescriptorSets(dev, &alloc, &set_), "vkAllocateDescriptorSets");
-  VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  layoutInfo.setLayoutCount = 1;
-  layoutInfo.pSetLayouts = &setLayout_;
-  vkCheck(vkCreatePipelineLayout(dev, &layoutInfo, nullptr, &layout_), "vkCreatePipelineLayout");
-
-  auto compute = [&](const uint32_t* code, size_t bytes) {
-    VkShaderModule module = vk_.createShaderModule(code, bytes);
-    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-    info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, module, "main", nullptr};
-    info.layout = layout_;
-    VkPipeline pipeline;
-    vkCheck(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline), "vkCreateComputePipelines");
-    vkDestroyShaderModule(dev, module, nullptr);
-    return pipeline;
-  };
-  cull_ = compute(cull_instances_comp, sizeof(cull_instances_comp));
-  persistent_ = compute(traverse_persistent_comp, sizeof(traverse_persistent_comp));
-  level_ = compute(traverse_level_comp, sizeof(traverse_level_comp));
-  prepareLevel_ = compute(prepare_level_comp, sizeof(prepare_level_comp));
-  flat_ = compute(traverse_flat_comp, sizeof(traverse_flat_comp));
-  prepareFlat_ = compute(prepare_flat_comp, sizeof(prepare_flat_comp));
-  resetFlat_ = compute(reset_flat_comp, sizeof(reset_flat_comp));
-  finalize_ = compute(finalize_comp, sizeof(finalize_comp));
-
-  VkShaderModule vert = vk_.createShaderModule(draw_vert, sizeof(draw_vert));
-  VkShaderModule frag = vk_.createShaderModule(draw_frag, sizeof(draw_frag));
-  VkPipelineShaderStageCreateInfo stages[2] = {
-      {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vert, "main", nullptr},
-      {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, frag, "main", nullptr}};
-  VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-  VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-  assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-  VkViewport viewport{0, 0, float(width_), float(height_), 0, 1};
-  VkRect2D scissor{{0, 0}, {width_, height_}};
-  VkPipelineViewportStateCreateInfo viewportState{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-  viewportState.viewportCount = 1;
-  viewportState.pViewports = &viewport;
-  viewportState.scissorCount = 1;
-  viewportState.pScissors = &scissor;
-  VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-  raster.polygonMode = VK_POLYGON_MODE_FILL;
-  raster.cullMode = VK_CULL_MODE_NONE;  // open meshes are seen from both sides
-  raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-  raster.lineWidth = 1.0f;
-  VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-  multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-  VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-  depth.depthTestEnable = VK_TRUE;
-  depth.depthWriteEnable = VK_TRUE;
-  depth.depthCompareOp = VK_COMPARE_OP_GREATER;  // reversed depth (camera.cpp)
-  VkPipelineColorBlendAttachmentState blend{};
-  blend.colorWriteMask = 0xf;
-  VkPipelineColorBlendStateCreateInfo blendState{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-  blendState.attachmentCount = 1;
-  blendState.pAttachments = &blend;
-  VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-  info.stageCount = 2;
-  info.pStages = stages;
-  info.pVertexInputState = &vertexInput;
-  info.pInputAssemblyState = &assembly;
-  info.pViewportState = &viewportState;
-  info.pRasterizationState = &raster;
-  info.pMultisampleState = &multisample;
-  info.pDepthStencilState = &depth;
-  info.pColorBlendState = &blendState;
-  info.layout = layout_;
-  info.renderPass = renderPass_;
-  vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &draw_), "vkCreateGraphicsPipelines");
-  // Overdraw: every fragment adds, nothing is hidden.
-  depth.depthTestEnable = VK_FALSE;
-  depth.depthWriteEnable = VK_FALSE;
-  blend.blendEnable = VK_TRUE;
-  blend.srcColorBlendFactor = blend.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
-  blend.srcAlphaBlendFactor = blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-  blend.colorBlendOp = blend.alphaBlendOp = VK_BLEND_OP_ADD;
-  vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &drawOverdraw_), "vkCreateGraphicsPipelines");
-  vkDestroyShaderModule(dev, vert, nullptr);
-  vkDestroyShaderModule(dev, frag, nullptr);
 }
 
 void GpuRenderer::writeDescriptors() {
@@ -377,14 +188,15 @@ void GpuRenderer::writeDescriptors() {
   buffers.push_back(&queue_);
   buffers.push_back(&drawList_);
   buffers.push_back(&sceneBuffers_[9]);
-  VkDescriptorBufferInfo infos[kBindings];
-  VkWriteDescriptorSet writes[kBindings];
-  for (uint32_t i = 0; i < kBindings; i++) {
+  buffers.push_back(&triangleList_);
+  VkDescriptorBufferInfo infos[kRendererBindings];
+  VkWriteDescriptorSet writes[kRendererBindings];
+  for (uint32_t i = 0; i < kRendererBindings; i++) {
     infos[i] = {buffers[i]->buffer, 0, VK_WHOLE_SIZE};
     writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, set_, i, 0, 1,
                  i == 0 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &infos[i], nullptr};
   }
-  vkUpdateDescriptorSets(vk_.device(), kBindings, writes, 0, nullptr);
+  vkUpdateDescriptorSets(vk_.device(), kRendererBindings, writes, 0, nullptr);
 }
 
 // Zeroes the counters (earlier submissions are ordered before it by the opening barrier) and binds the
@@ -399,13 +211,17 @@ void GpuRenderer::recordCounterReset(VkCommandBuffer cmd) {
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
 }
 
-void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& settings) {
+void GpuRenderer::recordInstanceCull(VkCommandBuffer cmd) {
   // 1. Reset the counters.
   recordCounterReset(cmd);
   // 2. Instance culling.
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cull_);
   vkCmdDispatch(cmd, (uint32_t(scene_.data.instances.size()) + 63) / 64, 1, 1);
   computeToCompute(cmd);
+}
+
+void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& settings) {
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
   // 3. Traversal.
   if (settings.traversal == Traversal::Persistent) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, persistent_);
@@ -432,7 +248,7 @@ void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& sett
     vkCmdDispatch(cmd, (uint32_t(scene_.data.instances.size()) + 63) / 64, 1, 1);
     computeToCompute(cmd);
   }
-  // 4. Draw arguments.
+  // 4. Triangle-culling dispatch or draw arguments.
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, finalize_);
   vkCmdDispatch(cmd, 1, 1, 1);
   globalBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
@@ -441,10 +257,23 @@ void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& sett
                 VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
 }
 
+// 5. Triangle culling: the triangles of the listed clusters that can make a fragment, then the draw's arguments.
+void GpuRenderer::recordTriangleCull(VkCommandBuffer cmd) {
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cullTriangles_);
+  vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, dispatch));
+  computeToCompute(cmd);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, finalizeTriangles_);
+  vkCmdDispatch(cmd, 1, 1, 1);
+  globalBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
+}
+
 void GpuRenderer::recordDraw(VkCommandBuffer cmd, const FrameSettings& settings) {
-  // 5. One indirect draw.
+  // 6. One indirect draw.
   if (settings.draw) recordRenderPass(cmd, settings);
-  // 6. Copies back.
+  // 7. Copies back.
   VkBufferCopy all{0, 0, sizeof(shaderio::Counters)};
   vkCmdCopyBuffer(cmd, counters_.buffer, countersReadback_.buffer, 1, &all);
   if (settings.readImage && settings.draw) {
@@ -493,6 +322,11 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
   frame.iterationBudget = iterationBudget_;
   frame.maxClusters = scene_.maxClusters;
   frame.claimMode = claimMode_;
+  const bool cullTriangles = settings.draw && settings.triangleCull;
+  frame.triangleCull = cullTriangles ? 1u : 0u;
+  frame.triangleCapacity = triangleCapacity_;
+  frame.viewportWidth = float(width_);
+  frame.viewportHeight = float(height_);
   std::memcpy(frameData_.mapped, &frame, sizeof(frame));
   if (settings.readDrawList && drawListReadback_.size != drawList_.size) {
     vk_.destroyBuffer(drawListReadback_);
@@ -503,35 +337,44 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
   double period = vk_.timestampPeriod();
   auto start = std::chrono::steady_clock::now();
   if (vk_.isLavapipe() || period == 0.0) {
-    // lavapipe's compute timestamps are wrong after the first submission (GPU-NOTES 3): time each
-    // submission on the host instead.
+    // lavapipe's compute timestamps are wrong after the first submission (GPU-NOTES 3): one submission
+    // a stage, timed on the host.
     result.timing = "host-per-submission";
-    VkCommandBuffer cmd = vk_.beginCommands();
-    recordTraversal(cmd, settings);
-    vk_.submitAndWait(cmd);
-    result.traversalMs = msSince(start);
-    auto drawStart = std::chrono::steady_clock::now();
-    cmd = vk_.beginCommands();
-    recordDraw(cmd, settings);
-    vk_.submitAndWait(cmd);
-    result.drawMs = msSince(drawStart);
+    auto timed = [&](auto record) {
+      auto stageStart = std::chrono::steady_clock::now();
+      VkCommandBuffer cmd = vk_.beginCommands();
+      record(cmd);
+      vk_.submitAndWait(cmd);
+      return msSince(stageStart);
+    };
+    result.instanceCullMs = timed([&](VkCommandBuffer cmd) { recordInstanceCull(cmd); });
+    result.traversalMs = timed([&](VkCommandBuffer cmd) { recordTraversal(cmd, settings); });
+    if (cullTriangles) result.triangleCullMs = timed([&](VkCommandBuffer cmd) { recordTriangleCull(cmd); });
+    result.drawMs = timed([&](VkCommandBuffer cmd) { recordDraw(cmd, settings); });
     result.frameMs = msSince(start);
   } else {
     result.timing = "gpu-timestamps";
     VkCommandBuffer cmd = vk_.beginCommands();
-    vkCmdResetQueryPool(cmd, queries_, 0, 3);
+    vkCmdResetQueryPool(cmd, queries_, 0, kTimestamps);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0);
-    recordTraversal(cmd, settings);
+    recordInstanceCull(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1);
-    recordDraw(cmd, settings);
+    recordTraversal(cmd, settings);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 2);
+    if (cullTriangles) recordTriangleCull(cmd);
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 3);
+    recordDraw(cmd, settings);
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 4);
     vk_.submitAndWait(cmd);
-    uint64_t t[3];
-    vkCheck(vkGetQueryPoolResults(vk_.device(), queries_, 0, 3, sizeof(t), t, sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+    uint64_t t[kTimestamps];
+    vkCheck(vkGetQueryPoolResults(vk_.device(), queries_, 0, kTimestamps, sizeof(t), t, sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
             "vkGetQueryPoolResults");
-    result.traversalMs = double(t[1] - t[0]) * period * 1e-6;
-    result.drawMs = double(t[2] - t[1]) * period * 1e-6;
-    result.frameMs = double(t[2] - t[0]) * period * 1e-6;
+    auto ms = [&](int from, int to) { return double(t[to] - t[from]) * period * 1e-6; };
+    result.instanceCullMs = ms(0, 1);
+    result.traversalMs = ms(1, 2);
+    result.triangleCullMs = ms(2, 3);
+    result.drawMs = ms(3, 4);
+    result.frameMs = ms(0, 4);
   }
 
   std::memcpy(&result.counters, countersReadback_.mapped, sizeof(result.counters));
@@ -547,16 +390,19 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
     for (uint32_t i = 0; i < n; i++) result.drawList[i] = {p[2 * i], p[2 * i + 1]};
   }
   bool drained = c.itemsDone == c.queueWrite;
-  result.complete = c.queueOverflow == 0 && c.drawOverflow == 0 && drained;
+  result.complete = c.queueOverflow == 0 && c.drawOverflow == 0 && c.triangleOverflow == 0 && drained;
   if (!drained && c.queueOverflow == 0)
     throw std::runtime_error("traversal did not drain its queue (" + std::to_string(c.itemsDone) + " of " + std::to_string(c.queueWrite) +
                              " items done, " + std::to_string(c.queueRead) + " claimed; " + std::to_string(c.workgroupsExited) + " of " +
                              std::to_string(persistentWorkgroups_) + " workers left, " + std::to_string(c.budgetExits) + " on their budget)");
   // Grow what overflowed, for the next frame.
-  if (c.queueOverflow || c.drawOverflow) {
-    uint64_t queueWant = c.queueOverflow ? std::max<uint64_t>(uint64_t(queueCapacity_) * 2, uint64_t(c.queueHighWater) * 5 / 4) : queueCapacity_;
-    uint64_t drawWant = c.drawOverflow ? std::max<uint64_t>(uint64_t(drawCapacity_) * 2, uint64_t(c.drawCount) * 5 / 4) : drawCapacity_;
-    setCapacities(uint32_t(std::min<uint64_t>(queueWant, UINT32_MAX / 2)), uint32_t(std::min<uint64_t>(drawWant, UINT32_MAX / 2)));
+  if (c.queueOverflow || c.drawOverflow || c.triangleOverflow) {
+    auto grown = [](bool overflowed, uint32_t capacity, uint32_t needed) {
+      uint64_t want = overflowed ? std::max<uint64_t>(uint64_t(capacity) * 2, uint64_t(needed) * 5 / 4) : capacity;
+      return uint32_t(std::min<uint64_t>(want, UINT32_MAX / 2));
+    };
+    setCapacities(grown(c.queueOverflow, queueCapacity_, c.queueHighWater), grown(c.drawOverflow, drawCapacity_, c.drawCount),
+                  grown(c.triangleOverflow, triangleCapacity_, c.trianglesDrawn));
   }
   return result;
 }

@@ -1,5 +1,6 @@
 // gpu_renderer.h: the frame, all on the GPU (gpu_renderer.cpp): instance culling, traversal (persistent,
-// per level or flat), one indirect draw of the listed clusters, read back once the frame is done.
+// per level or flat), triangle culling, one indirect draw of the listed triangles, read back once the
+// frame is done. Targets and pipelines: gpu_pipelines.cpp.
 #pragma once
 
 #include <string>
@@ -23,13 +24,14 @@ struct FrameSettings {
   bool readDrawList = false; // copy the draw list back (tests, --compare-cpu)
   bool readImage = true;
   bool draw = true;          // false: selection only (cut benchmarks); no image
+  bool triangleCull = true;  // cull_triangles.comp before the draw (no change to the picture)
 };
 
 struct FrameResult {
   shaderio::Counters counters{};
   std::vector<CutEntry> drawList;  // when readDrawList
   std::vector<uint8_t> rgba;       // when readImage: width x height x 4
-  double traversalMs = 0.0, drawMs = 0.0, frameMs = 0.0;
+  double instanceCullMs = 0.0, traversalMs = 0.0, triangleCullMs = 0.0, drawMs = 0.0, frameMs = 0.0;
   std::string timing;              // "gpu-timestamps" or "host-per-submission"
   bool complete = true;            // no overflow and the traversal drained its queue
 };
@@ -47,8 +49,9 @@ class GpuRenderer {
 
   uint32_t queueCapacity() const { return queueCapacity_; }
   uint32_t drawCapacity() const { return drawCapacity_; }
-  // Sets the capacities (tests use a tiny queue to provoke overflow).
-  void setCapacities(uint32_t queueItems, uint32_t drawEntries);
+  uint32_t triangleCapacity() const { return triangleCapacity_; }
+  // Sets the capacities (tests use tiny ones to provoke overflow).
+  void setCapacities(uint32_t queueItems, uint32_t drawEntries, uint32_t triangles);
   uint32_t persistentWorkgroups() const { return persistentWorkgroups_; }
   // Overrides the persistent traversal's workgroup count (benchmarks; the default is what the device
   // runs at once).
@@ -60,17 +63,19 @@ class GpuRenderer {
   void createQueueAndDrawList();
   void writeDescriptors();
   void recordCounterReset(VkCommandBuffer cmd);
+  void recordInstanceCull(VkCommandBuffer cmd);
   void recordTraversal(VkCommandBuffer cmd, const FrameSettings& settings);
+  void recordTriangleCull(VkCommandBuffer cmd);
   void recordDraw(VkCommandBuffer cmd, const FrameSettings& settings);
   void recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings);
 
   VulkanContext& vk_;
   const RenderScene& scene_;
   uint32_t width_, height_;
-  uint32_t queueCapacity_ = 1u << 20, drawCapacity_ = 1u << 20;
+  uint32_t queueCapacity_ = 1u << 20, drawCapacity_ = 1u << 20, triangleCapacity_ = 1u << 22;
   uint32_t persistentWorkgroups_ = 0, iterationBudget_ = 0, claimMode_ = 0;
 
-  Buffer frameData_, counters_, countersReadback_, queue_, drawList_, drawListReadback_, imageReadback_;
+  Buffer frameData_, counters_, countersReadback_, queue_, drawList_, drawListReadback_, imageReadback_, triangleList_;
   std::vector<Buffer> sceneBuffers_;  // bindings 1..9, then 13
   VkImage color_ = VK_NULL_HANDLE, depth_ = VK_NULL_HANDLE;
   VkDeviceMemory colorMemory_ = VK_NULL_HANDLE, depthMemory_ = VK_NULL_HANDLE;
@@ -83,10 +88,15 @@ class GpuRenderer {
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
   VkPipeline cull_ = VK_NULL_HANDLE, persistent_ = VK_NULL_HANDLE, level_ = VK_NULL_HANDLE, prepareLevel_ = VK_NULL_HANDLE,
              flat_ = VK_NULL_HANDLE, prepareFlat_ = VK_NULL_HANDLE, resetFlat_ = VK_NULL_HANDLE, finalize_ = VK_NULL_HANDLE, draw_ = VK_NULL_HANDLE,
+             cullTriangles_ = VK_NULL_HANDLE, finalizeTriangles_ = VK_NULL_HANDLE,
              drawOverdraw_ = VK_NULL_HANDLE;
   VkQueryPool queries_ = VK_NULL_HANDLE;
 };
 
 const char* traversalName(Traversal t);
+
+// Binding count of the one descriptor set (common.glsl): 0 frame data, 1..9 and 13 the scene, 10 counters,
+// 11 queue, 12 draw list, 14 triangle list.
+constexpr uint32_t kRendererBindings = 15;
 
 }  // namespace vgeo

@@ -21,6 +21,8 @@ layout(set = 0, binding = 11, std430) coherent buffer QueueBuffer { uint queue[]
 // Draw list: entry i is (instance, cluster) in drawList[2i], drawList[2i+1].
 layout(set = 0, binding = 12, std430) buffer DrawListBuffer { uint drawList[]; };
 layout(set = 0, binding = 13, std430) readonly buffer ClusterConeBuffer { ClusterCone clusterCones[]; };
+// Triangle list (cull_triangles.comp): entry i is (draw-list entry << VGEO_TRIANGLE_BITS | triangle).
+layout(set = 0, binding = 14, std430) buffer TriangleListBuffer { uint triangleList[]; };
 
 vec3 toWorld(Instance inst, vec3 p) {
   vec4 h = vec4(p, 1.0);

@@ -1,8 +1,10 @@
 #version 450
-// draw.vert: vertex `gl_VertexIndex` of draw-list entry `gl_InstanceIndex`: the entry names (instance,
-// cluster), vertex / 3 the cluster triangle and vertex % 3 its corner. Slots past the cluster's
-// triangle count collapse to a point outside the clip volume, so one draw of 384 vertices an entry
-// draws every cluster (GPU-NOTES 11: many instances of 384 vertices, never one huge vertex count).
+// draw.vert: corner gl_VertexIndex % 3 of a triangle of a draw-list entry, which names (instance, cluster).
+// One draw of 384-vertex instances (GPU-NOTES 11: never one huge vertex count; lavapipe also drew the
+// same 114k triangles 3x slower as one instance of 344k vertices than as 896 instances of 384).
+// With triangle culling (the default), instance i draws triangles 128 i .. 128 i + 127 of the triangle
+// list, each naming its entry and triangle; without, instance i is draw-list entry i and vertex / 3 the
+// cluster's triangle. Slots past the end collapse to a point outside the clip volume.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
@@ -20,10 +22,20 @@ vec3 decodeNormal(uint packed) {
 }
 
 void main() {
-  uint instance = drawList[2 * gl_InstanceIndex];
-  uint cluster = drawList[2 * gl_InstanceIndex + 1];
+  uint entry = uint(gl_InstanceIndex), triangle = uint(gl_VertexIndex) / 3u, corner = uint(gl_VertexIndex) % 3u;
+  if (frame.triangleCull != 0u) {
+    uint slot = uint(gl_InstanceIndex) * VGEO_MAX_CLUSTER_TRIANGLES + triangle;
+    if (slot >= min(counters.trianglesDrawn, frame.triangleCapacity)) {
+      gl_Position = vec4(0.0, 0.0, 2.0, 1.0);
+      return;
+    }
+    uint packed = triangleList[slot];
+    entry = packed >> VGEO_TRIANGLE_BITS;
+    triangle = packed & ((1u << VGEO_TRIANGLE_BITS) - 1u);
+  }
+  uint instance = drawList[2 * entry];
+  uint cluster = drawList[2 * entry + 1];
   Cluster c = clusters[cluster];
-  uint triangle = uint(gl_VertexIndex) / 3u, corner = uint(gl_VertexIndex) % 3u;
   outBarycentric = vec3(corner == 0u ? 1.0 : 0.0, corner == 1u ? 1.0 : 0.0, corner == 2u ? 1.0 : 0.0);
   outIds = uvec4(cluster, c.group, instance, clusterLevel(c.counts));
   outTriangle = triangle;

@@ -153,6 +153,10 @@ struct FrameData {
   uint iterationBudget;  // persistent traversal: leave after this many loop iterations (0: never)
   uint maxClusters;      // largest cluster count of a geometry (flat traversal)
   uint claimMode;        // persistent traversal: 0 claim past the frontier, 1 claim only reserved items
+  uint triangleCull;     // 1: cull_triangles.comp lists the triangles to draw; 0: every listed cluster's
+  uint triangleCapacity; // entries in the triangle list
+  float viewportWidth;   // pixels
+  float viewportHeight;
   uint pad0;
   uint pad1;
 };
@@ -174,10 +178,18 @@ struct Counters {
   uint queueHighWater;   // largest queueWrite seen
   uint workgroupsExited; // persistent traversal: workers that left
   uint budgetExits;      // of those, left on the iteration budget (lavapipe)
+  uint trianglesDrawn;   // triangles that survived triangle culling (requested; see triangleOverflow)
+  uint dispatch[4];      // indirect dispatch arguments (x, y, z): levels and flat traversal, triangle culling
+  uint draw[4];          // VkDrawIndirectCommand
+  uint triangleOverflow; // triangles that did not fit the triangle list
   uint pad0;
-  uint dispatch[4];      // indirect dispatch arguments (x, y, z) for levels and flat traversal
-  uint draw[4];          // VkDrawIndirectCommand: 384 vertices, instanceCount = listed clusters
+  uint pad1;
+  uint pad2;
 };
+
+// Triangle list entry: draw-list entry << 7 | triangle within its cluster.
+#define VGEO_TRIANGLE_BITS 7u
+#define VGEO_MAX_DRAW_ENTRIES (1u << 25)
 
 // Packing of Cluster.counts: vertex count (9 bits), triangle count (8), level (7), cage face count (8).
 #ifdef __cplusplus
@@ -232,8 +244,8 @@ static_assert(sizeof(Geometry) == 64, "Geometry layout");
 static_assert(sizeof(Instance) == 64, "Instance layout");
 static_assert(sizeof(CageFace) == 16, "CageFace layout");
 static_assert(sizeof(ClusterCone) == 32, "ClusterCone layout");
-static_assert(sizeof(FrameData) == 64 + 96 + 32 + 48, "FrameData layout");
-static_assert(sizeof(Counters) == 96, "Counters layout");
+static_assert(sizeof(FrameData) == 64 + 96 + 32 + 64, "FrameData layout");
+static_assert(sizeof(Counters) == 112, "Counters layout");
 }  // namespace shaderio
 #endif
 

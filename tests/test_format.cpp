@@ -1,6 +1,7 @@
 // test_format.cpp: .vgeo round trip, and rejection (never a crash) of truncated or damaged files.
 #include <cstring>
 #include <fstream>
+#include <sstream>
 
 #include "test_util.h"
 
@@ -20,6 +21,30 @@ TEST(Format, RoundTripIsByteIdentical) {
   EXPECT_EQ(serializeVgeo(read), bytes);
   EXPECT_EQ(read.clusters.size(), data.clusters.size());
   EXPECT_EQ(read.nodes.size(), data.nodes.size());
+}
+
+TEST(Format, OnlyClosedOutwardMeshesAreFlaggedForBackFaceCulling) {
+  // The renderer drops clusters and triangles that face away on closed instances; a closed mesh turned
+  // inside out (every face reversed) would lose its visible side, so it is not flagged closed.
+  std::ifstream in(test::asset("horned_cube.obj"));
+  std::string line, reversed;
+  while (std::getline(in, line)) {
+    if (line.rfind("f ", 0) == 0) {
+      std::vector<std::string> corners;
+      std::istringstream words(line.substr(2));
+      for (std::string w; words >> w;) corners.push_back(w);
+      line = "f";
+      for (auto c = corners.rbegin(); c != corners.rend(); ++c) line.append(" ").append(*c);
+    }
+    reversed += line + "\n";
+  }
+  std::string path = test::writeFile(test::tempDir(), "inside_out.obj", reversed);
+  VgeoData outward = smallScene(), inward = test::build(path, 1);
+  EXPECT_TRUE(outward.geometries[0].flags & VGEO_GEOMETRY_CLOSED);
+  EXPECT_TRUE(outward.instances[0].flags & VGEO_INSTANCE_CONE_CULL);
+  EXPECT_FALSE(inward.geometries[0].flags & VGEO_GEOMETRY_CLOSED);
+  EXPECT_FALSE(inward.instances[0].flags & VGEO_INSTANCE_CONE_CULL);
+  EXPECT_EQ(inward.clusters.size(), outward.clusters.size());
 }
 
 TEST(Format, TruncatedFilesAreRejected) {

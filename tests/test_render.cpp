@@ -154,7 +154,7 @@ TEST_F(Render, OverflowIsReportedAndTheNextFrameIsComplete) {
   FrameSettings s = settingsFor(*grid, orbit(*grid, 0.3f, 0.5f, 1.2f), 1.0f);
   for (bool tinyQueue : {true, false}) {
     GpuRenderer renderer(*vk, *grid, kW, kH);
-    renderer.setCapacities(tinyQueue ? 4 : 1u << 16, tinyQueue ? 1u << 16 : 8);
+    renderer.setCapacities(tinyQueue ? 4 : 1u << 16, tinyQueue ? 1u << 16 : 8, 1u << 20);
     FrameResult first = renderer.renderFrame(s);
     EXPECT_FALSE(first.complete);
     if (tinyQueue) {
@@ -223,6 +223,71 @@ TEST_F(Render, ConeCullingDropsOnlyClustersThatFaceAway) {
     for (size_t i = 0; i < ma.size(); i++) differ += ma[i] != mb[i];
     EXPECT_EQ(differ, 0u) << "at " << distance << " radii";
   }
+}
+
+// Pixels whose colour differs between two frames.
+size_t differingPixels(const FrameResult& a, const FrameResult& b) {
+  size_t differ = 0;
+  for (size_t i = 0; i + 3 < a.rgba.size(); i += 4) differ += a.rgba[i] != b.rgba[i] || a.rgba[i + 1] != b.rgba[i + 1] || a.rgba[i + 2] != b.rgba[i + 2];
+  return differ;
+}
+
+TEST_F(Render, TriangleCullingKeepsThePicture) {
+  // Frustum and no-pixel-centre culling never change a pixel: without back-face culling (instances not
+  // flagged closed) the image is bit-identical. Back-face culling of closed instances changes only the
+  // pixels where a back face showed through a front one (coarse levels may intersect themselves).
+  RenderScene open = *grid;
+  for (auto& inst : open.data.instances) inst.flags = 0;
+  RenderScene mirrored = *single;  // x -> -x: the winding reverses, the outside stays outside
+  mirrored.data.instances[0].row0 = -mirrored.data.instances[0].row0;
+  mirrored.bounds.x = -mirrored.bounds.x;
+  ASSERT_TRUE(mirrored.data.instances[0].flags & VGEO_INSTANCE_CONE_CULL);
+  struct Case {
+    const RenderScene* scene;
+    bool backFaces;
+  } cases[] = {{&open, false}, {grid, true}, {&mirrored, true}};
+  for (const Case& k : cases) {
+    GpuRenderer renderer(*vk, *k.scene, kW, kH);
+    for (int view = 0; view < 4; view++) {
+      Camera camera = orbit(*k.scene, 0.8f + 1.3f * float(view), 0.5f * std::cos(float(view)), view == 3 ? 0.5f : 1.2f + float(view));
+      for (uint32_t mode : {VGEO_MODE_LIT, VGEO_MODE_TRIANGLE}) {
+        FrameSettings s = settingsFor(*k.scene, camera, 1.0f);
+        s.mode = mode;
+        FrameResult culled = renderer.renderFrame(s);
+        s.triangleCull = false;
+        FrameResult all = renderer.renderFrame(s);
+        ASSERT_TRUE(culled.complete && all.complete);
+        EXPECT_LT(culled.counters.trianglesDrawn, culled.counters.triangles) << "view " << view;
+        size_t covered = 0;
+        for (uint8_t m : coverage(all)) covered += m;
+        size_t differ = differingPixels(culled, all);
+        if (k.backFaces) {
+          // A wrong winding sign would lose the visible side: thousands of pixels.
+          EXPECT_LE(double(differ), std::max(4.0, 0.001 * double(covered))) << "view " << view << " mode " << mode;
+          if (view < 3) {
+            EXPECT_LT(double(culled.counters.trianglesDrawn), 0.6 * culled.counters.triangles) << "view " << view;
+          }
+        } else {
+          EXPECT_EQ(differ, 0u) << "view " << view << " mode " << mode;
+        }
+      }
+    }
+  }
+}
+
+TEST_F(Render, TriangleListOverflowIsReportedAndTheNextFrameIsComplete) {
+  FrameSettings s = settingsFor(*grid, orbit(*grid, 0.3f, 0.5f, 1.2f), 1.0f);
+  GpuRenderer ample(*vk, *grid, kW, kH), tiny(*vk, *grid, kW, kH);
+  tiny.setCapacities(1u << 16, 1u << 16, 16);
+  FrameResult want = ample.renderFrame(s), first = tiny.renderFrame(s);
+  EXPECT_FALSE(first.complete);
+  EXPECT_GT(first.counters.triangleOverflow, 0u);
+  EXPECT_GT(tiny.triangleCapacity(), 16u);
+  FrameResult next = tiny.renderFrame(s);
+  for (int i = 0; i < 4 && !next.complete; i++) next = tiny.renderFrame(s);
+  EXPECT_TRUE(next.complete);
+  EXPECT_EQ(next.counters.trianglesDrawn, want.counters.trianglesDrawn);
+  EXPECT_EQ(differingPixels(next, want), 0u);
 }
 
 }  // namespace

@@ -1,0 +1,215 @@
+// gpu_pipelines.cpp: the GPU objects a frame records into, made once: the offscreen colour and depth
+// targets with their render pass, the descriptor set layout, and every pipeline (the compute passes and
+// the draw, plus the overdraw variant that adds every fragment). The frame itself is gpu_renderer.cpp.
+#include "gpu_renderer.h"
+
+#include "shaders/cull_instances_comp.h"
+#include "shaders/cull_triangles_comp.h"
+#include "shaders/draw_frag.h"
+#include "shaders/draw_vert.h"
+#include "shaders/finalize_comp.h"
+#include "shaders/finalize_triangles_comp.h"
+#include "shaders/prepare_flat_comp.h"
+#include "shaders/prepare_level_comp.h"
+#include "shaders/reset_flat_comp.h"
+#include "shaders/traverse_flat_comp.h"
+#include "shaders/traverse_level_comp.h"
+#include "shaders/traverse_persistent_comp.h"
+
+namespace vgeo {
+void GpuRenderer::createTargets() {
+  VkDevice dev = vk_.device();
+  auto makeImage = [&](VkFormat format, VkImageUsageFlags usage, VkImageAspectFlags aspect, VkImage& image, VkDeviceMemory& memory, VkImageView& view) {
+    VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    info.imageType = VK_IMAGE_TYPE_2D;
+    info.format = format;
+    info.extent = {width_, height_, 1};
+    info.mipLevels = 1;
+    info.arrayLayers = 1;
+    info.samples = VK_SAMPLE_COUNT_1_BIT;
+    info.tiling = VK_IMAGE_TILING_OPTIMAL;
+    info.usage = usage;
+    vkCheck(vkCreateImage(dev, &info, nullptr, &image), "vkCreateImage");
+    VkMemoryRequirements req;
+    vkGetImageMemoryRequirements(dev, image, &req);
+    VkPhysicalDeviceMemoryProperties mem;
+    vkGetPhysicalDeviceMemoryProperties(vk_.physicalDevice(), &mem);
+    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    alloc.allocationSize = req.size;
+    for (uint32_t i = 0; i < mem.memoryTypeCount; i++)
+      if ((req.memoryTypeBits & (1u << i)) && (mem.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) {
+        alloc.memoryTypeIndex = i;
+        break;
+      }
+    vkCheck(vkAllocateMemory(dev, &alloc, nullptr, &memory), "vkAllocateMemory (image)");
+    vkCheck(vkBindImageMemory(dev, image, memory, 0), "vkBindImageMemory");
+    VkImageViewCreateInfo v{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    v.image = image;
+    v.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    v.format = format;
+    v.subresourceRange = {aspect, 0, 1, 0, 1};
+    vkCheck(vkCreateImageView(dev, &v, nullptr, &view), "vkCreateImageView");
+  };
+  makeImage(VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT, color_, colorMemory_, colorView_);
+  makeImage(VK_FORMAT_D32_SFLOAT, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT, depth_, depthMemory_, depthView_);
+
+  VkAttachmentDescription attachments[2] = {};
+  attachments[0].format = VK_FORMAT_R8G8B8A8_UNORM;
+  attachments[0].samples = VK_SAMPLE_COUNT_1_BIT;
+  attachments[0].loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  attachments[0].storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  attachments[0].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+  attachments[0].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  attachments[0].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  attachments[0].finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+  attachments[1] = attachments[0];
+  attachments[1].format = VK_FORMAT_D32_SFLOAT;
+  attachments[1].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  attachments[1].finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+  VkAttachmentReference colorRef{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL}, depthRef{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+  VkSubpassDescription subpass{};
+  subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  subpass.colorAttachmentCount = 1;
+  subpass.pColorAttachments = &colorRef;
+  subpass.pDepthStencilAttachment = &depthRef;
+  // Earlier frames' copy of the colour image and depth use finish before this pass writes them again.
+  VkSubpassDependency deps[2] = {};
+  deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
+  deps[0].dstSubpass = 0;
+  deps[0].srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+  deps[0].srcAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  deps[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT;
+  deps[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
+                          VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT;
+  deps[1].srcSubpass = 0;
+  deps[1].dstSubpass = VK_SUBPASS_EXTERNAL;
+  deps[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+  deps[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+  deps[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
+  deps[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+  VkRenderPassCreateInfo rp{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+  rp.attachmentCount = 2;
+  rp.pAttachments = attachments;
+  rp.subpassCount = 1;
+  rp.pSubpasses = &subpass;
+  rp.dependencyCount = 2;
+  rp.pDependencies = deps;
+  vkCheck(vkCreateRenderPass(dev, &rp, nullptr, &renderPass_), "vkCreateRenderPass");
+  VkImageView views[2] = {colorView_, depthView_};
+  VkFramebufferCreateInfo fb{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
+  fb.renderPass = renderPass_;
+  fb.attachmentCount = 2;
+  fb.pAttachments = views;
+  fb.width = width_;
+  fb.height = height_;
+  fb.layers = 1;
+  vkCheck(vkCreateFramebuffer(dev, &fb, nullptr, &framebuffer_), "vkCreateFramebuffer");
+}
+
+
+void GpuRenderer::createPipelines() {
+  VkDevice dev = vk_.device();
+  VkDescriptorSetLayoutBinding bindings[kRendererBindings];
+  for (uint32_t i = 0; i < kRendererBindings; i++) {
+    bindings[i] = {i, i == 0 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+                   VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+  }
+  VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  setInfo.bindingCount = kRendererBindings;
+  setInfo.pBindings = bindings;
+  vkCheck(vkCreateDescriptorSetLayout(dev, &setInfo, nullptr, &setLayout_), "vkCreateDescriptorSetLayout");
+  VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kRendererBindings - 1}};
+  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  poolInfo.maxSets = 1;
+  poolInfo.poolSizeCount = 2;
+  poolInfo.pPoolSizes = sizes;
+  vkCheck(vkCreateDescriptorPool(dev, &poolInfo, nullptr, &descriptorPool_), "vkCreateDescriptorPool");
+  VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  alloc.descriptorPool = descriptorPool_;
+  alloc.descriptorSetCount = 1;
+  alloc.pSetLayouts = &setLayout_;
+  vkCheck(vkAllocateDescriptorSets(dev, &alloc, &set_), "vkAllocateDescriptorSets");
+  VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  layoutInfo.setLayoutCount = 1;
+  layoutInfo.pSetLayouts = &setLayout_;
+  vkCheck(vkCreatePipelineLayout(dev, &layoutInfo, nullptr, &layout_), "vkCreatePipelineLayout");
+
+  auto compute = [&](const uint32_t* code, size_t bytes) {
+    VkShaderModule module = vk_.createShaderModule(code, bytes);
+    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, module, "main", nullptr};
+    info.layout = layout_;
+    VkPipeline pipeline;
+    vkCheck(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline), "vkCreateComputePipelines");
+    vkDestroyShaderModule(dev, module, nullptr);
+    return pipeline;
+  };
+  cull_ = compute(cull_instances_comp, sizeof(cull_instances_comp));
+  persistent_ = compute(traverse_persistent_comp, sizeof(traverse_persistent_comp));
+  level_ = compute(traverse_level_comp, sizeof(traverse_level_comp));
+  prepareLevel_ = compute(prepare_level_comp, sizeof(prepare_level_comp));
+  flat_ = compute(traverse_flat_comp, sizeof(traverse_flat_comp));
+  prepareFlat_ = compute(prepare_flat_comp, sizeof(prepare_flat_comp));
+  resetFlat_ = compute(reset_flat_comp, sizeof(reset_flat_comp));
+  finalize_ = compute(finalize_comp, sizeof(finalize_comp));
+  cullTriangles_ = compute(cull_triangles_comp, sizeof(cull_triangles_comp));
+  finalizeTriangles_ = compute(finalize_triangles_comp, sizeof(finalize_triangles_comp));
+
+  VkShaderModule vert = vk_.createShaderModule(draw_vert, sizeof(draw_vert));
+  VkShaderModule frag = vk_.createShaderModule(draw_frag, sizeof(draw_frag));
+  VkPipelineShaderStageCreateInfo stages[2] = {
+      {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vert, "main", nullptr},
+      {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, frag, "main", nullptr}};
+  VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+  assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  VkViewport viewport{0, 0, float(width_), float(height_), 0, 1};
+  VkRect2D scissor{{0, 0}, {width_, height_}};
+  VkPipelineViewportStateCreateInfo viewportState{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+  viewportState.viewportCount = 1;
+  viewportState.pViewports = &viewport;
+  viewportState.scissorCount = 1;
+  viewportState.pScissors = &scissor;
+  VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+  raster.polygonMode = VK_POLYGON_MODE_FILL;
+  raster.cullMode = VK_CULL_MODE_NONE;  // open meshes are seen from both sides
+  raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+  raster.lineWidth = 1.0f;
+  VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+  multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+  depth.depthTestEnable = VK_TRUE;
+  depth.depthWriteEnable = VK_TRUE;
+  depth.depthCompareOp = VK_COMPARE_OP_GREATER;  // reversed depth (camera.cpp)
+  VkPipelineColorBlendAttachmentState blend{};
+  blend.colorWriteMask = 0xf;
+  VkPipelineColorBlendStateCreateInfo blendState{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+  blendState.attachmentCount = 1;
+  blendState.pAttachments = &blend;
+  VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+  info.stageCount = 2;
+  info.pStages = stages;
+  info.pVertexInputState = &vertexInput;
+  info.pInputAssemblyState = &assembly;
+  info.pViewportState = &viewportState;
+  info.pRasterizationState = &raster;
+  info.pMultisampleState = &multisample;
+  info.pDepthStencilState = &depth;
+  info.pColorBlendState = &blendState;
+  info.layout = layout_;
+  info.renderPass = renderPass_;
+  vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &draw_), "vkCreateGraphicsPipelines");
+  // Overdraw: every fragment adds, nothing is hidden.
+  depth.depthTestEnable = VK_FALSE;
+  depth.depthWriteEnable = VK_FALSE;
+  blend.blendEnable = VK_TRUE;
+  blend.srcColorBlendFactor = blend.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
+  blend.srcAlphaBlendFactor = blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+  blend.colorBlendOp = blend.alphaBlendOp = VK_BLEND_OP_ADD;
+  vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &drawOverdraw_), "vkCreateGraphicsPipelines");
+  vkDestroyShaderModule(dev, vert, nullptr);
+  vkDestroyShaderModule(dev, frag, nullptr);
+}
+
+
+}  // namespace vgeo

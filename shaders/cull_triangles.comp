@@ -1,0 +1,77 @@
+#version 450
+// cull_triangles.comp: one workgroup a draw-list entry, one thread a triangle of its cluster. A triangle
+// joins the triangle list unless the draw camera cannot see it (Wihlidal, "Optimizing the Graphics
+// Pipeline with Compute", GDC 2016):
+//   - all three corners beyond one plane of the view volume (left, right, top, bottom, near);
+//   - facing away from the eye on a closed, outward-facing instance (the front side hides it);
+//   - its screen bounding box holds no pixel centre, so it makes no fragment.
+// None of these changes the picture: they keep the rasterizer from setting up triangles that make no
+// fragment, which is where the time of a virtual-geometry frame goes once clusters are small on
+// screen (GPU-NOTES 6 and 8). The cut itself (the draw list) is untouched.
+#extension GL_GOOGLE_include_directive : require
+#include "common.glsl"
+layout(local_size_x = VGEO_MAX_CLUSTER_TRIANGLES) in;
+
+shared uint sKept, sBase;
+
+// Rasterizers snap corners to 1/256 pixel or finer; this slack keeps every triangle the snapped
+// corners could make cover a pixel centre.
+const float kPixelSlack = 1.0 / 128.0;
+
+bool noPixelCentre(float lo, float hi) {
+  return ceil(lo - 0.5 - kPixelSlack) > floor(hi - 0.5 + kPixelSlack);
+}
+
+bool visible(Instance inst, Cluster c, uint triangle) {
+  uint packed = clusterTriangles[c.triangleOffset + triangle];
+  vec3 world[3];
+  vec4 clip[3];
+  for (uint k = 0u; k < 3u; k++) {
+    uint vertex = clusterVertices[c.vertexOffset + ((packed >> (8u * k)) & 0xffu)];
+    world[k] = toWorld(inst, vec3(positions[3u * vertex], positions[3u * vertex + 1u], positions[3u * vertex + 2u]));
+    clip[k] = frame.viewProjection * vec4(world[k], 1.0);
+  }
+  // Outside one plane of the view volume (-w <= x, y <= w; the near plane is z <= w; reversed infinite
+  // depth has no far plane). Each is a half-space of clip space, so this holds whatever the signs of w.
+  if (all(greaterThan(vec3(clip[0].x, clip[1].x, clip[2].x), vec3(clip[0].w, clip[1].w, clip[2].w))) ||
+      all(lessThan(vec3(clip[0].x, clip[1].x, clip[2].x), -vec3(clip[0].w, clip[1].w, clip[2].w))) ||
+      all(greaterThan(vec3(clip[0].y, clip[1].y, clip[2].y), vec3(clip[0].w, clip[1].w, clip[2].w))) ||
+      all(lessThan(vec3(clip[0].y, clip[1].y, clip[2].y), -vec3(clip[0].w, clip[1].w, clip[2].w))) ||
+      all(greaterThan(vec3(clip[0].z, clip[1].z, clip[2].z), vec3(clip[0].w, clip[1].w, clip[2].w))))
+    return false;
+  if ((inst.flags & VGEO_INSTANCE_CONE_CULL) != 0u) {
+    // World-space winding; a mirroring transform (negative determinant) reverses it.
+    float det = dot(inst.row0.xyz, cross(inst.row1.xyz, inst.row2.xyz));
+    vec3 n = cross(world[1] - world[0], world[2] - world[0]) * sign(det);
+    if (dot(n, world[0] - frame.drawEye.xyz) > 0.0) return false;
+  }
+  // A corner on or behind the near plane cannot be projected: keep the triangle (the rasterizer clips).
+  if (clip[0].z > clip[0].w || clip[1].z > clip[1].w || clip[2].z > clip[2].w) return true;
+  vec2 viewport = vec2(frame.viewportWidth, frame.viewportHeight);
+  vec2 p0 = (clip[0].xy / clip[0].w * 0.5 + 0.5) * viewport;
+  vec2 p1 = (clip[1].xy / clip[1].w * 0.5 + 0.5) * viewport;
+  vec2 p2 = (clip[2].xy / clip[2].w * 0.5 + 0.5) * viewport;
+  vec2 lo = min(p0, min(p1, p2)), hi = max(p0, max(p1, p2));
+  return !(noPixelCentre(lo.x, hi.x) || noPixelCentre(lo.y, hi.y));
+}
+
+void main() {
+  uint entry = gl_WorkGroupID.y * 65535u + gl_WorkGroupID.x;
+  if (entry >= min(counters.drawCount, frame.drawCapacity)) return;  // the whole workgroup
+  if (gl_LocalInvocationIndex == 0u) sKept = 0u;
+  barrier();
+  uint instance = drawList[2u * entry], cluster = drawList[2u * entry + 1u];
+  Cluster c = clusters[cluster];
+  uint triangle = gl_LocalInvocationIndex;
+  bool keep = triangle < clusterTriangleCount(c.counts) && visible(instances[instance], c, triangle);
+  uint slot = keep ? atomicAdd(sKept, 1u) : 0u;
+  barrier();
+  if (gl_LocalInvocationIndex == 0u) {
+    sBase = sKept == 0u ? 0u : atomicAdd(counters.trianglesDrawn, sKept);
+    uint end = sBase + sKept;
+    if (end > frame.triangleCapacity) atomicAdd(counters.triangleOverflow, min(sKept, end - frame.triangleCapacity));
+  }
+  barrier();
+  slot += sBase;
+  if (keep && slot < frame.triangleCapacity) triangleList[slot] = entry << VGEO_TRIANGLE_BITS | triangle;
+}
