@@ -59,6 +59,7 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
   if (options.subdivisionLevels < 0) throw InputError(path, "--subdiv must be >= 0");
 
   std::vector<PolygonMesh> leaves(scene.meshes.size());
+  std::vector<std::vector<glm::vec3>> leafNormals(scene.meshes.size());  // limit normals of subdivided cages
   std::vector<bool> closed(scene.meshes.size());
   for (size_t m = 0; m < scene.meshes.size(); m++) {
     PolygonMesh& mesh = scene.meshes[m];
@@ -85,6 +86,8 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
       if (options.progress) options.progress(0.0, "subdividing");
       leaves[m] = subdivideCatmullClark(leaves[m]);
     }
+    // A subdivided cage's leaves sample the limit surface: limit positions and normals (limit.cpp).
+    if (options.subdivisionLevels >= 1) moveToLimit(leaves[m], leafNormals[m]);
     fanLargeFaces(leaves[m]);
     stats.leafTriangles += leaves[m].triangleCount();
   }
@@ -98,7 +101,7 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
     if (options.progress)
       bo.progress = [&, m](double f, const char* stage) { options.progress((double(m) + f) / double(leaves.size()), stage); };
     Dag dag = buildDag(leaves[m], bo);
-    appendGeometry(data, dag, leaves[m], closed[m]);
+    appendGeometry(data, dag, leaves[m], leafNormals[m], closed[m]);
     stats.clusters += dag.clusters.size();
     stats.leafClusters += dag.levelClusters[0];
     for (const auto& c : dag.clusters) stats.clusterTriangles += c.indices.size() / 3;

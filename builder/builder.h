@@ -84,6 +84,12 @@ uint64_t subdividedFaceCount(const PolygonMesh& mesh, int levels);
 // boundary vertex with one face is a corner and stays put.
 PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh);
 
+// ---- limit.cpp --------------------------------------------------------------------------------------
+// Moves every vertex of a quad mesh (a Catmull-Clark cage after >= 1 round) to its limit position and
+// sets `normals` to the limit normals (oriented like the faces). Returns false, changing nothing, when
+// some face is not a quad.
+bool moveToLimit(PolygonMesh& mesh, std::vector<glm::vec3>& normals);
+
 // ---- partition.cpp ----------------------------------------------------------------------------------
 // A graph in compressed rows: node i's neighbours are adjacency[offsets[i] .. offsets[i+1]).
 struct Graph {

@@ -37,7 +37,7 @@ glm::vec4 normalCone(const std::vector<uint32_t>& indices, const std::vector<glm
 
 }  // namespace
 
-void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh, bool closed) {
+void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh, const std::vector<glm::vec3>& leafNormals, bool closed) {
   Bvh bvh = buildBvh(dag.groups);
   const uint32_t vertexOffset = uint32_t(file.vertexCount()), clusterOffset = uint32_t(file.clusters.size()),
                  groupOffset = uint32_t(file.groups.size()), nodeOffset = uint32_t(file.nodes.size()),
@@ -53,10 +53,11 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
     }
   if (clusterOrder.size() != dag.clusters.size()) throw std::logic_error("appendGeometry: a cluster belongs to no group");
 
-  // Vertices, with area-weighted normals of the leaf triangles.
-  std::vector<glm::vec3> normals(leafMesh.positions.size(), glm::vec3(0.0f));
+  // Vertices, with the limit normals when given, else area-weighted normals of the leaf triangles.
+  std::vector<glm::vec3> normals(leafNormals);
+  if (normals.size() != leafMesh.positions.size()) normals.assign(leafMesh.positions.size(), glm::vec3(0.0f));
   for (const BuildCluster& c : dag.clusters) {
-    if (c.level != 0) continue;
+    if (c.level != 0 || !leafNormals.empty()) continue;
     for (size_t t = 0; t + 2 < c.indices.size(); t += 3) {
       const glm::vec3 &a = leafMesh.positions[c.indices[t]], &b = leafMesh.positions[c.indices[t + 1]], &d = leafMesh.positions[c.indices[t + 2]];
       glm::vec3 n = glm::cross(b - a, d - a);

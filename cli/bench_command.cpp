@@ -1,5 +1,6 @@
-// bench_command.cpp: `vgeo bench cut`: LOD-cut selection measured across scene sizes, layouts, cameras,
-// tau and traversal modes (and the CPU reference), one JSON record each. bench/plot_cut.py plots them.
+// bench_command.cpp: `vgeo bench`, and `vgeo bench cut`: LOD-cut selection measured across scene sizes,
+// layouts, cameras, tau and traversal modes (and the CPU reference), one JSON record each.
+// bench/plot_cut.py plots them. `bench frame` and `bench build` live in bench_frame.cpp, bench_build.cpp.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
@@ -9,31 +10,11 @@
 #include <sstream>
 
 #include "../renderer/gpu_renderer.h"
+#include "bench.h"
 #include "commands.h"
 
-#ifndef VGEO_COMMIT
-#define VGEO_COMMIT "unknown"
-#endif
-
 namespace vgeo {
-namespace {
 
-template <class T>
-std::vector<T> parseList(const std::string& text) {
-  std::vector<T> out;
-  std::stringstream s(text);
-  std::string item;
-  while (std::getline(s, item, ',')) {
-    std::stringstream v(item);
-    T x;
-    if (!(v >> x)) throw std::runtime_error("bad list item '" + item + "'");
-    out.push_back(x);
-  }
-  return out;
-}
-
-// The camera path: far away (the whole scene small), over its near corner, low inside it, a close-up of
-// one instance, and inside looking out of it.
 std::vector<std::pair<std::string, Camera>> cameraPath(const RenderScene& scene, float fov) {
   glm::vec3 c(scene.bounds), lo = scene.boxMin, hi = scene.boxMax;
   float r = scene.bounds.w, wide = std::max(hi.x - lo.x, hi.z - lo.z);
@@ -67,6 +48,12 @@ double median(std::vector<double> v) {
   return v.empty() ? 0.0 : v[v.size() / 2];
 }
 
+bool parseSize(const std::string& text, uint32_t& width, uint32_t& height) {
+  return std::sscanf(text.c_str(), "%ux%u", &width, &height) == 2 && width > 0 && height > 0 && width <= 16384 && height <= 16384;
+}
+
+namespace {
+
 struct BenchArgs {
   std::string input, output, sizes = "1,10,100,1000,10000,100000", layouts = "grid,scatter", taus = "1,4",
                              traversals = "persistent,levels,flat,cpu", size = "1920x1080", device;
@@ -76,7 +63,7 @@ struct BenchArgs {
 
 void runBenchCut(const BenchArgs& a) {
   uint32_t width = 0, height = 0;
-  if (std::sscanf(a.size.c_str(), "%ux%u", &width, &height) != 2 || !width || !height) throw std::runtime_error("--size: expected WxH");
+  if (!parseSize(a.size, width, height)) throw std::runtime_error("--size: expected WxH");
   RenderScene base = loadRenderScene(a.input);
   VulkanContext vk({a.device, false});
   nlohmann::ordered_json records = nlohmann::json::array();
@@ -171,6 +158,8 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
     runBenchCut(*a);
     exitCode = 0;
   });
+  addBenchFrameCommand(*bench, exitCode);
+  addBenchBuildCommand(*bench, exitCode);
 }
 
 }  // namespace vgeo

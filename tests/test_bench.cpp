@@ -1,5 +1,5 @@
 // test_bench.cpp: `vgeo bench cut` writes one record per (layout, size, camera, tau, mode), and every mode
-// agrees on the clusters drawn.
+// agrees on the clusters drawn; `bench frame` and `bench build` write their records.
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -27,6 +27,49 @@ TEST(BenchCut, WritesRecordsOnWhichAllModesAgree) {
   }
   for (const auto& [group, counts] : drawn)
     for (uint64_t c : counts) EXPECT_EQ(c, counts[0]) << group;
+}
+
+TEST(BenchFrame, SplitsTheFrameWithAndWithoutTriangleCulling) {
+  std::string dir = test::tempDir();
+  writeVgeo(test::build(test::asset("horned_cube.obj"), 2), dir + "/h.vgeo");
+  test::RunResult r = test::runVgeo("bench frame " + dir + "/h.vgeo -o " + dir + "/frame.json --grids 1,3 --sizes 160x120 --cameras corner,far --frames 1");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream in(dir + "/frame.json");
+  nlohmann::json records = nlohmann::json::parse(in);
+  ASSERT_EQ(records.size(), 2u * 2u * 2u);  // grids x cameras x triangle culling on/off
+  for (size_t i = 0; i < records.size(); i += 2) {
+    const auto &on = records[i], &off = records[i + 1];
+    for (const char* key : {"instance_cull_ms", "traversal_ms", "triangle_cull_ms", "draw_ms", "frame_ms", "pixels_covered", "device", "commit"})
+      EXPECT_TRUE(on.contains(key)) << key;
+    EXPECT_TRUE(on["triangle_cull"].get<bool>());
+    EXPECT_FALSE(off["triangle_cull"].get<bool>());
+    EXPECT_EQ(on["visible_clusters"], off["visible_clusters"]);
+    EXPECT_EQ(off["triangles_drawn"], off["triangles"]);
+    EXPECT_LT(on["triangles_drawn"].get<uint64_t>(), on["triangles"].get<uint64_t>());
+    EXPECT_GT(on["pixels_covered"].get<uint64_t>(), 0u);
+  }
+  EXPECT_EQ(records[4]["instances"].get<int>(), 9);
+}
+
+TEST(BenchBuild, OneRecordPerMeshSubdivAndThreads) {
+  std::string dir = test::tempDir();
+  test::RunResult r = test::runVgeo("bench build " + test::asset("horned_cube.obj") + " -o " + dir + "/build.json --subdiv 0,1 --threads 1,2 --repeat 1");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::ifstream in(dir + "/build.json");
+  nlohmann::json records = nlohmann::json::parse(in);
+  ASSERT_EQ(records.size(), 4u);
+  for (const auto& rec : records) {
+    for (const char* key : {"dag_seconds", "total_seconds", "mtri_per_second", "peak_rss_bytes", "levels", "root_clusters", "relaxed_groups"})
+      EXPECT_TRUE(rec.contains(key)) << key;
+    EXPECT_GT(rec["peak_rss_bytes"].get<uint64_t>(), 0u);
+    EXPECT_LE(rec["dag_seconds"].get<double>(), rec["total_seconds"].get<double>());
+  }
+  // Every face of a level-1 cage is a quad: 684 triangles (342 quads) -> 4 x 342 quads = 2,736 triangles.
+  EXPECT_EQ(records[2]["leaf_triangles"].get<int>(), 2736);
+  EXPECT_EQ(records[0]["clusters"], records[1]["clusters"]);  // the DAG does not depend on the thread count
+  test::RunResult bad = test::runVgeo("bench build " + dir + "/missing.obj -o " + dir + "/b.json");
+  EXPECT_NE(bad.exitCode, 0);
+  EXPECT_NE(bad.output.find("missing.obj: "), std::string::npos) << bad.output;
 }
 
 }  // namespace

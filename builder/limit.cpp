@@ -1,0 +1,113 @@
+// limit.cpp: moves the vertices of a Catmull-Clark mesh (every face a quad: a cage after >= 1 round of
+// subdivide.cpp) onto the limit surface and gives them its normals, so the leaf triangles sample the true
+// surface. Closed-form masks (Halstead, Kass & DeRose, "Efficient, fair interpolation using Catmull-Clark
+// surfaces", SIGGRAPH 1993):
+// - interior vertex v of valence n, edge neighbours e_j and face-opposite vertices f_j in rotation order:
+//     limit = (n^2 v + 4 sum e_j + sum f_j) / (n (n + 5)),
+//     tangents sum_j a cos(2 pi j / n) e_j + (cos(2 pi j / n) + cos(2 pi (j+1) / n)) f_j and the same with
+//     sin, a = 1 + cos(2 pi / n) + cos(pi / n) sqrt(2 (9 + cos(2 pi / n))); the normal is their cross;
+// - boundary vertex (the boundary is a cubic B-spline, subdivide.cpp): limit = (a + 4 v + b) / 6 over its
+//   boundary neighbours, tangent b - a; across the boundary, at a regular boundary vertex (two faces), the
+//   B-spline patch's derivative ((d_a + 4 c + d_b) - (a + 4 v + b)) / 6 over the interior row (c, d_a, d_b);
+//   at other valences the mean interior neighbour minus v (an approximation);
+// - corner (one face): stays, normal of its face's corner.
+#include <algorithm>
+#include <cmath>
+
+#include "builder.h"
+
+namespace vgeo {
+
+bool moveToLimit(PolygonMesh& mesh, std::vector<glm::vec3>& normals) {
+  const size_t vertexCount = mesh.positions.size(), faceCount = mesh.faceCount();
+  for (size_t f = 0; f < faceCount; f++)
+    if (mesh.faceSize(f) != 4) return false;
+  // Each corner's successor around its vertex is the corner whose `next` is this corner's `prev`, and
+  // its predecessor the corner whose `prev` is this corner's `next`: two sorted tables find them.
+  const size_t corners = mesh.faceVertices.size();
+  auto vertexAt = [&](size_t c, int k) { return mesh.faceVertices[c - c % 4 + (c % 4 + size_t(k)) % 4]; };
+  std::vector<std::pair<uint64_t, uint32_t>> byNext(corners), byPrev(corners);
+  for (size_t c = 0; c < corners; c++) {
+    byNext[c] = {uint64_t(vertexAt(c, 0)) << 32 | vertexAt(c, 1), uint32_t(c)};
+    byPrev[c] = {uint64_t(vertexAt(c, 0)) << 32 | vertexAt(c, 3), uint32_t(c)};
+  }
+  std::sort(byNext.begin(), byNext.end());
+  std::sort(byPrev.begin(), byPrev.end());
+  auto find = [](const std::vector<std::pair<uint64_t, uint32_t>>& table, uint32_t v, uint32_t w) -> uint32_t {
+    uint64_t key = uint64_t(v) << 32 | w;
+    auto it = std::lower_bound(table.begin(), table.end(), std::make_pair(key, 0u));
+    return it != table.end() && it->first == key ? it->second : UINT32_MAX;
+  };
+  // Walks start at a corner without predecessor where there is one (a boundary vertex), so they see
+  // every face.
+  std::vector<uint32_t> firstCorner(vertexCount, UINT32_MAX);
+  for (size_t c = 0; c < corners; c++) {
+    uint32_t v = vertexAt(c, 0);
+    if (firstCorner[v] == UINT32_MAX || find(byPrev, v, vertexAt(c, 1)) == UINT32_MAX) firstCorner[v] = uint32_t(c);
+  }
+
+  std::vector<glm::vec3> limit(mesh.positions);
+  normals.assign(vertexCount, glm::vec3(0.0f, 0.0f, 1.0f));
+  std::vector<uint32_t> ring;
+  for (uint32_t v = 0; v < vertexCount; v++) {
+    if (firstCorner[v] == UINT32_MAX) continue;  // unused vertex
+    // The corners around v in rotation order; closed when the walk returns to the start.
+    ring.clear();
+    uint32_t c = firstCorner[v];
+    bool closed = false;
+    while (ring.size() <= 64) {
+      ring.push_back(c);
+      c = find(byNext, v, vertexAt(c, 3));
+      if (c == UINT32_MAX) break;
+      if (c == ring.front()) {
+        closed = true;
+        break;
+      }
+    }
+    glm::dvec3 p(mesh.positions[v]), faceNormal(0.0);
+    for (uint32_t r : ring) {
+      glm::dvec3 a(mesh.positions[vertexAt(r, 1)]), b(mesh.positions[vertexAt(r, 3)]);
+      faceNormal += glm::cross(a - p, b - p);
+    }
+    glm::dvec3 t1(0.0), t2(0.0);
+    const size_t n = ring.size();
+    if (closed) {
+      const double pi = 3.14159265358979323846, nn = double(n);
+      double a = 1.0 + std::cos(2.0 * pi / nn) + std::cos(pi / nn) * std::sqrt(2.0 * (9.0 + std::cos(2.0 * pi / nn)));
+      glm::dvec3 sumE(0.0), sumF(0.0);
+      for (size_t j = 0; j < n; j++) {
+        glm::dvec3 e(mesh.positions[vertexAt(ring[j], 1)]), f(mesh.positions[vertexAt(ring[j], 2)]);
+        sumE += e;
+        sumF += f;
+        double c0 = std::cos(2.0 * pi * double(j) / nn), c1 = std::cos(2.0 * pi * double(j + 1) / nn);
+        double s0 = std::sin(2.0 * pi * double(j) / nn), s1 = std::sin(2.0 * pi * double(j + 1) / nn);
+        t1 += a * c0 * e + (c0 + c1) * f;
+        t2 += a * s0 * e + (s0 + s1) * f;
+      }
+      limit[v] = glm::vec3((nn * nn * p + 4.0 * sumE + sumF) / (nn * (nn + 5.0)));
+    } else if (n >= 2) {
+      // Boundary: ring[0]'s next and ring[n-1]'s prev are the boundary neighbours.
+      glm::dvec3 a(mesh.positions[vertexAt(ring[0], 1)]), b(mesh.positions[vertexAt(ring[n - 1], 3)]);
+      glm::dvec3 curve = (a + 4.0 * p + b) / 6.0;
+      limit[v] = glm::vec3(curve);
+      t1 = b - a;
+      if (n == 2) {
+        glm::dvec3 c(mesh.positions[vertexAt(ring[0], 3)]), da(mesh.positions[vertexAt(ring[0], 2)]), db(mesh.positions[vertexAt(ring[1], 2)]);
+        t2 = (da + 4.0 * c + db) / 6.0 - curve;
+      } else {
+        glm::dvec3 inner(0.0);
+        for (size_t j = 1; j < n; j++) inner += glm::dvec3(mesh.positions[vertexAt(ring[j], 1)]);
+        t2 = inner / double(n - 1) - p;
+      }
+    }  // corner: stays, normal of its face
+    glm::dvec3 normal = glm::cross(t1, t2);
+    if (!(glm::length(normal) > 1e-12 * glm::dot(t1, t1) + 1e-30)) normal = faceNormal;
+    if (glm::dot(normal, faceNormal) < 0.0) normal = -normal;
+    double len = glm::length(normal);
+    if (len > 0.0) normals[v] = glm::vec3(normal / len);
+  }
+  mesh.positions = std::move(limit);
+  return true;
+}
+
+}  // namespace vgeo

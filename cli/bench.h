@@ -1,0 +1,49 @@
+// bench.h: what the `vgeo bench` subcommands share (bench_command.cpp, bench_frame.cpp, bench_build.cpp).
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "../renderer/camera.h"
+#include "../renderer/scene.h"
+
+#ifndef VGEO_COMMIT
+#define VGEO_COMMIT "unknown"
+#endif
+
+namespace vgeo {
+
+// "a,b,c" -> {a, b, c}; throws std::runtime_error on an item that does not parse as T.
+template <class T>
+std::vector<T> parseList(const std::string& text) {
+  std::vector<T> out;
+  std::stringstream s(text);
+  std::string item;
+  while (std::getline(s, item, ',')) {
+    std::stringstream v(item);
+    T x;
+    if (!(v >> x)) throw std::runtime_error("bad list item '" + item + "'");
+    out.push_back(x);
+  }
+  return out;
+}
+
+// The benchmark camera path over a scene, by name: far (the whole scene small), corner (the default
+// camera: over its near corner), inside (low inside it), closeup (one instance), away (inside, looking
+// out of it).
+std::vector<std::pair<std::string, Camera>> cameraPath(const RenderScene& scene, float fov);
+
+// Median of v (the upper one of an even count); 0 for none.
+double median(std::vector<double> v);
+
+// "WxH" with both in 1..16384.
+bool parseSize(const std::string& text, uint32_t& width, uint32_t& height);
+
+void addBenchFrameCommand(CLI::App& bench, int& exitCode);
+void addBenchBuildCommand(CLI::App& bench, int& exitCode);
+
+}  // namespace vgeo

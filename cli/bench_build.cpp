@@ -1,0 +1,135 @@
+// bench_build.cpp: `vgeo bench build`: the builder's time (DAG only and total), throughput, peak memory
+// and DAG quality for each mesh x --subdiv x --threads. Every build runs in a fresh child process
+// (this executable's `build --stats`), so peak memory is that build's own; the median of --repeat runs
+// is reported (2-core machines are noisy: compare ratios within one run).
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "../common/input_error.h"
+#include "bench.h"
+
+extern char** environ;
+
+namespace vgeo {
+namespace {
+
+struct BuildBenchArgs {
+  std::vector<std::string> inputs;
+  std::string output, subdivs = "0,1,2,3", threads = "1,2";
+  uint32_t repeat = 3;
+};
+
+std::string cpuName() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  return "unknown";
+}
+
+// Runs `vgeo build` in a child process and returns its --stats JSON.
+nlohmann::json buildInChild(const std::string& input, int subdiv, int threads, const std::string& dir) {
+  // This very executable, even if its file was replaced since it started.
+  std::string self = "/proc/self/exe";
+  std::string out = dir + "/bench.vgeo", stats = dir + "/bench.json";
+  std::vector<std::string> args = {self, "build", input, "-o", out, "--subdiv", std::to_string(subdiv), "--threads", std::to_string(threads),
+                                   "--stats", stats, "-q"};
+  std::vector<char*> argv;
+  for (auto& s : args) argv.push_back(s.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t quiet;  // its summary lines off stdout; errors still reach stderr
+  posix_spawn_file_actions_init(&quiet);
+  posix_spawn_file_actions_addopen(&quiet, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  pid_t pid;
+  int started = posix_spawn(&pid, self.c_str(), &quiet, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&quiet);
+  if (started != 0) throw std::runtime_error("cannot start " + self);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw std::runtime_error(input + ": build --subdiv " + std::to_string(subdiv) + " failed (see above)");
+  std::ifstream in(stats);
+  return nlohmann::json::parse(in);
+}
+
+void runBenchBuild(const BuildBenchArgs& a) {
+  std::string dir = (std::filesystem::temp_directory_path() / ("vgeo_bench_build_" + std::to_string(getpid()))).string();
+  std::filesystem::create_directories(dir);
+  nlohmann::ordered_json records = nlohmann::json::array();
+  for (const std::string& input : a.inputs) {
+    if (!std::filesystem::exists(input)) throw InputError(input, "no such file");
+    for (int subdiv : parseList<int>(a.subdivs))
+      for (int threads : parseList<int>(a.threads)) {
+        std::vector<nlohmann::json> runs;
+        std::vector<double> dag, total;
+        for (uint32_t i = 0; i < std::max(a.repeat, 1u); i++) {
+          runs.push_back(buildInChild(input, subdiv, threads, dir));
+          dag.push_back(runs.back()["build_seconds"].get<double>());
+          total.push_back(runs.back()["total_seconds"].get<double>());
+        }
+        const nlohmann::json& s = runs.front();  // the output is identical for every run
+        double leaves = s["leaf_triangles"].get<double>();
+        uint64_t peak = 0;
+        for (const auto& r : runs) peak = std::max(peak, r["peak_rss_bytes"].get<uint64_t>());
+        std::vector<double> levelTriangles = s["level_triangles"].get<std::vector<double>>();
+        double worstRatio = 0.0;
+        for (size_t l = 0; l + 1 < levelTriangles.size(); l++) worstRatio = std::max(worstRatio, levelTriangles[l + 1] / levelTriangles[l]);
+        nlohmann::ordered_json r;
+        r["mesh"] = std::filesystem::path(input).filename().string();
+        r["subdiv"] = subdiv;
+        r["threads"] = threads;
+        r["input_triangles"] = s["input_triangles"];
+        r["leaf_triangles"] = s["leaf_triangles"];
+        r["dag_seconds"] = median(dag);
+        r["total_seconds"] = median(total);
+        r["dag_seconds_all"] = dag;
+        r["mtri_per_second"] = leaves / 1e6 / median(dag);
+        r["peak_rss_bytes"] = peak;
+        r["bytes_per_triangle"] = double(peak) / leaves;
+        r["levels"] = s["levels"];
+        r["clusters"] = s["clusters"];
+        r["root_clusters"] = s["root_clusters"];
+        r["avg_leaf_cluster_triangles"] = s["avg_leaf_cluster_triangles"];
+        r["avg_cluster_triangles"] = s["avg_cluster_triangles"];
+        r["worst_level_ratio"] = worstRatio;
+        r["relaxed_groups"] = s["relaxed_groups"];
+        r["stuck_groups"] = s["stuck_groups"];
+        r["cpu"] = cpuName();
+        r["cores"] = std::thread::hardware_concurrency();
+        r["repeat"] = runs.size();
+        r["commit"] = VGEO_COMMIT;
+        std::fprintf(stderr, "%-16s subdiv %d threads %d: %9.0f leaf triangles, DAG %.3f s (%.2f M/s), total %.3f s, %.0f B/triangle, %d levels, %d roots\n",
+                     r["mesh"].get<std::string>().c_str(), subdiv, threads, leaves, median(dag), r["mtri_per_second"].get<double>(), median(total),
+                     r["bytes_per_triangle"].get<double>(), s["levels"].get<int>(), s["root_clusters"].get<int>());
+        records.push_back(r);
+      }
+  }
+  std::filesystem::remove_all(dir);
+  std::ofstream out(a.output);
+  out << records.dump(1) << "\n";
+  if (!out) throw std::runtime_error(a.output + ": cannot write");
+}
+
+}  // namespace
+
+void addBenchBuildCommand(CLI::App& bench, int& exitCode) {
+  auto* cmd = bench.add_subcommand("build", "Builder time, throughput, peak memory and DAG quality per mesh, --subdiv and --threads");
+  auto a = std::make_shared<BuildBenchArgs>();
+  cmd->add_option("inputs", a->inputs, "Meshes (any format `vgeo build` reads)")->required();
+  cmd->add_option("-o,--output", a->output, "JSON records")->required();
+  cmd->add_option("--subdiv", a->subdivs, "Catmull-Clark levels")->capture_default_str();
+  cmd->add_option("--threads", a->threads, "Thread counts")->capture_default_str();
+  cmd->add_option("--repeat", a->repeat, "Builds per record (median)")->capture_default_str();
+  cmd->callback([a, &exitCode] {
+    runBenchBuild(*a);
+    exitCode = 0;
+  });
+}
+
+}  // namespace vgeo

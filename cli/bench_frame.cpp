@@ -1,0 +1,117 @@
+// bench_frame.cpp: `vgeo bench frame`: whole frames split into their passes (instance culling,
+// traversal, triangle culling, draw), for a scene at several grid sizes, viewport sizes and cameras,
+// with triangle culling on and off. Medians over frames after warm-up; one JSON record each.
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "../renderer/gpu_renderer.h"
+#include "bench.h"
+
+namespace vgeo {
+namespace {
+
+struct FrameBenchArgs {
+  std::string input, output, grids = "32", sizes = "1280x720,1920x1080", cameras = "corner,inside", traversal = "persistent", device;
+  uint32_t frames = 5;
+  float fov = 60.0f, tau = 1.0f;
+};
+
+void runBenchFrame(const FrameBenchArgs& a) {
+  Traversal traversal = a.traversal == "levels" ? Traversal::Levels : a.traversal == "flat" ? Traversal::Flat : Traversal::Persistent;
+  if (a.traversal != "persistent" && a.traversal != "levels" && a.traversal != "flat")
+    throw std::runtime_error("--traversal: expected persistent, levels or flat");
+  VulkanContext vk({a.device, false});
+  nlohmann::ordered_json records = nlohmann::json::array();
+  for (uint32_t grid : parseList<uint32_t>(a.grids)) {
+    RenderScene scene = loadRenderScene(a.input, grid);
+    for (const std::string& size : parseList<std::string>(a.sizes)) {
+      uint32_t width, height;
+      if (!parseSize(size, width, height)) throw std::runtime_error("--sizes: expected WxH items");
+      GpuRenderer renderer(vk, scene, width, height);
+      auto path = cameraPath(scene, a.fov);
+      for (const std::string& cameraName : parseList<std::string>(a.cameras)) {
+        auto camera = std::find_if(path.begin(), path.end(), [&](const auto& p) { return p.first == cameraName; });
+        if (camera == path.end()) throw std::runtime_error("--cameras: unknown camera '" + cameraName + "'");
+        for (bool triangleCull : {true, false}) {
+          FrameSettings s;
+          s.drawView = s.cullView = makeView(camera->second, width, height, scene.bounds);
+          s.tau = a.tau;
+          s.traversal = traversal;
+          s.triangleCull = triangleCull;
+          // Warm-up and growth after an overflow; this frame's image gives the pixels covered.
+          FrameResult f = renderer.renderFrame(s);
+          while (!f.complete) f = renderer.renderFrame(s);
+          uint64_t covered = 0;
+          for (size_t i = 0; i + 3 < f.rgba.size(); i += 4) covered += f.rgba[i] > 12 || f.rgba[i + 1] > 12 || f.rgba[i + 2] > 16;
+          s.readImage = false;  // measured frames: no image copy
+          std::vector<double> cull, traverse, triangles, draw, frame;
+          for (uint32_t i = 0; i < a.frames; i++) {
+            f = renderer.renderFrame(s);
+            cull.push_back(f.instanceCullMs);
+            traverse.push_back(f.traversalMs);
+            triangles.push_back(f.triangleCullMs);
+            draw.push_back(f.drawMs);
+            frame.push_back(f.frameMs);
+          }
+          const auto& c = f.counters;
+          uint32_t drawn = triangleCull ? std::min(c.trianglesDrawn, renderer.triangleCapacity()) : c.triangles;
+          nlohmann::ordered_json r;
+          r["input"] = a.input;
+          r["instances"] = scene.data.instances.size();
+          r["virtual_triangles"] = scene.virtualTriangles;
+          r["width"] = width;
+          r["height"] = height;
+          r["camera"] = cameraName;
+          r["tau"] = a.tau;
+          r["traversal"] = a.traversal;
+          r["triangle_cull"] = triangleCull;
+          r["instance_cull_ms"] = median(cull);
+          r["traversal_ms"] = median(traverse);
+          r["triangle_cull_ms"] = median(triangles);
+          r["draw_ms"] = median(draw);
+          r["frame_ms"] = median(frame);
+          r["timing"] = f.timing;
+          r["instances_visible"] = c.visibleInstances;
+          r["visible_clusters"] = std::min(c.drawCount, renderer.drawCapacity());
+          r["triangles"] = c.triangles;
+          r["triangles_drawn"] = drawn;
+          r["pixels_covered"] = covered;
+          r["triangles_per_covered_pixel"] = covered ? double(drawn) / double(covered) : 0.0;
+          r["frames"] = a.frames;
+          r["device"] = vk.deviceName();
+          r["driver"] = vk.driverName();
+          r["commit"] = VGEO_COMMIT;
+          std::fprintf(stderr, "%7zu instances %4ux%-4u %-7s triangle cull %-3s: cull %.3f  traversal %.3f  triangles %.3f  draw %.3f  frame %.3f ms\n",
+                       scene.data.instances.size(), width, height, cameraName.c_str(), triangleCull ? "on" : "off", median(cull),
+                       median(traverse), median(triangles), median(draw), median(frame));
+          records.push_back(r);
+        }
+      }
+    }
+  }
+  std::ofstream out(a.output);
+  out << records.dump(1) << "\n";
+  if (!out) throw std::runtime_error(a.output + ": cannot write");
+}
+
+}  // namespace
+
+void addBenchFrameCommand(CLI::App& bench, int& exitCode) {
+  auto* cmd = bench.add_subcommand("frame", "Whole frames split into instance culling, traversal, triangle culling and draw");
+  auto a = std::make_shared<FrameBenchArgs>();
+  cmd->add_option("input", a->input, ".vgeo or scene file")->required();
+  cmd->add_option("-o,--output", a->output, "JSON records")->required();
+  cmd->add_option("--grids", a->grids, "N for N x N copies of the input (the main job's default scene is 32)")->capture_default_str();
+  cmd->add_option("--sizes", a->sizes, "Viewports WxH")->capture_default_str();
+  cmd->add_option("--cameras", a->cameras, "far, corner (the default camera), inside, closeup, away")->capture_default_str();
+  cmd->add_option("--traversal", a->traversal, "persistent, levels or flat")->capture_default_str();
+  cmd->add_option("--tau", a->tau, "Allowed projected error, pixels")->capture_default_str();
+  cmd->add_option("--frames", a->frames, "Measured frames per record (median)")->capture_default_str();
+  cmd->add_option("--device", a->device, "Use the first Vulkan device whose name contains this");
+  cmd->callback([a, &exitCode] {
+    runBenchFrame(*a);
+    exitCode = 0;
+  });
+}
+
+}  // namespace vgeo
