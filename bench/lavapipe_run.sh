@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The lavapipe / CPU benchmarks of bench/README.md, on this machine: `vgeo bench build` (shipped cage and
 # CGAL's armadillo and bunny00, --subdiv 0..3, 1 and 2 threads) and `vgeo bench frame` (the main job's
-# default scene at 1280x720 and 1920x1080). Writes bench/results/<kind>-lavapipe-<date>/.
+# default scene at 1280x720 and 1920x1080). Writes bench/results/build-<date>/ and frame-lavapipe-<date>/.
 # Usage: bash bench/lavapipe_run.sh [build|frame]...   (both when none is named)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -13,6 +13,7 @@ trap 'rm -rf "$work"' EXIT
 tar xzf /usr/share/doc/libcgal-dev/data.tar.gz -C "$work" data/meshes/armadillo.off data/meshes/bunny00.off
 for what in ${@:-build frame}; do
   out=bench/results/$what-lavapipe-$day
+  [ "$what" = build ] && out=bench/results/build-$day  # CPU only
   mkdir -p "$out"
   case $what in
     build)
