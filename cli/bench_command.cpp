@@ -72,13 +72,19 @@ void runBenchCut(const BenchArgs& a) {
     for (uint32_t count : parseList<uint32_t>(a.sizes)) {
       RenderScene scene = makeBenchScene(base, count, layout == "scatter", 7);
       GpuRenderer renderer(vk, scene, width, height);
-      for (const auto& [cameraName, camera] : cameraPath(scene, a.fov))
-        for (float tau : parseList<float>(a.taus))
-          for (const std::string& mode : parseList<std::string>(a.traversals)) {
+      // The CPU reference last, after the GPU records (its seconds of host work let the GPU clock down).
+      std::vector<std::string> modes = parseList<std::string>(a.traversals);
+      std::stable_partition(modes.begin(), modes.end(), [](const std::string& m) { return m != "cpu"; });
+      for (const std::string& mode : modes)
+        for (const auto& [cameraName, camera] : cameraPath(scene, a.fov))
+          for (float tau : parseList<float>(a.taus)) {
             FrameSettings s;
             s.drawView = s.cullView = makeView(camera, width, height, scene.bounds);
             s.tau = tau;
-            s.draw = false;
+            // On a GPU every frame also draws (not timed: the traversal has its own timestamps): selection
+            // alone left an H100 idle most of the time, its clock dropped within ~100 ms, and the same
+            // traversal then measured 2-4x slower. lavapipe has no clocks to keep up: selection only.
+            s.draw = !vk.isLavapipe();
             s.readImage = false;
             nlohmann::ordered_json r;
             r["layout"] = layout;
@@ -104,6 +110,10 @@ void runBenchCut(const BenchArgs& a) {
               if (mode != "persistent" && mode != "levels" && mode != "flat") throw std::runtime_error("--traversals: unknown '" + mode + "'");
               FrameResult f = renderer.renderFrame(s);  // warm-up (and growth after an overflow)
               while (!f.complete) f = renderer.renderFrame(s);
+              // At least 3 more frames and 100 ms: a GPU that idled (during the CPU reference or the scene's
+              // upload) measured up to 4x slow in its first frames back (H100).
+              auto warm = std::chrono::steady_clock::now();
+              for (int i = 0; i < 3 || std::chrono::steady_clock::now() - warm < std::chrono::milliseconds(100); i++) renderer.renderFrame(s);
               std::vector<double> ms;
               for (uint32_t i = 0; i < a.frames; i++) {
                 f = renderer.renderFrame(s);
