@@ -60,6 +60,7 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
 
   std::vector<PolygonMesh> leaves(scene.meshes.size());
   std::vector<std::vector<glm::vec3>> leafNormals(scene.meshes.size());  // limit normals of subdivided cages
+  std::vector<std::vector<glm::vec3>> controlPoints(scene.meshes.size());  // and their control points
   std::vector<bool> closed(scene.meshes.size());
   for (size_t m = 0; m < scene.meshes.size(); m++) {
     PolygonMesh& mesh = scene.meshes[m];
@@ -87,7 +88,10 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
       leaves[m] = subdivideCatmullClark(leaves[m]);
     }
     // A subdivided cage's leaves sample the limit surface: limit positions and normals (limit.cpp).
-    if (options.subdivisionLevels >= 1) moveToLimit(leaves[m], leafNormals[m]);
+    if (options.subdivisionLevels >= 1) {
+      controlPoints[m] = leaves[m].positions;
+      moveToLimit(leaves[m], leafNormals[m]);
+    }
     fanLargeFaces(leaves[m]);
     stats.leafTriangles += leaves[m].triangleCount();
   }
@@ -101,7 +105,7 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
     if (options.progress)
       bo.progress = [&, m](double f, const char* stage) { options.progress((double(m) + f) / double(leaves.size()), stage); };
     Dag dag = buildDag(leaves[m], bo);
-    appendGeometry(data, dag, leaves[m], leafNormals[m], closed[m]);
+    appendGeometry(data, dag, leaves[m], leafNormals[m], controlPoints[m], closed[m]);
     stats.clusters += dag.clusters.size();
     stats.leafClusters += dag.levelClusters[0];
     for (const auto& c : dag.clusters) stats.clusterTriangles += c.indices.size() / 3;

@@ -84,11 +84,52 @@ uint64_t subdividedFaceCount(const PolygonMesh& mesh, int levels);
 // boundary vertex with one face is a corner and stays put.
 PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh);
 
+// ---- quad_corners.cpp -------------------------------------------------------------------------------
+// The corners of a quad mesh (every face 4 corners; corner c is faceVertices[c]) grouped by vertex.
+class QuadCorners {
+ public:
+  explicit QuadCorners(const PolygonMesh& mesh);
+  // Vertex k places after corner c in its face (k = 1: next, 2: opposite, 3: previous).
+  uint32_t at(uint32_t c, uint32_t k) const { return vertices_[c - c % 4 + (c % 4 + k) % 4]; }
+  // The corner of vertex a whose next (withNext) or previous (withPrev) vertex is b; UINT32_MAX if none.
+  uint32_t withNext(uint32_t a, uint32_t b) const;
+  uint32_t withPrev(uint32_t a, uint32_t b) const;
+  // The corners of vertex v: corners()[offsets()[v] .. offsets()[v + 1]).
+  const std::vector<uint32_t>& corners() const { return corners_; }
+  const std::vector<uint32_t>& offsets() const { return offsets_; }
+
+ private:
+  const std::vector<uint32_t>& vertices_;
+  std::vector<uint32_t> offsets_, corners_;
+};
+
 // ---- limit.cpp --------------------------------------------------------------------------------------
 // Moves every vertex of a quad mesh (a Catmull-Clark cage after >= 1 round) to its limit position and
 // sets `normals` to the limit normals (oriented like the faces). Returns false, changing nothing, when
 // some face is not a quad.
 bool moveToLimit(PolygonMesh& mesh, std::vector<glm::vec3>& normals);
+
+// ---- patch.cpp --------------------------------------------------------------------------------------
+// One B-spline patch per face of a quad mesh (a cage after >= 1 round): the 16 control points (vertex
+// indices of `mesh`) of each face whose four corners are interior and of valence 4; points[0] ==
+// VGEO_NO_PATCH for the others, and for every face when some face is not a quad.
+std::vector<shaderio::BsplinePatch> bsplinePatches(const PolygonMesh& mesh);
+// The same, one face at a time (no array of every face's patch).
+class BsplinePatcher {
+ public:
+  explicit BsplinePatcher(const PolygonMesh& mesh);
+  shaderio::BsplinePatch patch(uint32_t face) const;
+
+ private:
+  bool regular(uint32_t v) const;
+  const PolygonMesh& mesh_;
+  QuadCorners corners_;
+  bool quads_ = false;
+};
+// The uniform bicubic B-spline surface of 16 control points (row by row) at (u, v) in [0, 1]^2, u along
+// a row (from points[5] to points[6]), v down the columns (from points[5] to points[9]); optionally
+// its partial derivatives.
+glm::dvec3 evaluateBspline(const glm::vec3 points[16], double u, double v, glm::dvec3* du = nullptr, glm::dvec3* dv = nullptr);
 
 // ---- partition.cpp ----------------------------------------------------------------------------------
 // A graph in compressed rows: node i's neighbours are adjacency[offsets[i] .. offsets[i+1]).

@@ -8,6 +8,8 @@
 #include "builder.h"
 #include "layout.h"
 
+#include <memory>
+
 namespace vgeo {
 namespace {
 
@@ -37,7 +39,8 @@ glm::vec4 normalCone(const std::vector<uint32_t>& indices, const std::vector<glm
 
 }  // namespace
 
-void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh, const std::vector<glm::vec3>& leafNormals, bool closed) {
+void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh, const std::vector<glm::vec3>& leafNormals,
+                    const std::vector<glm::vec3>& controlPoints, bool closed) {
   Bvh bvh = buildBvh(dag.groups);
   const uint32_t vertexOffset = uint32_t(file.vertexCount()), clusterOffset = uint32_t(file.clusters.size()),
                  groupOffset = uint32_t(file.groups.size()), nodeOffset = uint32_t(file.nodes.size()),
@@ -52,6 +55,21 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
       clusterOrder.push_back(m);
     }
   if (clusterOrder.size() != dag.clusters.size()) throw std::logic_error("appendGeometry: a cluster belongs to no group");
+  // Exact room up front: growth by doubling left up to twice the largest arrays allocated at once, the
+  // build's peak memory.
+  size_t triangles = 0, faces = 0;
+  for (const BuildCluster& c : dag.clusters) triangles += c.indices.size() / 3, faces += c.cageFaces.size();
+  const size_t vertices = leafMesh.positions.size();
+  file.positions.reserve(file.positions.size() + 3 * vertices);
+  file.controlPoints.reserve(file.controlPoints.size() + 3 * vertices);
+  file.normals.reserve(file.normals.size() + vertices);
+  file.clusterTriangles.reserve(file.clusterTriangles.size() + triangles);
+  file.clusterVertices.reserve(file.clusterVertices.size() + 3 * triangles / 2 + 2 * dag.clusters.size());
+  file.clusters.reserve(file.clusters.size() + dag.clusters.size());
+  file.clusterCones.reserve(file.clusterCones.size() + dag.clusters.size());
+  file.cageFaces.reserve(file.cageFaces.size() + faces);
+  file.patches.reserve(file.patches.size() + faces);
+  file.cageFaceVertices.reserve(file.cageFaceVertices.size() + 4 * faces);
 
   // Vertices, with the limit normals when given, else area-weighted normals of the leaf triangles.
   std::vector<glm::vec3> normals(leafNormals);
@@ -66,10 +84,15 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
   }
   for (size_t v = 0; v < leafMesh.positions.size(); v++) {
     file.positions.insert(file.positions.end(), {leafMesh.positions[v].x, leafMesh.positions[v].y, leafMesh.positions[v].z});
+    const glm::vec3& control = controlPoints.empty() ? leafMesh.positions[v] : controlPoints[v];
+    file.controlPoints.insert(file.controlPoints.end(), {control.x, control.y, control.z});
     float len = glm::length(normals[v]);
     file.normals.push_back(encodeNormal(len > 0.0f ? normals[v] / len : glm::vec3(0.0f, 0.0f, 1.0f)));
   }
 
+  // One patch per face of the cage, from its topology; the control points are the cage before the limit.
+  std::unique_ptr<BsplinePatcher> patcher;
+  if (!controlPoints.empty()) patcher = std::make_unique<BsplinePatcher>(leafMesh);
   std::vector<uint32_t> local;
   std::vector<uint32_t> slotOf(leafMesh.positions.size(), UINT32_MAX);  // vertex -> local index, reset per cluster
   for (uint32_t id : clusterOrder) {
@@ -105,6 +128,12 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
       firstTriangle += face.vertexCount - 2;
       for (uint32_t k = 0; k < face.vertexCount; k++) file.cageFaceVertices.push_back(vertexOffset + leafMesh.face(f)[k]);
       file.cageFaces.push_back(face);
+      shaderio::BsplinePatch patch{};
+      patch.points[0] = VGEO_NO_PATCH;
+      if (patcher) patch = patcher->patch(f);
+      if (patch.points[0] != VGEO_NO_PATCH)
+        for (uint32_t& p : patch.points) p += vertexOffset;
+      file.patches.push_back(patch);
     }
     shaderio::ClusterCone cone;
     cone.cone = normalCone(c.indices, leafMesh.positions);

@@ -22,29 +22,17 @@ bool moveToLimit(PolygonMesh& mesh, std::vector<glm::vec3>& normals) {
   const size_t vertexCount = mesh.positions.size(), faceCount = mesh.faceCount();
   for (size_t f = 0; f < faceCount; f++)
     if (mesh.faceSize(f) != 4) return false;
-  // Each corner's successor around its vertex is the corner whose `next` is this corner's `prev`, and
-  // its predecessor the corner whose `prev` is this corner's `next`: two sorted tables find them.
-  const size_t corners = mesh.faceVertices.size();
-  auto vertexAt = [&](size_t c, int k) { return mesh.faceVertices[c - c % 4 + (c % 4 + size_t(k)) % 4]; };
-  std::vector<std::pair<uint64_t, uint32_t>> byNext(corners), byPrev(corners);
-  for (size_t c = 0; c < corners; c++) {
-    byNext[c] = {uint64_t(vertexAt(c, 0)) << 32 | vertexAt(c, 1), uint32_t(c)};
-    byPrev[c] = {uint64_t(vertexAt(c, 0)) << 32 | vertexAt(c, 3), uint32_t(c)};
-  }
-  std::sort(byNext.begin(), byNext.end());
-  std::sort(byPrev.begin(), byPrev.end());
-  auto find = [](const std::vector<std::pair<uint64_t, uint32_t>>& table, uint32_t v, uint32_t w) -> uint32_t {
-    uint64_t key = uint64_t(v) << 32 | w;
-    auto it = std::lower_bound(table.begin(), table.end(), std::make_pair(key, 0u));
-    return it != table.end() && it->first == key ? it->second : UINT32_MAX;
-  };
-  // Walks start at a corner without predecessor where there is one (a boundary vertex), so they see
+  // Around a vertex, a corner's successor is the corner whose next vertex is this corner's previous;
+  // walks start at a corner without predecessor where there is one (a boundary vertex), so they see
   // every face.
+  const QuadCorners q(mesh);
+  auto vertexAt = [&](uint32_t c, uint32_t k) { return q.at(c, k); };
   std::vector<uint32_t> firstCorner(vertexCount, UINT32_MAX);
-  for (size_t c = 0; c < corners; c++) {
-    uint32_t v = vertexAt(c, 0);
-    if (firstCorner[v] == UINT32_MAX || find(byPrev, v, vertexAt(c, 1)) == UINT32_MAX) firstCorner[v] = uint32_t(c);
-  }
+  for (uint32_t v = 0; v < vertexCount; v++)
+    for (uint32_t i = q.offsets()[v]; i < q.offsets()[v + 1]; i++) {
+      uint32_t c = q.corners()[i];
+      if (firstCorner[v] == UINT32_MAX || q.withPrev(v, q.at(c, 1)) == UINT32_MAX) firstCorner[v] = c;
+    }
 
   std::vector<glm::vec3> limit(mesh.positions);
   normals.assign(vertexCount, glm::vec3(0.0f, 0.0f, 1.0f));
@@ -57,7 +45,7 @@ bool moveToLimit(PolygonMesh& mesh, std::vector<glm::vec3>& normals) {
     bool closed = false;
     while (ring.size() <= 64) {
       ring.push_back(c);
-      c = find(byNext, v, vertexAt(c, 3));
+      c = q.withNext(v, vertexAt(c, 3));
       if (c == UINT32_MAX) break;
       if (c == ring.front()) {
         closed = true;

@@ -72,6 +72,8 @@ std::vector<SectionView> views(const VgeoData& d) {
       {d.cageFaces.data(), sizeof(shaderio::CageFace), d.cageFaces.size()},
       {d.cageFaceVertices.data(), 4, d.cageFaceVertices.size()},
       {d.clusterCones.data(), sizeof(shaderio::ClusterCone), d.clusterCones.size()},
+      {d.controlPoints.data(), 12, d.controlPoints.size() / 3},
+      {d.patches.data(), sizeof(shaderio::BsplinePatch), d.patches.size()},
   };
 }
 
@@ -79,29 +81,34 @@ std::vector<SectionView> views(const VgeoData& d) {
 
 const char* sectionName(Section s) {
   static const char* names[] = {"?", "geometries", "instances", "positions", "normals", "clusters", "cluster vertices",
-                                "cluster triangles", "groups", "BVH nodes", "cage faces", "cage face vertices", "cluster cones"};
+                                "cluster triangles", "groups", "BVH nodes", "cage faces", "cage face vertices", "cluster cones", "control points", "patches"};
   uint32_t i = uint32_t(s);
   return i < uint32_t(Section::Count_) ? names[i] : "?";
 }
 
-std::vector<uint8_t> serializeVgeo(const VgeoData& data) {
+namespace {
+
+// Emits the file's bytes in order through sink(pointer, size): header and table, then each section at its
+// 16-byte aligned offset. Checksums are taken from the data in place, so writing a file needs no copy
+// of it (a copy was the largest allocation of a big build).
+template <class Sink>
+void emitVgeo(const VgeoData& data, Sink&& sink) {
   auto sections = views(data);
   const uint32_t count = uint32_t(sections.size());
-  std::vector<uint8_t> out(kHeaderSize + kEntrySize * count, 0);
   std::vector<Entry> entries(count);
+  uint64_t position = kHeaderSize + uint64_t(kEntrySize) * count;
   for (uint32_t i = 0; i < count; i++) {
-    while (out.size() % 16) out.push_back(0);
+    position = (position + 15) / 16 * 16;
     size_t bytes = size_t(sections[i].count) * sections[i].elementSize;
-    entries[i] = {i + 1, sections[i].elementSize, out.size(), sections[i].count, 0};
-    const uint8_t* src = static_cast<const uint8_t*>(sections[i].data);
-    if (bytes) out.insert(out.end(), src, src + bytes);
-    entries[i].checksum = checksum(out.data() + entries[i].offset, bytes);
+    entries[i] = {i + 1, sections[i].elementSize, position, sections[i].count,
+                  checksum(static_cast<const uint8_t*>(sections[i].data), bytes)};
+    position += bytes;
   }
   std::vector<uint8_t> head;
   head.insert(head.end(), kMagic, kMagic + 8);
   put(head, kVgeoVersion);
   put(head, count);
-  put(head, uint64_t(out.size()));
+  put(head, position);
   put(head, uint64_t(0));
   for (const Entry& e : entries) {
     put(head, e.id);
@@ -112,7 +119,22 @@ std::vector<uint8_t> serializeVgeo(const VgeoData& data) {
   }
   uint64_t tableSum = checksum(head.data(), head.size());
   std::memcpy(head.data() + 24, &tableSum, 8);
-  std::memcpy(out.data(), head.data(), head.size());
+  sink(head.data(), head.size());
+  uint64_t written = head.size();
+  static const uint8_t zeros[16] = {};
+  for (uint32_t i = 0; i < count; i++) {
+    if (entries[i].offset > written) sink(zeros, size_t(entries[i].offset - written));
+    size_t bytes = size_t(sections[i].count) * sections[i].elementSize;
+    if (bytes) sink(static_cast<const uint8_t*>(sections[i].data), bytes);
+    written = entries[i].offset + bytes;
+  }
+}
+
+}  // namespace
+
+std::vector<uint8_t> serializeVgeo(const VgeoData& data) {
+  std::vector<uint8_t> out;
+  emitVgeo(data, [&](const uint8_t* p, size_t n) { out.insert(out.end(), p, p + n); });
   return out;
 }
 
@@ -166,6 +188,8 @@ VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name) {
       case Section::CageFaces: copy(data.cageFaces, e.count); break;
       case Section::CageFaceVertices: copy(data.cageFaceVertices, e.count); break;
       case Section::ClusterCones: copy(data.clusterCones, e.count); break;
+      case Section::ControlPoints: copy(data.controlPoints, e.count * 3); break;
+      case Section::Patches: copy(data.patches, e.count); break;
       default: break;
     }
   }
@@ -246,16 +270,24 @@ VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name) {
   }
   for (uint32_t v : data.cageFaceVertices)
     if (v >= vertices) fail("a cage face uses a vertex out of range");
+  if (data.controlPoints.size() != data.positions.size()) fail("control points and vertices differ in count");
+  for (float x : data.controlPoints)
+    if (!std::isfinite(x)) fail("a control point is not finite");
+  if (data.patches.size() != data.cageFaces.size()) fail("patches and cage faces differ in count");
+  for (size_t i = 0; i < data.patches.size(); i++) {
+    if (data.patches[i].points[0] == VGEO_NO_PATCH) continue;
+    for (uint32_t v : data.patches[i].points)
+      if (v >= vertices) fail("patch " + std::to_string(i) + " uses a control point out of range");
+  }
   return data;
 }
 
 void writeVgeo(const VgeoData& data, const std::string& path) {
-  std::vector<uint8_t> bytes = serializeVgeo(data);
   std::string temp = path + ".tmp." + std::to_string(::getpid());
   {
     std::ofstream out(temp, std::ios::binary | std::ios::trunc);
     if (!out) throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
-    out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    emitVgeo(data, [&](const uint8_t* p, size_t n) { out.write(reinterpret_cast<const char*>(p), std::streamsize(n)); });
     out.close();
     if (!out) {
       std::remove(temp.c_str());

@@ -18,7 +18,7 @@
 
 namespace vgeo {
 
-constexpr uint32_t kVgeoVersion = 2;  // 2: cluster normal cones
+constexpr uint32_t kVgeoVersion = 3;  // 2: cluster normal cones; 3: leaves on the limit surface, control points, patches
 
 enum class Section : uint32_t {
   Geometries = 1,
@@ -33,6 +33,8 @@ enum class Section : uint32_t {
   CageFaces,
   CageFaceVertices,  // absolute vertex index per cage face corner
   ClusterCones,      // shaderio::ClusterCone per cluster (normal cone and tight sphere)
+  ControlPoints,     // float x, y, z per vertex: the level-N cage's control points (positions are limit points)
+  Patches,           // shaderio::BsplinePatch per cage face
   Count_
 };
 const char* sectionName(Section s);
@@ -50,6 +52,8 @@ struct VgeoData {
   std::vector<shaderio::CageFace> cageFaces;
   std::vector<uint32_t> cageFaceVertices;
   std::vector<shaderio::ClusterCone> clusterCones;
+  std::vector<float> controlPoints;  // as positions
+  std::vector<shaderio::BsplinePatch> patches;
 
   size_t vertexCount() const { return positions.size() / 3; }
   glm::vec3 position(uint32_t v) const { return {positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]}; }

@@ -69,6 +69,12 @@ uint32_t appendVgeo(VgeoData& dst, const VgeoData& src) {
   }
   for (uint32_t v : src.cageFaceVertices) dst.cageFaceVertices.push_back(v + vertexBase);
   dst.clusterCones.insert(dst.clusterCones.end(), src.clusterCones.begin(), src.clusterCones.end());
+  dst.controlPoints.insert(dst.controlPoints.end(), src.controlPoints.begin(), src.controlPoints.end());
+  for (auto p : src.patches) {
+    if (p.points[0] != VGEO_NO_PATCH)
+      for (uint32_t& v : p.points) v += vertexBase;
+    dst.patches.push_back(p);
+  }
   return geometryBase;
 }
 

@@ -22,6 +22,7 @@ using glm::dot;
 #define VGEO_BVH_WIDTH 8
 #define VGEO_NODE_LEAF_BIT 0x80000000u
 #define VGEO_NO_GROUP 0xffffffffu
+#define VGEO_NO_PATCH 0xffffffffu
 
 // One cluster: <= 128 triangles over <= 256 vertices (8-bit local indices).
 // self   = (error, sphere) of the group that produced it (leaves: error 0, the cluster's own sphere);
@@ -115,6 +116,14 @@ struct CageFace {
   uint vertexCount;
   uint leafCluster;     // the leaf cluster holding the face
   uint firstTriangle;   // its first triangle within that cluster (a face's triangles are consecutive)
+};
+
+// The bicubic uniform B-spline patch of a regular face of the level-N cage (its four corners interior, of
+// valence 4): absolute indices of its 4 x 4 control points (the control-point section), row by row;
+// the face is the middle cell, corners points[5], [6], [10], [9] in the face's order. A face next to
+// an extraordinary vertex or a boundary has points[0] == VGEO_INVALID (no patch yet). One per cage face.
+struct BsplinePatch {
+  uint points[16];
 };
 
 // ---- Renderer -------------------------------------------------------------------------------------
@@ -244,6 +253,7 @@ static_assert(sizeof(Geometry) == 64, "Geometry layout");
 static_assert(sizeof(Instance) == 64, "Instance layout");
 static_assert(sizeof(CageFace) == 16, "CageFace layout");
 static_assert(sizeof(ClusterCone) == 32, "ClusterCone layout");
+static_assert(sizeof(BsplinePatch) == 64, "BsplinePatch layout");
 static_assert(sizeof(FrameData) == 64 + 96 + 32 + 64, "FrameData layout");
 static_assert(sizeof(Counters) == 112, "Counters layout");
 }  // namespace shaderio

@@ -33,8 +33,9 @@ TEST(Format, OnlyClosedOutwardMeshesAreFlaggedForBackFaceCulling) {
       std::vector<std::string> corners;
       std::istringstream words(line.substr(2));
       for (std::string w; words >> w;) corners.push_back(w);
-      line = "f";
-      for (auto c = corners.rbegin(); c != corners.rend(); ++c) line.append(" ").append(*c);
+      std::string face("f");
+      for (auto c = corners.rbegin(); c != corners.rend(); ++c) face.append(" ").append(*c);
+      line.swap(face);
     }
     reversed += line + "\n";
   }
@@ -91,14 +92,19 @@ TEST(Format, AFlippedByteInAnySectionIsRejectedByName) {
 }
 
 TEST(Format, OtherVersionsGetAClearError) {
-  std::vector<uint8_t> bytes = serializeVgeo(smallScene());
-  uint32_t version = kVgeoVersion + 1;
-  std::memcpy(bytes.data() + 8, &version, 4);
-  try {
-    parseVgeo(bytes.data(), bytes.size(), "new.vgeo");
-    FAIL();
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("unsupported .vgeo version"), std::string::npos) << e.what();
+  // Newer files, and older ones (version 2 had no control points or patches), name the version and
+  // say what to do.
+  for (uint32_t version : {kVgeoVersion + 1, 2u}) {
+    std::vector<uint8_t> bytes = serializeVgeo(smallScene());
+    std::memcpy(bytes.data() + 8, &version, 4);
+    try {
+      parseVgeo(bytes.data(), bytes.size(), "other.vgeo");
+      FAIL();
+    } catch (const InputError& e) {
+      std::string what = e.what();
+      EXPECT_EQ(what.rfind("other.vgeo: unsupported .vgeo version " + std::to_string(version), 0), 0u) << what;
+      EXPECT_NE(what.find("rebuild the file"), std::string::npos) << what;
+    }
   }
 }
 
