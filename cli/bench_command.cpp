@@ -110,10 +110,11 @@ void runBenchCut(const BenchArgs& a) {
               if (mode != "persistent" && mode != "levels" && mode != "flat") throw std::runtime_error("--traversals: unknown '" + mode + "'");
               FrameResult f = renderer.renderFrame(s);  // warm-up (and growth after an overflow)
               while (!f.complete) f = renderer.renderFrame(s);
-              // At least 3 more frames and 100 ms: a GPU that idled (during the CPU reference or the scene's
-              // upload) measured up to 4x slow in its first frames back (H100).
+              // At least 3 more frames and 300 ms: a GPU that idled (during the CPU reference or the scene's
+              // upload) measured up to 4x slow in its first frames back, and 100 ms of frames were not
+              // always enough to bring its clock back (H100).
               auto warm = std::chrono::steady_clock::now();
-              for (int i = 0; i < 3 || std::chrono::steady_clock::now() - warm < std::chrono::milliseconds(100); i++) renderer.renderFrame(s);
+              for (int i = 0; i < 3 || std::chrono::steady_clock::now() - warm < std::chrono::milliseconds(300); i++) renderer.renderFrame(s);
               std::vector<double> ms;
               for (uint32_t i = 0; i < a.frames; i++) {
                 f = renderer.renderFrame(s);
