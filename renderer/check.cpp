@@ -105,6 +105,33 @@ struct GeometryChecker {
     return true;
   }
 
+  // Leaves on the limit surface: a regular face's B-spline patch passes through its four corners' leaf
+  // vertices (the limit mask of a valence-4 vertex is the patch's corner: weights 1 4 1 x 1 4 1 / 36).
+  bool patches(uint64_t& regular) {
+    static const int kCorner[4][2] = {{1, 1}, {1, 2}, {2, 2}, {2, 1}};
+    const double tolerance = 1e-5 * std::max(double(g.boundsSphere.w), 1e-6);
+    for (uint32_t f = g.cageFaceOffset; f < g.cageFaceOffset + g.cageFaceCount; f++) {
+      const shaderio::BsplinePatch& patch = d.patches[f];
+      if (patch.points[0] == VGEO_NO_PATCH) continue;
+      const shaderio::CageFace& face = d.cageFaces[f];
+      if (face.vertexCount != 4) return fail("cage face " + std::to_string(f) + " has a patch but " + std::to_string(face.vertexCount) + " corners");
+      regular++;
+      for (int k = 0; k < 4; k++) {
+        glm::dvec3 limit(0.0);
+        for (int dr = -1; dr <= 1; dr++)
+          for (int dc = -1; dc <= 1; dc++) {
+            uint32_t v = patch.points[4 * (kCorner[k][0] + dr) + kCorner[k][1] + dc];
+            double w = (dr == 0 ? 4.0 : 1.0) * (dc == 0 ? 4.0 : 1.0) / 36.0;
+            limit += w * glm::dvec3(d.controlPoints[3 * v], d.controlPoints[3 * v + 1], d.controlPoints[3 * v + 2]);
+          }
+        glm::vec3 corner = d.position(d.cageFaceVertices[face.firstVertex + uint32_t(k)]);
+        if (glm::distance(limit, glm::dvec3(corner)) > tolerance)
+          return fail("cage face " + std::to_string(f) + ": its patch's corner " + str(glm::vec3(limit)) + " is not its leaf vertex " + str(corner));
+      }
+    }
+    return true;
+  }
+
   // Vertex ids matched by position for closed geometries (copies at one position count as one vertex).
   // Open ones are matched by id: their repair may have split non-manifold edges into coincident
   // borders, which matched by position would look like overlaps already at the finest level.
@@ -211,7 +238,7 @@ CheckResult checkVgeo(const VgeoData& data, const CheckOptions& options) {
     maxLevels = std::max(maxLevels, g.levelCount);
     for (uint32_t i = g.clusterOffset; i < g.clusterOffset + g.clusterCount; i++)
       if (std::isinf(data.clusters[i].parentError)) result.rootClusters++;
-    if (checker.structure()) {
+    if (checker.structure() && checker.patches(result.regularPatches)) {
       checker.prepare();
       glm::vec3 center(g.boundsSphere);
       float radius = std::max(g.boundsSphere.w, 1e-6f);
@@ -238,7 +265,8 @@ CheckResult checkVgeo(const VgeoData& data, const CheckOptions& options) {
   }
   std::ostringstream s;
   s << "ok: " << data.geometries.size() << " geometries, " << data.instances.size() << " instances, " << totalClusters << " clusters, "
-    << totalGroups << " groups, up to " << maxLevels << " levels, " << result.rootClusters << " root clusters; " << checkedCuts
+    << totalGroups << " groups, up to " << maxLevels << " levels, " << result.rootClusters << " root clusters, " << result.regularPatches
+    << " patches through their leaf vertices; " << checkedCuts
     << " random cuts watertight and covering every leaf once (mean " << (checkedCuts ? result.cutClusters / checkedCuts : 0)
     << " clusters, " << (checkedCuts ? result.cutTriangles / checkedCuts : 0) << " triangles)";
   result.summary = s.str();

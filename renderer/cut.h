@@ -33,10 +33,12 @@ struct CheckResult {
   uint64_t cutClusters = 0;    // summed over the checked cuts
   uint64_t cutTriangles = 0;
   uint32_t rootClusters = 0;
+  uint64_t regularPatches = 0;  // B-spline patches checked to pass through their leaf vertices
 };
 // Checks invariants 1-5 of DESIGN.md on every geometry: cluster sizes; shared self per producing group
 // and shared parent per group; monotonic errors and enclosing spheres (self spheres also enclose their
-// cluster's vertices); the BVH encloses and bounds its groups and reaches each once; and for `cuts`
+// cluster's vertices); the BVH encloses and bounds its groups and reaches each once; every B-spline patch
+// passes through its face's leaf vertices (leaves on the limit surface); and for `cuts`
 // random views that the cut is watertight (closed geometries: every edge, matched by position, has
 // exactly two triangles of opposite orientation; open ones: no edge, matched by vertex id, is covered
 // twice the same way) and

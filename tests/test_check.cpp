@@ -17,6 +17,19 @@ void expectViolation(const VgeoData& data, const std::string& what) {
 
 TEST(Check, PassesOnAGoodFile) { EXPECT_TRUE(checkVgeo(scene(), {16, 1}).ok); }
 
+TEST(Check, FindsALeafVertexOffItsPatch) {
+  VgeoData data = scene();
+  CheckResult good = checkVgeo(data, {1, 1});
+  ASSERT_TRUE(good.ok) << good.firstViolation;
+  EXPECT_GT(good.regularPatches, data.patches.size() / 2);  // a subdivided quad torus: nearly all regular
+  for (const auto& patch : data.patches)
+    if (patch.points[0] != VGEO_NO_PATCH) {
+      data.controlPoints[3 * patch.points[5]] += 0.01f * data.geometries[0].boundsSphere.w;
+      break;
+    }
+  expectViolation(data, "is not its leaf vertex");
+}
+
 TEST(Check, FindsAReversedTriangle) {
   VgeoData data = scene();
   uint32_t& tri = data.clusterTriangles[data.clusters[data.geometries[0].clusterOffset].triangleOffset];
