@@ -26,7 +26,6 @@ bool moveToLimit(PolygonMesh& mesh, std::vector<glm::vec3>& normals) {
   // walks start at a corner without predecessor where there is one (a boundary vertex), so they see
   // every face.
   const QuadCorners q(mesh);
-  auto vertexAt = [&](uint32_t c, uint32_t k) { return q.at(c, k); };
   std::vector<uint32_t> firstCorner(vertexCount, UINT32_MAX);
   for (uint32_t v = 0; v < vertexCount; v++)
     for (uint32_t i = q.offsets()[v]; i < q.offsets()[v + 1]; i++) {
@@ -45,7 +44,7 @@ bool moveToLimit(PolygonMesh& mesh, std::vector<glm::vec3>& normals) {
     bool closed = false;
     while (ring.size() <= 64) {
       ring.push_back(c);
-      c = q.withNext(v, vertexAt(c, 3));
+      c = q.withNext(v, q.at(c, 3));
       if (c == UINT32_MAX) break;
       if (c == ring.front()) {
         closed = true;
@@ -54,7 +53,7 @@ bool moveToLimit(PolygonMesh& mesh, std::vector<glm::vec3>& normals) {
     }
     glm::dvec3 p(mesh.positions[v]), faceNormal(0.0);
     for (uint32_t r : ring) {
-      glm::dvec3 a(mesh.positions[vertexAt(r, 1)]), b(mesh.positions[vertexAt(r, 3)]);
+      glm::dvec3 a(mesh.positions[q.at(r, 1)]), b(mesh.positions[q.at(r, 3)]);
       faceNormal += glm::cross(a - p, b - p);
     }
     glm::dvec3 t1(0.0), t2(0.0);
@@ -64,7 +63,7 @@ bool moveToLimit(PolygonMesh& mesh, std::vector<glm::vec3>& normals) {
       double a = 1.0 + std::cos(2.0 * pi / nn) + std::cos(pi / nn) * std::sqrt(2.0 * (9.0 + std::cos(2.0 * pi / nn)));
       glm::dvec3 sumE(0.0), sumF(0.0);
       for (size_t j = 0; j < n; j++) {
-        glm::dvec3 e(mesh.positions[vertexAt(ring[j], 1)]), f(mesh.positions[vertexAt(ring[j], 2)]);
+        glm::dvec3 e(mesh.positions[q.at(ring[j], 1)]), f(mesh.positions[q.at(ring[j], 2)]);
         sumE += e;
         sumF += f;
         double c0 = std::cos(2.0 * pi * double(j) / nn), c1 = std::cos(2.0 * pi * double(j + 1) / nn);
@@ -75,16 +74,16 @@ bool moveToLimit(PolygonMesh& mesh, std::vector<glm::vec3>& normals) {
       limit[v] = glm::vec3((nn * nn * p + 4.0 * sumE + sumF) / (nn * (nn + 5.0)));
     } else if (n >= 2) {
       // Boundary: ring[0]'s next and ring[n-1]'s prev are the boundary neighbours.
-      glm::dvec3 a(mesh.positions[vertexAt(ring[0], 1)]), b(mesh.positions[vertexAt(ring[n - 1], 3)]);
+      glm::dvec3 a(mesh.positions[q.at(ring[0], 1)]), b(mesh.positions[q.at(ring[n - 1], 3)]);
       glm::dvec3 curve = (a + 4.0 * p + b) / 6.0;
       limit[v] = glm::vec3(curve);
       t1 = b - a;
       if (n == 2) {
-        glm::dvec3 c(mesh.positions[vertexAt(ring[0], 3)]), da(mesh.positions[vertexAt(ring[0], 2)]), db(mesh.positions[vertexAt(ring[1], 2)]);
+        glm::dvec3 c(mesh.positions[q.at(ring[0], 3)]), da(mesh.positions[q.at(ring[0], 2)]), db(mesh.positions[q.at(ring[1], 2)]);
         t2 = (da + 4.0 * c + db) / 6.0 - curve;
       } else {
         glm::dvec3 inner(0.0);
-        for (size_t j = 1; j < n; j++) inner += glm::dvec3(mesh.positions[vertexAt(ring[j], 1)]);
+        for (size_t j = 1; j < n; j++) inner += glm::dvec3(mesh.positions[q.at(ring[j], 1)]);
         t2 = inner / double(n - 1) - p;
       }
     }  // corner: stays, normal of its face

@@ -2,7 +2,7 @@
 // extraordinary vertices and boundaries the limit surface of Catmull-Clark is exactly the uniform bicubic
 // B-spline surface of the control mesh (Catmull & Clark 1978), so a face whose four corners are interior
 // and of valence 4 is the patch of its 4 x 4 neighbourhood of control points. The neighbourhood is found
-// by walking across the face's edges and around its corners in directed-edge tables; faces next to an
+// by walking across the face's edges and around its corners (quad_corners.cpp); faces next to an
 // extraordinary vertex or a boundary get no patch here (feature-adaptive isolation or Gregory patches
 // would cover them; not yet).
 #include <algorithm>

@@ -40,9 +40,6 @@ std::vector<std::pair<std::string, Camera>> cameraPath(const RenderScene& scene,
 // Median of v (the upper one of an even count); 0 for none.
 double median(std::vector<double> v);
 
-// "WxH" with both in 1..16384.
-bool parseSize(const std::string& text, uint32_t& width, uint32_t& height);
-
 void addBenchFrameCommand(CLI::App& bench, int& exitCode);
 void addBenchBuildCommand(CLI::App& bench, int& exitCode);
 

@@ -14,6 +14,7 @@
 
 #include "../common/input_error.h"
 #include "bench.h"
+#include "commands.h"
 
 extern char** environ;
 
@@ -111,9 +112,7 @@ void runBenchBuild(const BuildBenchArgs& a) {
       }
   }
   std::filesystem::remove_all(dir);
-  std::ofstream out(a.output);
-  out << records.dump(1) << "\n";
-  if (!out) throw std::runtime_error(a.output + ": cannot write");
+  writeJson(a.output, records, 1);
 }
 
 }  // namespace

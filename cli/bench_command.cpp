@@ -5,9 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "../renderer/gpu_renderer.h"
 #include "bench.h"
@@ -46,10 +44,6 @@ std::vector<std::pair<std::string, Camera>> cameraPath(const RenderScene& scene,
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
-bool parseSize(const std::string& text, uint32_t& width, uint32_t& height) {
-  return std::sscanf(text.c_str(), "%ux%u", &width, &height) == 2 && width > 0 && height > 0 && width <= 16384 && height <= 16384;
 }
 
 namespace {
@@ -142,9 +136,7 @@ void runBenchCut(const BenchArgs& a) {
           }
     }
   }
-  std::ofstream out(a.output);
-  out << records.dump(1) << "\n";
-  if (!out) throw std::runtime_error(a.output + ": cannot write");
+  writeJson(a.output, records, 1);
 }
 
 }  // namespace

@@ -1,11 +1,12 @@
 // bench_frame.cpp: `vgeo bench frame`: whole frames split into their passes (instance culling,
 // traversal, triangle culling, draw), for a scene at several grid sizes, viewport sizes and cameras,
 // with triangle culling on and off. Medians over frames after warm-up; one JSON record each.
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "../renderer/gpu_renderer.h"
+#include "../renderer/image.h"
 #include "bench.h"
+#include "commands.h"
 
 namespace vgeo {
 namespace {
@@ -41,8 +42,7 @@ void runBenchFrame(const FrameBenchArgs& a) {
           // Warm-up and growth after an overflow; this frame's image gives the pixels covered.
           FrameResult f = renderer.renderFrame(s);
           while (!f.complete) f = renderer.renderFrame(s);
-          uint64_t covered = 0;
-          for (size_t i = 0; i + 3 < f.rgba.size(); i += 4) covered += f.rgba[i] > 12 || f.rgba[i + 1] > 12 || f.rgba[i + 2] > 16;
+          const uint64_t covered = coveredPixels(f.rgba);
           s.readImage = false;  // measured frames: no image copy
           std::vector<double> cull, traverse, triangles, draw, frame;
           for (uint32_t i = 0; i < a.frames; i++) {
@@ -54,7 +54,7 @@ void runBenchFrame(const FrameBenchArgs& a) {
             frame.push_back(f.frameMs);
           }
           const auto& c = f.counters;
-          uint32_t drawn = triangleCull ? std::min(c.trianglesDrawn, renderer.triangleCapacity()) : c.triangles;
+          const uint32_t drawn = f.trianglesDrawn;
           nlohmann::ordered_json r;
           r["input"] = a.input;
           r["instances"] = scene.data.instances.size();
@@ -89,9 +89,7 @@ void runBenchFrame(const FrameBenchArgs& a) {
       }
     }
   }
-  std::ofstream out(a.output);
-  out << records.dump(1) << "\n";
-  if (!out) throw std::runtime_error(a.output + ": cannot write");
+  writeJson(a.output, records, 1);
 }
 
 }  // namespace

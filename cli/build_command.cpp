@@ -4,7 +4,6 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <thread>
 
@@ -86,9 +85,7 @@ void addBuildCommand(CLI::App& app, int& exitCode) {
       j["total_seconds"] = total;
       j["peak_rss_bytes"] = rss;
       j["threads"] = args->threads;
-      std::ofstream out(args->stats);
-      out << j.dump(2) << "\n";
-      if (!out) throw std::runtime_error(args->stats + ": cannot write the stats file");
+      writeJson(args->stats, j, 2);
     }
     exitCode = 0;
   });

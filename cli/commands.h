@@ -2,8 +2,25 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
 
 namespace vgeo {
+
+// "WxH" with both in 1..16384.
+inline bool parseSize(const std::string& text, uint32_t& width, uint32_t& height) {
+  return std::sscanf(text.c_str(), "%ux%u", &width, &height) == 2 && width > 0 && height > 0 && width <= 16384 && height <= 16384;
+}
+
+// Writes JSON (stats, benchmark records) to `path`; throws std::runtime_error("path: cannot write ...").
+inline void writeJson(const std::string& path, const nlohmann::ordered_json& j, int indent) {
+  std::ofstream out(path);
+  out << j.dump(indent) << "\n";
+  if (!out) throw std::runtime_error(path + ": cannot write the file");
+}
 
 void addBuildCommand(CLI::App& app, int& exitCode);
 void addCheckCommand(CLI::App& app, int& exitCode);

@@ -2,7 +2,6 @@
 // optionally the comparison with the CPU reference cut.
 #include <CLI/CLI.hpp>
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -46,7 +45,7 @@ struct RenderArgs {
 
 int runRender(const RenderArgs& a) {
   uint32_t width = 0, height = 0;
-  if (std::sscanf(a.size.c_str(), "%ux%u", &width, &height) != 2 || width == 0 || height == 0 || width > 16384 || height > 16384)
+  if (!parseSize(a.size, width, height))
     throw std::runtime_error("--size: expected WxH, e.g. 1280x720");
   if (!kModes.count(a.mode)) throw std::runtime_error("--mode: unknown mode '" + a.mode + "'");
   Traversal traversal = a.traversal == "persistent" ? Traversal::Persistent : a.traversal == "levels" ? Traversal::Levels : Traversal::Flat;
@@ -97,9 +96,7 @@ int runRender(const RenderArgs& a) {
     }
   }
   writePng(a.output, width, height, result.rgba);
-  // Pixels covered: not the clear colour (draw.frag never outputs it: its darkest lit value is brighter).
-  uint64_t covered = 0;
-  for (size_t i = 0; i + 3 < result.rgba.size(); i += 4) covered += result.rgba[i] > 12 || result.rgba[i + 1] > 12 || result.rgba[i + 2] > 16;
+  const uint64_t covered = coveredPixels(result.rgba);
 
   const auto& c = result.counters;
   nlohmann::ordered_json j;
@@ -118,7 +115,7 @@ int runRender(const RenderArgs& a) {
   j["visible_clusters"] = std::min(c.drawCount, renderer.drawCapacity());
   // triangles: of the listed clusters (the cut); triangles_drawn: sent to the rasterizer, after triangle
   // culling dropped those that cannot make a fragment (equal to triangles with --no-triangle-cull).
-  const uint32_t drawn = settings.triangleCull ? std::min(c.trianglesDrawn, renderer.triangleCapacity()) : c.triangles;
+  const uint32_t drawn = result.trianglesDrawn;
   j["triangles"] = c.triangles;
   j["triangles_drawn"] = drawn;
   j["triangle_cull"] = settings.triangleCull;
@@ -156,9 +153,7 @@ int runRender(const RenderArgs& a) {
     std::printf("cpu cut: %s (%zu clusters, %zu borderline)%s\n", j["cpu_cut_equal"].get<bool>() ? "equal" : "DIFFERENT",
                 size_t(j["cpu_clusters"]), size_t(j["borderline_clusters"]), j.contains("cpu_cut_difference") ? (": " + j["cpu_cut_difference"].get<std::string>()).c_str() : "");
   if (!a.stats.empty()) {
-    std::ofstream out(a.stats);
-    out << j.dump(2) << "\n";
-    if (!out) throw std::runtime_error(a.stats + ": cannot write the stats file");
+    writeJson(a.stats, j, 2);
   }
   if (vk.validationMessages() > 0) {
     std::fprintf(stderr, "validation: %u messages\n", vk.validationMessages());

@@ -380,6 +380,7 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
 
   std::memcpy(&result.counters, countersReadback_.mapped, sizeof(result.counters));
   const auto& c = result.counters;
+  result.trianglesDrawn = cullTriangles ? std::min(c.trianglesDrawn, triangleCapacity_) : c.triangles;
   if (settings.readImage && settings.draw) {
     result.rgba.resize(size_t(width_) * height_ * 4);
     std::memcpy(result.rgba.data(), imageReadback_.mapped, result.rgba.size());

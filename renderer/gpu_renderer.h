@@ -29,6 +29,7 @@ struct FrameSettings {
 
 struct FrameResult {
   shaderio::Counters counters{};
+  uint32_t trianglesDrawn = 0;     // sent to the rasterizer: after triangle culling, else the cut's triangles
   std::vector<CutEntry> drawList;  // when readDrawList
   std::vector<uint8_t> rgba;       // when readImage: width x height x 4
   double instanceCullMs = 0.0, traversalMs = 0.0, triangleCullMs = 0.0, drawMs = 0.0, frameMs = 0.0;

@@ -9,13 +9,19 @@
 namespace vgeo {
 namespace {
 
+// Runs `vgeo bench ARGS -o OUTPUT` and returns the records it wrote (none, and a failure, if it failed).
+nlohmann::json benchRecords(const std::string& args, const std::string& output) {
+  test::RunResult r = test::runVgeo("bench " + args + " -o " + output);
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  if (r.exitCode != 0) return nlohmann::json::array();
+  std::ifstream in(output);
+  return nlohmann::json::parse(in);
+}
+
 TEST(BenchCut, WritesRecordsOnWhichAllModesAgree) {
   std::string dir = test::tempDir();
   writeVgeo(test::build(test::asset("horned_cube.obj"), 2), dir + "/h.vgeo");
-  test::RunResult r = test::runVgeo("bench cut " + dir + "/h.vgeo -o " + dir + "/cut.json --sizes 1,9 --taus 1,4 --frames 1 --size 160x120");
-  ASSERT_EQ(r.exitCode, 0) << r.output;
-  std::ifstream in(dir + "/cut.json");
-  nlohmann::json records = nlohmann::json::parse(in);
+  nlohmann::json records = benchRecords("cut " + dir + "/h.vgeo --sizes 1,9 --taus 1,4 --frames 1 --size 160x120", dir + "/cut.json");
   EXPECT_EQ(records.size(), 2u * 2u * 5u * 2u * 4u);  // layouts x sizes x cameras x taus x modes
   std::map<std::string, std::vector<uint64_t>> drawn;
   for (const auto& rec : records) {
@@ -32,10 +38,7 @@ TEST(BenchCut, WritesRecordsOnWhichAllModesAgree) {
 TEST(BenchFrame, SplitsTheFrameWithAndWithoutTriangleCulling) {
   std::string dir = test::tempDir();
   writeVgeo(test::build(test::asset("horned_cube.obj"), 2), dir + "/h.vgeo");
-  test::RunResult r = test::runVgeo("bench frame " + dir + "/h.vgeo -o " + dir + "/frame.json --grids 1,3 --sizes 160x120 --cameras corner,far --frames 1");
-  ASSERT_EQ(r.exitCode, 0) << r.output;
-  std::ifstream in(dir + "/frame.json");
-  nlohmann::json records = nlohmann::json::parse(in);
+  nlohmann::json records = benchRecords("frame " + dir + "/h.vgeo --grids 1,3 --sizes 160x120 --cameras corner,far --frames 1", dir + "/frame.json");
   ASSERT_EQ(records.size(), 2u * 2u * 2u);  // grids x cameras x triangle culling on/off
   for (size_t i = 0; i < records.size(); i += 2) {
     const auto &on = records[i], &off = records[i + 1];
@@ -53,10 +56,7 @@ TEST(BenchFrame, SplitsTheFrameWithAndWithoutTriangleCulling) {
 
 TEST(BenchBuild, OneRecordPerMeshSubdivAndThreads) {
   std::string dir = test::tempDir();
-  test::RunResult r = test::runVgeo("bench build " + test::asset("horned_cube.obj") + " -o " + dir + "/build.json --subdiv 0,1 --threads 1,2 --repeat 1");
-  ASSERT_EQ(r.exitCode, 0) << r.output;
-  std::ifstream in(dir + "/build.json");
-  nlohmann::json records = nlohmann::json::parse(in);
+  nlohmann::json records = benchRecords("build " + test::asset("horned_cube.obj") + " --subdiv 0,1 --threads 1,2 --repeat 1", dir + "/build.json");
   ASSERT_EQ(records.size(), 4u);
   for (const auto& rec : records) {
     for (const char* key : {"dag_seconds", "total_seconds", "mtri_per_second", "peak_rss_bytes", "levels", "root_clusters", "relaxed_groups"})

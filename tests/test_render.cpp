@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "../renderer/gpu_renderer.h"
+#include "../renderer/image.h"
 #include "test_util.h"
 
 namespace vgeo {
@@ -50,7 +51,7 @@ class Render : public ::testing::Test {
   // Pixels that are not the clear colour.
   static std::vector<uint8_t> coverage(const FrameResult& r) {
     std::vector<uint8_t> mask(kW * kH);
-    for (uint32_t i = 0; i < kW * kH; i++) mask[i] = r.rgba[4 * i] > 12 || r.rgba[4 * i + 1] > 12 || r.rgba[4 * i + 2] > 16;
+    for (uint32_t i = 0; i < kW * kH; i++) mask[i] = isCovered(&r.rgba[4 * i]);
     return mask;
   }
 
