@@ -61,6 +61,7 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
   std::vector<PolygonMesh> leaves(scene.meshes.size());
   std::vector<std::vector<glm::vec3>> leafNormals(scene.meshes.size());  // limit normals of subdivided cages
   std::vector<std::vector<glm::vec3>> controlPoints(scene.meshes.size());  // and their control points
+  std::vector<std::vector<PatchErrors>> patchErrors(scene.meshes.size());  // chord errors of their faces
   std::vector<bool> closed(scene.meshes.size());
   for (size_t m = 0; m < scene.meshes.size(); m++) {
     PolygonMesh& mesh = scene.meshes[m];
@@ -93,6 +94,7 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
       moveToLimit(leaves[m], leafNormals[m]);
     }
     fanLargeFaces(leaves[m]);
+    if (options.subdivisionLevels >= 1) patchErrors[m] = patchChordErrors(leaves[m], controlPoints[m], uint32_t(std::max(options.threads, 1)));
     stats.leafTriangles += leaves[m].triangleCount();
   }
   stats.subdivideSeconds = secondsSince(subdivideStart);
@@ -102,10 +104,11 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
   for (size_t m = 0; m < leaves.size(); m++) {
     BuildOptions bo;
     bo.threads = options.threads;
+    bo.leafFaceErrors = &patchErrors[m];
     if (options.progress)
       bo.progress = [&, m](double f, const char* stage) { options.progress((double(m) + f) / double(leaves.size()), stage); };
     Dag dag = buildDag(leaves[m], bo);
-    appendGeometry(data, dag, leaves[m], leafNormals[m], controlPoints[m], closed[m]);
+    appendGeometry(data, dag, leaves[m], leafNormals[m], controlPoints[m], patchErrors[m], closed[m]);
     stats.clusters += dag.clusters.size();
     stats.leafClusters += dag.levelClusters[0];
     for (const auto& c : dag.clusters) stats.clusterTriangles += c.indices.size() / 3;
@@ -119,6 +122,7 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
     stats.rootClusters += dag.rootClusters;
     stats.relaxedGroups += dag.relaxedGroups;
     stats.stuckGroups += dag.stuckGroups;
+    patchErrors[m] = {};
     leaves[m] = PolygonMesh();  // free as we go: peak memory is one mesh's build
   }
   stats.buildSeconds = secondsSince(buildStart);

@@ -13,7 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "../common/input_error.h"
-#include "../shaders/shaderio.h"
+#include "../shaders/patch_eval.h"
 
 namespace vgeo {
 
@@ -109,27 +109,46 @@ class QuadCorners {
 // some face is not a quad.
 bool moveToLimit(PolygonMesh& mesh, std::vector<glm::vec3>& normals);
 
+// Distance from p to the triangle abc (simplify.cpp).
+double pointTriangleDistance(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c);
+
 // ---- patch.cpp --------------------------------------------------------------------------------------
-// One B-spline patch per face of a quad mesh (a cage after >= 1 round): the 16 control points (vertex
-// indices of `mesh`) of each face whose four corners are interior and of valence 4; points[0] ==
-// VGEO_NO_PATCH for the others, and for every face when some face is not a quad.
-std::vector<shaderio::BsplinePatch> bsplinePatches(const PolygonMesh& mesh);
-// The same, one face at a time (no array of every face's patch).
-class BsplinePatcher {
+// The limit-surface patch of each face of a quad mesh (a cage after >= 1 round; shaderio.h, Patch).
+struct FacePatch {
+  uint32_t kind = VGEO_PATCH_NONE;  // VGEO_PATCH_REGULAR, VGEO_PATCH_RING or VGEO_PATCH_NONE
+  uint32_t corner = 0;              // ring: the extraordinary corner
+  uint32_t valence = 0;             // ring: its valence
+  uint32_t pointCount = 0;          // 16 (regular) or 2 valence + 8 (ring)
+  uint32_t points[VGEO_MAX_RING];   // control points: vertex indices of the mesh
+  uint32_t neighbours[4] = {UINT32_MAX, UINT32_MAX, UINT32_MAX, UINT32_MAX};  // across edge k: face << 2 | its edge
+};
+// Chord errors of a face's leaf geometry against its patch, object space: edge[k] the largest distance of
+// the limit curve of edge k from its segment, the same value on both faces of an edge (the larger of the
+// two sides' estimates); face the largest distance of the surface from the face's two triangles, and
+// at least every edge's. Zero for VGEO_PATCH_NONE faces.
+struct PatchErrors {
+  float edge[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  float face = 0.0f;
+};
+class Patcher {
  public:
-  explicit BsplinePatcher(const PolygonMesh& mesh);
-  shaderio::BsplinePatch patch(uint32_t face) const;
+  explicit Patcher(const PolygonMesh& mesh);
+  // The face's patch; VGEO_PATCH_NONE next to a boundary, with two extraordinary corners, a valence
+  // above VGEO_MAX_VALENCE, or when some face of the mesh is not a quad.
+  FacePatch patch(uint32_t face) const;
 
  private:
   bool regular(uint32_t v) const;
+  bool ring(uint32_t face, uint32_t corner, FacePatch& out) const;
   const PolygonMesh& mesh_;
   QuadCorners corners_;
   bool quads_ = false;
 };
-// The uniform bicubic B-spline surface of 16 control points (row by row) at (u, v) in [0, 1]^2, u along
-// a row (from points[5] to points[6]), v down the columns (from points[5] to points[9]); optionally
-// its partial derivatives.
-glm::dvec3 evaluateBspline(const glm::vec3 points[16], double u, double v, glm::dvec3* du = nullptr, glm::dvec3* dv = nullptr);
+// The patch at face parameters (s, t) (shaderio.h), with its unit normal; controlPoints are the cage's.
+glm::vec3 evaluateFacePatch(const FacePatch& patch, const std::vector<glm::vec3>& controlPoints, float s, float t, glm::vec3* normal = nullptr);
+// Every face's chord errors (sampled at sixths of the parameters and scaled up 5% for what falls between).
+// `limitMesh` holds the leaf vertices (limit positions), `controlPoints` the cage before the limit.
+std::vector<PatchErrors> patchChordErrors(const PolygonMesh& limitMesh, const std::vector<glm::vec3>& controlPoints, uint32_t threads);
 
 // ---- partition.cpp ----------------------------------------------------------------------------------
 // A graph in compressed rows: node i's neighbours are adjacency[offsets[i] .. offsets[i+1]).
@@ -169,6 +188,8 @@ struct BuildCluster {
 // patches and might not fit one cluster. Call before buildLeafClusters (a no-op on subdivided meshes).
 constexpr uint32_t kMaxLeafFaceCorners = 66;
 void fanLargeFaces(PolygonMesh& mesh);
+// Appends the triangles of face v[0..n): a quad split along its shorter diagonal, other faces fanned.
+void triangulateFace(const glm::vec3* positions, const uint32_t* v, uint32_t n, std::vector<uint32_t>& out);
 // Leaf clusters from whole faces of `mesh` (a face's triangles never part): faces adjacent by an edge
 // are graph neighbours, weighted by their triangle count. cageFaces lists each cluster's faces, whose
 // triangles follow in that order (quads split along the shorter diagonal, other faces fanned).
@@ -211,6 +232,9 @@ SimplifiedGroup simplifyGroup(const std::vector<uint32_t>& indices, const std::v
 struct BuildOptions {
   int threads = 1;
   uint32_t groupSize = 16;
+  // Chord error of each face against the limit surface (patchChordErrors); a leaf cluster's self error
+  // is the largest of its faces'. Empty: leaves have error 0 (the input is the surface).
+  const std::vector<PatchErrors>* leafFaceErrors = nullptr;
   std::function<void(double fraction, const char* stage)> progress;
 };
 struct BuildGroup {

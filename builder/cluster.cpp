@@ -8,6 +8,18 @@
 #include "builder.h"
 
 namespace vgeo {
+
+void triangulateFace(const glm::vec3* positions, const uint32_t* v, uint32_t n, std::vector<uint32_t>& out) {
+  if (n == 4) {
+    // Split a quad along its shorter diagonal.
+    float d02 = glm::distance(positions[v[0]], positions[v[2]]), d13 = glm::distance(positions[v[1]], positions[v[3]]);
+    if (d13 < d02) out.insert(out.end(), {v[0], v[1], v[3], v[1], v[2], v[3]});
+    else out.insert(out.end(), {v[0], v[1], v[2], v[0], v[2], v[3]});
+    return;
+  }
+  for (uint32_t i = 1; i + 1 < n; i++) out.insert(out.end(), {v[0], v[i], v[i + 1]});
+}
+
 namespace {
 
 // Faces sharing an edge are neighbours (all of them, should an edge have more than two faces). Found
@@ -96,16 +108,6 @@ bool fitsVertexLimit(const std::vector<uint32_t>& faceStart, const std::vector<u
   return distinct <= VGEO_MAX_CLUSTER_VERTICES;
 }
 
-void triangulateFace(const glm::vec3* positions, const uint32_t* v, uint32_t n, std::vector<uint32_t>& out) {
-  if (n == 4) {
-    // Split a quad along its shorter diagonal.
-    float d02 = glm::distance(positions[v[0]], positions[v[2]]), d13 = glm::distance(positions[v[1]], positions[v[3]]);
-    if (d13 < d02) out.insert(out.end(), {v[0], v[1], v[3], v[1], v[2], v[3]});
-    else out.insert(out.end(), {v[0], v[1], v[2], v[0], v[2], v[3]});
-    return;
-  }
-  for (uint32_t i = 1; i + 1 < n; i++) out.insert(out.end(), {v[0], v[i], v[i + 1]});
-}
 
 std::vector<BuildCluster> clustersFromFaces(const std::vector<uint32_t>& faceStart, const std::vector<uint32_t>& faceVertices,
                                             const std::vector<glm::vec3>& positions, int threads, bool keepFaces,

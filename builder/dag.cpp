@@ -115,7 +115,10 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
   report(0.0, "clustering");
   dag.clusters = buildLeafClusters(mesh, options.threads);
   parallelFor(dag.clusters.size(), options.threads, [&](size_t i) {
-    dag.clusters[i].selfSphere = sphereOfClusterVertices(dag.clusters[i], positions);
+    BuildCluster& c = dag.clusters[i];
+    c.selfSphere = sphereOfClusterVertices(c, positions);
+    if (options.leafFaceErrors && !options.leafFaceErrors->empty())
+      for (uint32_t f : c.cageFaces) c.selfError = std::max(c.selfError, (*options.leafFaceErrors)[f].face);
   });
   EdgeSet edges;
   // Leaves and every level above (which halves each time): about twice the leaf triangles, 1.5 edges each.

@@ -40,7 +40,7 @@ glm::vec4 normalCone(const std::vector<uint32_t>& indices, const std::vector<glm
 }  // namespace
 
 void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh, const std::vector<glm::vec3>& leafNormals,
-                    const std::vector<glm::vec3>& controlPoints, bool closed) {
+                    const std::vector<glm::vec3>& controlPoints, const std::vector<PatchErrors>& patchErrors, bool closed) {
   Bvh bvh = buildBvh(dag.groups);
   const uint32_t vertexOffset = uint32_t(file.vertexCount()), clusterOffset = uint32_t(file.clusters.size()),
                  groupOffset = uint32_t(file.groups.size()), nodeOffset = uint32_t(file.nodes.size()),
@@ -69,6 +69,7 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
   file.clusterCones.reserve(file.clusterCones.size() + dag.clusters.size());
   file.cageFaces.reserve(file.cageFaces.size() + faces);
   file.patches.reserve(file.patches.size() + faces);
+  file.patchPoints.reserve(file.patchPoints.size() + (controlPoints.empty() ? 0 : 17 * faces));
   file.cageFaceVertices.reserve(file.cageFaceVertices.size() + 4 * faces);
 
   // Vertices, with the limit normals when given, else area-weighted normals of the leaf triangles.
@@ -91,8 +92,44 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
   }
 
   // One patch per face of the cage, from its topology; the control points are the cage before the limit.
-  std::unique_ptr<BsplinePatcher> patcher;
-  if (!controlPoints.empty()) patcher = std::make_unique<BsplinePatcher>(leafMesh);
+  // Neighbours name faces by their index in the file, whose order (cluster order) is known first; an
+  // edge is locked at factor 1 where the face on its other side belongs to another level-0 group
+  // (which may be drawn coarser) or is flat.
+  std::unique_ptr<Patcher> patcher;
+  if (!controlPoints.empty()) patcher = std::make_unique<Patcher>(leafMesh);
+  std::vector<uint32_t> fileFace(leafMesh.faceCount(), UINT32_MAX), faceGroup(leafMesh.faceCount(), UINT32_MAX);
+  std::vector<uint8_t> faceKind(leafMesh.faceCount(), uint8_t(VGEO_PATCH_NONE));
+  {
+    uint32_t next = cageOffset;
+    for (uint32_t id : clusterOrder)
+      for (uint32_t f : dag.clusters[id].cageFaces) {
+        fileFace[f] = next++;
+        faceGroup[f] = dag.clusters[id].group;
+      }
+    if (patcher)
+      for (uint32_t f = 0; f < leafMesh.faceCount(); f++) faceKind[f] = uint8_t(patcher->patch(f).kind);
+  }
+  auto filePatch = [&](uint32_t f) {
+    shaderio::Patch out{};
+    out.firstPoint = uint32_t(file.patchPoints.size());
+    for (uint32_t& n : out.neighbours) n = VGEO_INVALID;
+    FacePatch patch;
+    if (patcher) patch = patcher->patch(f);
+    uint32_t locked = 0;
+    for (uint32_t k = 0; k < 4; k++) {
+      uint32_t n = patch.neighbours[k];
+      if (n != UINT32_MAX && fileFace[n >> 2] != UINT32_MAX) out.neighbours[k] = fileFace[n >> 2] << 2 | (n & 3u);
+      if (patch.kind == VGEO_PATCH_NONE || n == UINT32_MAX || faceKind[n >> 2] == VGEO_PATCH_NONE || faceGroup[n >> 2] != faceGroup[f])
+        locked |= 1u << k;
+    }
+    out.info = patch.kind | patch.corner << 2 | patch.valence << 8 | locked << 16;
+    for (uint32_t i = 0; i < patch.pointCount; i++) file.patchPoints.push_back(vertexOffset + patch.points[i]);
+    if (patch.kind != VGEO_PATCH_NONE && f < patchErrors.size()) {
+      out.faceError = patchErrors[f].face;
+      out.edgeError = glm::vec4(patchErrors[f].edge[0], patchErrors[f].edge[1], patchErrors[f].edge[2], patchErrors[f].edge[3]);
+    }
+    return out;
+  };
   std::vector<uint32_t> local;
   std::vector<uint32_t> slotOf(leafMesh.positions.size(), UINT32_MAX);  // vertex -> local index, reset per cluster
   for (uint32_t id : clusterOrder) {
@@ -128,12 +165,7 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
       firstTriangle += face.vertexCount - 2;
       for (uint32_t k = 0; k < face.vertexCount; k++) file.cageFaceVertices.push_back(vertexOffset + leafMesh.face(f)[k]);
       file.cageFaces.push_back(face);
-      shaderio::BsplinePatch patch{};
-      patch.points[0] = VGEO_NO_PATCH;
-      if (patcher) patch = patcher->patch(f);
-      if (patch.points[0] != VGEO_NO_PATCH)
-        for (uint32_t& p : patch.points) p += vertexOffset;
-      file.patches.push_back(patch);
+      file.patches.push_back(filePatch(f));
     }
     shaderio::ClusterCone cone;
     cone.cone = normalCone(c.indices, leafMesh.positions);

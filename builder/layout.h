@@ -7,11 +7,12 @@
 namespace vgeo {
 
 // Appends one geometry: the DAG of `leafMesh` (the mesh its leaves were built from, whose faces are the
-// level-N cage) with its BVH. `closed` records whether the repaired input had no boundary edge.
-// Appends one geometry: its leaf vertices (with `leafNormals` when given, else face-weighted normals), its
-// clusters, groups and BVH, its cage faces and, when `controlPoints` is given (a subdivided cage, whose
-// leaf vertices are limit points), the control points and a B-spline patch per regular cage face.
+// level-N cage) with its BVH: its leaf vertices (with `leafNormals` when given, else face-weighted
+// normals), its clusters, groups and BVH, its cage faces and a patch per cage face: when `controlPoints`
+// is given (a subdivided cage, whose leaf vertices are limit points), the patches of patch.cpp with the
+// chord errors `patchErrors` (patchChordErrors), else flat ones. `closed` records whether the repaired
+// input had no boundary edge.
 void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh, const std::vector<glm::vec3>& leafNormals,
-                    const std::vector<glm::vec3>& controlPoints, bool closed);
+                    const std::vector<glm::vec3>& controlPoints, const std::vector<PatchErrors>& patchErrors, bool closed);
 
 }  // namespace vgeo

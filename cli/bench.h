@@ -33,8 +33,8 @@ std::vector<T> parseList(const std::string& text) {
 }
 
 // The benchmark camera path over a scene, by name: far (the whole scene small), corner (the default
-// camera: over its near corner), inside (low inside it), closeup (one instance), away (inside, looking
-// out of it).
+// camera: over its near corner), inside (low inside it), closeup (one instance), surface (one instance
+// from nearer than its size: most leaves drawn as patches), away (inside, looking out of it).
 std::vector<std::pair<std::string, Camera>> cameraPath(const RenderScene& scene, float fov);
 
 // Median of v (the upper one of an even count); 0 for none.

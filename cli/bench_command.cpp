@@ -33,6 +33,23 @@ std::vector<std::pair<std::string, Camera>> cameraPath(const RenderScene& scene,
   close.eye = at + glm::vec3(0.4f, 0.6f, 1.4f) * object;
   close.target = at;
   path.push_back({"closeup", close});
+  // Surface: 8% of the object's radius in front of its outermost leaf vertex towards the closeup eye
+  // (a point of its convex hull, so nothing of it lies in between), looking back at it at an angle:
+  // most of what it sees are leaves drawn as patches.
+  const shaderio::Geometry& g0 = scene.data.geometries[i0.geometry];
+  auto world = [&](uint32_t v) {
+    glm::vec4 h(scene.data.position(v), 1.0f);
+    return glm::vec3(glm::dot(i0.row0, h), glm::dot(i0.row1, h), glm::dot(i0.row2, h));
+  };
+  const glm::vec3 toward = glm::normalize(close.eye - at);
+  uint32_t outermost = g0.vertexOffset;
+  for (uint32_t v = g0.vertexOffset; v < g0.vertexOffset + g0.vertexCount; v++)
+    if (glm::dot(world(v) - at, toward) > glm::dot(world(outermost) - at, toward)) outermost = v;
+  const float reach = 0.015f * object * i0.maxScale;
+  Camera surface;
+  surface.eye = world(outermost) + toward * reach;
+  surface.target = world(outermost) - toward * reach + glm::normalize(glm::cross(toward, glm::vec3(0.0f, 1.0f, 0.0f))) * reach;
+  path.push_back({"surface", surface});
   Camera away;
   away.eye = glm::vec3(hi.x, c.y + object, hi.z) + glm::vec3(0.1f) * wide;
   away.target = away.eye + glm::vec3(1.0f, 0.0f, 1.0f);

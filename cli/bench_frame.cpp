@@ -1,6 +1,7 @@
 // bench_frame.cpp: `vgeo bench frame`: whole frames split into their passes (instance culling,
-// traversal, triangle culling, draw), for a scene at several grid sizes, viewport sizes and cameras,
-// with triangle culling on and off. Medians over frames after warm-up; one JSON record each.
+// traversal, triangle culling, draw with the patch draw), for a scene at several grid sizes, viewport
+// sizes and cameras, in three variants: triangle culling with patches (the default), triangle culling
+// with leaves as triangles, neither. Medians over frames after warm-up; one JSON record each.
 #include <nlohmann/json.hpp>
 
 #include "../renderer/gpu_renderer.h"
@@ -33,16 +34,25 @@ void runBenchFrame(const FrameBenchArgs& a) {
       for (const std::string& cameraName : parseList<std::string>(a.cameras)) {
         auto camera = std::find_if(path.begin(), path.end(), [&](const auto& p) { return p.first == cameraName; });
         if (camera == path.end()) throw std::runtime_error("--cameras: unknown camera '" + cameraName + "'");
-        for (bool triangleCull : {true, false}) {
+        for (int variant = 0; variant < 3; variant++) {
+          const bool triangleCull = variant < 2, patches = variant == 0;
           FrameSettings s;
           s.drawView = s.cullView = makeView(camera->second, width, height, scene.bounds);
           s.tau = a.tau;
           s.traversal = traversal;
           s.triangleCull = triangleCull;
-          // Warm-up and growth after an overflow; this frame's image gives the pixels covered.
+          s.patches = patches;
+          // Warm-up and growth after an overflow; this frame's image gives the pixels covered, and the
+          // patch view's the pixels the patches cover.
           FrameResult f = renderer.renderFrame(s);
           while (!f.complete) f = renderer.renderFrame(s);
           const uint64_t covered = coveredPixels(f.rgba);
+          uint64_t patchCovered = 0;
+          if (patches) {
+            s.mode = VGEO_MODE_PATCH;
+            patchCovered = patchPixels(renderer.renderFrame(s).rgba);
+            s.mode = VGEO_MODE_LIT;
+          }
           s.readImage = false;  // measured frames: no image copy
           std::vector<double> cull, traverse, triangles, draw, frame;
           for (uint32_t i = 0; i < a.frames; i++) {
@@ -65,6 +75,7 @@ void runBenchFrame(const FrameBenchArgs& a) {
           r["tau"] = a.tau;
           r["traversal"] = a.traversal;
           r["triangle_cull"] = triangleCull;
+          r["patches"] = patches;
           r["instance_cull_ms"] = median(cull);
           r["traversal_ms"] = median(traverse);
           r["triangle_cull_ms"] = median(triangles);
@@ -77,13 +88,22 @@ void runBenchFrame(const FrameBenchArgs& a) {
           r["triangles_drawn"] = drawn;
           r["pixels_covered"] = covered;
           r["triangles_per_covered_pixel"] = covered ? double(drawn) / double(covered) : 0.0;
+          // Leaves drawn as tessellated patches: how many, the triangles the tessellator made of them
+          // (pipeline statistics, -1 without), the pixels they cover and the ratio of the two.
+          r["patch_clusters"] = c.patchClusters;
+          r["patches_drawn"] = f.patchesDrawn;
+          r["patch_triangles"] = f.patchTriangles;
+          r["patch_pixels"] = patchCovered;
+          r["patch_triangles_per_patch_pixel"] = patchCovered && f.patchTriangles > 0 ? double(f.patchTriangles) / double(patchCovered) : 0.0;
           r["frames"] = a.frames;
           r["device"] = vk.deviceName();
           r["driver"] = vk.driverName();
           r["commit"] = VGEO_COMMIT;
-          std::fprintf(stderr, "%7zu instances %4ux%-4u %-7s triangle cull %-3s: cull %.3f  traversal %.3f  triangles %.3f  draw %.3f  frame %.3f ms\n",
-                       scene.data.instances.size(), width, height, cameraName.c_str(), triangleCull ? "on" : "off", median(cull),
-                       median(traverse), median(triangles), median(draw), median(frame));
+          std::fprintf(stderr,
+                       "%7zu instances %4ux%-4u %-7s triangle cull %-3s patches %-3s: cull %.3f  traversal %.3f  triangles %.3f  draw %.3f  "
+                       "frame %.3f ms\n",
+                       scene.data.instances.size(), width, height, cameraName.c_str(), triangleCull ? "on" : "off", patches ? "on" : "off",
+                       median(cull), median(traverse), median(triangles), median(draw), median(frame));
           records.push_back(r);
         }
       }
@@ -101,7 +121,7 @@ void addBenchFrameCommand(CLI::App& bench, int& exitCode) {
   cmd->add_option("-o,--output", a->output, "JSON records")->required();
   cmd->add_option("--grids", a->grids, "N for N x N copies of the input (the main job's default scene is 32)")->capture_default_str();
   cmd->add_option("--sizes", a->sizes, "Viewports WxH")->capture_default_str();
-  cmd->add_option("--cameras", a->cameras, "far, corner (the default camera), inside, closeup, away")->capture_default_str();
+  cmd->add_option("--cameras", a->cameras, "far, corner (the default camera), inside, closeup, surface, away")->capture_default_str();
   cmd->add_option("--traversal", a->traversal, "persistent, levels or flat")->capture_default_str();
   cmd->add_option("--tau", a->tau, "Allowed projected error, pixels")->capture_default_str();
   cmd->add_option("--frames", a->frames, "Measured frames per record (median)")->capture_default_str();

@@ -17,7 +17,8 @@ namespace {
 const std::map<std::string, uint32_t> kModes = {
     {"lit", VGEO_MODE_LIT},         {"normal", VGEO_MODE_NORMAL},     {"cluster", VGEO_MODE_CLUSTER}, {"group", VGEO_MODE_GROUP},
     {"lod", VGEO_MODE_LOD},         {"triangle", VGEO_MODE_TRIANGLE}, {"instance", VGEO_MODE_INSTANCE}, {"error", VGEO_MODE_ERROR},
-    {"wire", VGEO_MODE_WIRE},       {"overdraw", VGEO_MODE_OVERDRAW}, {"frozen-diff", VGEO_MODE_FROZEN_DIFF}};
+    {"wire", VGEO_MODE_WIRE},       {"overdraw", VGEO_MODE_OVERDRAW}, {"frozen-diff", VGEO_MODE_FROZEN_DIFF},
+    {"patch", VGEO_MODE_PATCH}};
 
 bool parseCamera(const std::string& text, Camera& camera) {
   std::vector<float> v;
@@ -40,7 +41,7 @@ struct RenderArgs {
   std::string input, output, stats, camera, freezeCamera, mode = "lit", traversal = "persistent", size = "1280x720", device;
   float fov = 60.0f, tau = 1.0f;
   uint32_t grid = 1, frames = 2, queueCapacity = 0, drawCapacity = 0, triangleCapacity = 0, workgroups = 0;
-  bool compareCpu = false, validate = false, noTriangleCull = false;
+  bool compareCpu = false, validate = false, noTriangleCull = false, noPatches = false;
 };
 
 int runRender(const RenderArgs& a) {
@@ -66,7 +67,7 @@ int runRender(const RenderArgs& a) {
   if (a.workgroups) renderer.setPersistentWorkgroups(a.workgroups);
   if (a.queueCapacity || a.drawCapacity || a.triangleCapacity)
     renderer.setCapacities(a.queueCapacity ? a.queueCapacity : renderer.queueCapacity(), a.drawCapacity ? a.drawCapacity : renderer.drawCapacity(),
-                           a.triangleCapacity ? a.triangleCapacity : renderer.triangleCapacity());
+                           a.triangleCapacity ? a.triangleCapacity : renderer.triangleCapacity(), renderer.patchCapacity());
   FrameSettings settings;
   settings.drawView = makeView(camera, width, height, scene.bounds);
   settings.cullView = makeView(cullCamera, width, height, scene.bounds);
@@ -75,11 +76,12 @@ int runRender(const RenderArgs& a) {
   settings.traversal = traversal;
   settings.readDrawList = a.compareCpu;
   settings.triangleCull = !a.noTriangleCull;
+  settings.patches = !a.noPatches;
 
   // Frames until one is complete (an overflow grows the buffers for the next); the first frames warm
   // the shader cache (GPU-NOTES 4), the last one is reported.
   FrameResult result;
-  uint32_t queueOverflows = 0, drawOverflows = 0, triangleOverflows = 0, frames = 0;
+  uint32_t queueOverflows = 0, drawOverflows = 0, triangleOverflows = 0, patchOverflows = 0, frames = 0;
   for (uint32_t f = 0; f < std::max(a.frames, 1u) || !result.complete; f++) {
     if (f >= a.frames + 4) throw std::runtime_error("frames keep overflowing after growing the buffers 4 times");
     result = renderer.renderFrame(settings);
@@ -88,11 +90,13 @@ int runRender(const RenderArgs& a) {
       queueOverflows += result.counters.queueOverflow;
       drawOverflows += result.counters.drawOverflow;
       triangleOverflows += result.counters.triangleOverflow;
+      patchOverflows += result.counters.patchOverflow;
       std::fprintf(stderr,
-                   "overflow in frame %u: %u queue items, %u draw entries and %u triangles did not fit; grown to %u queue items, %u draw "
-                   "entries, %u triangles\n",
-                   frames, result.counters.queueOverflow, result.counters.drawOverflow, result.counters.triangleOverflow, renderer.queueCapacity(),
-                   renderer.drawCapacity(), renderer.triangleCapacity());
+                   "overflow in frame %u: %u queue items, %u draw entries, %u triangles and %u patches did not fit; grown to %u queue items, "
+                   "%u draw entries, %u triangles, %u patches\n",
+                   frames, result.counters.queueOverflow, result.counters.drawOverflow, result.counters.triangleOverflow,
+                   result.counters.patchOverflow, renderer.queueCapacity(), renderer.drawCapacity(), renderer.triangleCapacity(),
+                   renderer.patchCapacity());
     }
   }
   writePng(a.output, width, height, result.rgba);
@@ -122,9 +126,17 @@ int runRender(const RenderArgs& a) {
   j["pixels_covered"] = covered;
   j["triangles_per_covered_pixel"] = covered ? double(drawn) / double(covered) : 0.0;
   j["cut_triangles_per_covered_pixel"] = covered ? double(c.triangles) / double(covered) : 0.0;
+  // Leaves too coarse for tau drawn as tessellated patches: clusters, faces (patches) and the triangles
+  // the tessellator made (pipeline statistics; -1 where the device has none); the pixels they cover
+  // (the same view rendered without patches hides them: see patch_pixels_covered in bench frame).
+  j["patches"] = settings.patches && settings.triangleCull;
+  j["patch_clusters"] = c.patchClusters;
+  j["patches_drawn"] = result.patchesDrawn;
+  j["patch_triangles"] = result.patchTriangles;
   j["queue_overflows"] = queueOverflows;
   j["draw_overflows"] = drawOverflows;
   j["triangle_overflows"] = triangleOverflows;
+  j["patch_overflows"] = patchOverflows;
   j["queue_high_water"] = c.queueHighWater;
   j["persistent_workgroups"] = renderer.persistentWorkgroups();
   j["instance_cull_ms"] = result.instanceCullMs;
@@ -174,7 +186,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--camera", a->camera, "eye_x,eye_y,eye_z,target_x,target_y,target_z (default: frames the scene)");
   cmd->add_option("--fov", a->fov, "Vertical field of view, degrees")->capture_default_str();
   cmd->add_option("--tau", a->tau, "Allowed projected error, pixels")->capture_default_str();
-  cmd->add_option("--mode", a->mode, "lit, normal, cluster, group, lod, triangle, instance, error, wire, overdraw, frozen-diff")->capture_default_str();
+  cmd->add_option("--mode", a->mode, "lit, normal, cluster, group, lod, triangle, instance, error, wire, overdraw, frozen-diff, patch")->capture_default_str();
   cmd->add_option("--grid", a->grid, "N x N instances of the input")->capture_default_str()->check(CLI::Range(1u, 4096u));
   cmd->add_option("--traversal", a->traversal, "persistent, levels or flat")->capture_default_str();
   cmd->add_option("--freeze-camera", a->freezeCamera, "Select and cull with this camera (six numbers), draw from --camera");
@@ -187,7 +199,9 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--draw-capacity", a->drawCapacity, "Initial draw list capacity, clusters (debugging overflow)");
   cmd->add_option("--triangle-capacity", a->triangleCapacity, "Initial triangle list capacity, triangles (debugging overflow)");
   cmd->add_flag("--no-triangle-cull", a->noTriangleCull,
-                "Draw every triangle of the listed clusters (default: drop those that cannot make a fragment first)");
+                "Draw every triangle of the listed clusters (default: drop those that cannot make a fragment first); implies --no-patches");
+  cmd->add_flag("--no-patches", a->noPatches,
+                "Draw leaf clusters as their triangles even where their chord error projects above tau (default: tessellated limit-surface patches)");
   cmd->add_option("--workgroups", a->workgroups, "Persistent traversal workgroups (default: as many as the device runs at once)");
   cmd->callback([a, &exitCode] {
     try {

@@ -73,7 +73,8 @@ std::vector<SectionView> views(const VgeoData& d) {
       {d.cageFaceVertices.data(), 4, d.cageFaceVertices.size()},
       {d.clusterCones.data(), sizeof(shaderio::ClusterCone), d.clusterCones.size()},
       {d.controlPoints.data(), 12, d.controlPoints.size() / 3},
-      {d.patches.data(), sizeof(shaderio::BsplinePatch), d.patches.size()},
+      {d.patches.data(), sizeof(shaderio::Patch), d.patches.size()},
+      {d.patchPoints.data(), 4, d.patchPoints.size()},
   };
 }
 
@@ -81,7 +82,7 @@ std::vector<SectionView> views(const VgeoData& d) {
 
 const char* sectionName(Section s) {
   static const char* names[] = {"?", "geometries", "instances", "positions", "normals", "clusters", "cluster vertices",
-                                "cluster triangles", "groups", "BVH nodes", "cage faces", "cage face vertices", "cluster cones", "control points", "patches"};
+                                "cluster triangles", "groups", "BVH nodes", "cage faces", "cage face vertices", "cluster cones", "control points", "patches", "patch points"};
   uint32_t i = uint32_t(s);
   return i < uint32_t(Section::Count_) ? names[i] : "?";
 }
@@ -190,6 +191,7 @@ VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name) {
       case Section::ClusterCones: copy(data.clusterCones, e.count); break;
       case Section::ControlPoints: copy(data.controlPoints, e.count * 3); break;
       case Section::Patches: copy(data.patches, e.count); break;
+      case Section::PatchPoints: copy(data.patchPoints, e.count); break;
       default: break;
     }
   }
@@ -275,11 +277,45 @@ VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name) {
     if (!std::isfinite(x)) fail("a control point is not finite");
   if (data.patches.size() != data.cageFaces.size()) fail("patches and cage faces differ in count");
   for (size_t i = 0; i < data.patches.size(); i++) {
-    if (data.patches[i].points[0] == VGEO_NO_PATCH) continue;
-    for (uint32_t v : data.patches[i].points)
-      if (v >= vertices) fail("patch " + std::to_string(i) + " uses a control point out of range");
+    const shaderio::Patch& p = data.patches[i];
+    std::string what = "patch " + std::to_string(i);
+    uint32_t kind = shaderio::patchKind(p.info), valence = shaderio::patchValence(p.info);
+    if (kind > VGEO_PATCH_RING || (kind == VGEO_PATCH_RING && (valence < 3 || valence > VGEO_MAX_VALENCE)))
+      fail(what + " is of an unknown kind");
+    if (kind != VGEO_PATCH_NONE && data.cageFaces[i].vertexCount != 4) fail(what + " belongs to a face that is not a quad");
+    uint32_t points = kind == VGEO_PATCH_REGULAR ? 16u : kind == VGEO_PATCH_RING ? 2u * valence + 8u : 0u;
+    if (!within(p.firstPoint, points, data.patchPoints.size())) fail(what + " refers outside the patch points");
+    for (uint32_t k = 0; k < points; k++)
+      if (data.patchPoints[p.firstPoint + k] >= vertices) fail(what + " uses a control point out of range");
+    for (uint32_t n : p.neighbours)
+      if (n != VGEO_INVALID && (n >> 2) >= data.patches.size()) fail(what + " names a missing neighbour");
+    if (!(p.faceError >= 0.0f) || !std::isfinite(p.faceError)) fail(what + " has a bad chord error");
+    for (int k = 0; k < 4; k++)
+      if (!(p.edgeError[k] >= 0.0f) || !std::isfinite(p.edgeError[k]) || p.edgeError[k] > p.faceError) fail(what + " has a bad edge chord error");
   }
   return data;
+}
+
+glm::vec3 VgeoData::evaluatePatch(uint32_t face, float s, float t, glm::vec3* normal) const {
+  const shaderio::Patch& patch = patches[face];
+  const uint32_t kind = shaderio::patchKind(patch.info), valence = shaderio::patchValence(patch.info);
+  glm::vec3 n, p;
+  if (kind == VGEO_PATCH_NONE) {
+    const uint32_t* v = &cageFaceVertices[cageFaces[face].firstVertex];
+    glm::vec3 a = position(v[0]), b = position(v[1]), c = position(v[2]), d = position(v[3]);
+    p = glm::mix(glm::mix(a, b, s), glm::mix(d, c, s), t);
+    n = glm::normalize(glm::cross(glm::mix(b - a, c - d, t), glm::mix(d - a, c - b, s)));
+  } else {
+    glm::vec3 points[VGEO_MAX_RING];
+    uint32_t count = kind == VGEO_PATCH_REGULAR ? 16u : 2u * valence + 8u;
+    for (uint32_t i = 0; i < count; i++) {
+      uint32_t v = patchPoints[patch.firstPoint + i];
+      points[i] = glm::vec3(controlPoints[3 * v], controlPoints[3 * v + 1], controlPoints[3 * v + 2]);
+    }
+    p = shaderio::evaluatePatch(kind, shaderio::patchCorner(patch.info), int(valence), points, s, t, n);
+  }
+  if (normal) *normal = n;
+  return p;
 }
 
 void writeVgeo(const VgeoData& data, const std::string& path) {

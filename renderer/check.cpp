@@ -51,7 +51,10 @@ struct GeometryChecker {
       if (c.parentError != grp.error || !sameSphere(c.parentSphere, grp.sphere))
         return fail(name + ": parent (error, sphere) differs from its group's (invariant 2)");
       if (c.producer == VGEO_NO_GROUP) {
-        if (c.selfError != 0.0f) return fail(name + ": leaf with non-zero self error");
+        // Leaves: the largest chord error of their faces against the limit surface (0 without patches).
+        float chord = 0.0f;
+        for (uint32_t k = 0; k < shaderio::clusterCageFaceCount(c.counts); k++) chord = std::max(chord, d.patches[c.cageFaceOffset + k].faceError);
+        if (c.selfError != chord) return fail(name + ": leaf self error is not its faces' largest chord error");
       } else {
         const shaderio::Group& prod = d.groups[c.producer];
         if (c.selfError != prod.error || !sameSphere(c.selfSphere, prod.sphere))
@@ -105,28 +108,35 @@ struct GeometryChecker {
     return true;
   }
 
-  // Leaves on the limit surface: a regular face's B-spline patch passes through its four corners' leaf
-  // vertices (the limit mask of a valence-4 vertex is the patch's corner: weights 1 4 1 x 1 4 1 / 36).
-  bool patches(uint64_t& regular) {
-    static const int kCorner[4][2] = {{1, 1}, {1, 2}, {2, 2}, {2, 1}};
+  // Leaves on the limit surface: every patch passes through its four corners' leaf vertices. Crack-free
+  // tessellation: neighbours name each other across the same edge, agree on its chord error and on
+  // whether it is locked, and an edge with a flat face on either side is locked.
+  bool patches(uint64_t& checked) {
+    static const float kCorner[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
     const double tolerance = 1e-5 * std::max(double(g.boundsSphere.w), 1e-6);
     for (uint32_t f = g.cageFaceOffset; f < g.cageFaceOffset + g.cageFaceCount; f++) {
-      const shaderio::BsplinePatch& patch = d.patches[f];
-      if (patch.points[0] == VGEO_NO_PATCH) continue;
+      const shaderio::Patch& patch = d.patches[f];
+      const std::string what = "cage face " + std::to_string(f);
+      const uint32_t kind = shaderio::patchKind(patch.info);
+      for (uint32_t k = 0; k < 4; k++) {
+        uint32_t n = patch.neighbours[k];
+        if (n == VGEO_INVALID) continue;
+        const shaderio::Patch& other = d.patches[n >> 2];
+        if (other.neighbours[n & 3] != (f << 2 | k)) return fail(what + ": its neighbour across edge " + std::to_string(k) + " does not name it back");
+        if (other.edgeError[n & 3] != patch.edgeError[k]) return fail(what + ": the two faces of edge " + std::to_string(k) + " disagree on its chord error");
+        if (shaderio::patchEdgeLocked(other.info, n & 3) != shaderio::patchEdgeLocked(patch.info, k))
+          return fail(what + ": the two faces of edge " + std::to_string(k) + " disagree on whether it is locked");
+        if ((kind == VGEO_PATCH_NONE || shaderio::patchKind(other.info) == VGEO_PATCH_NONE) && !shaderio::patchEdgeLocked(patch.info, k))
+          return fail(what + ": edge " + std::to_string(k) + " touches a flat face but is not locked");
+      }
+      if (kind == VGEO_PATCH_NONE) continue;
       const shaderio::CageFace& face = d.cageFaces[f];
-      if (face.vertexCount != 4) return fail("cage face " + std::to_string(f) + " has a patch but " + std::to_string(face.vertexCount) + " corners");
-      regular++;
+      checked++;
       for (int k = 0; k < 4; k++) {
-        glm::dvec3 limit(0.0);
-        for (int dr = -1; dr <= 1; dr++)
-          for (int dc = -1; dc <= 1; dc++) {
-            uint32_t v = patch.points[4 * (kCorner[k][0] + dr) + kCorner[k][1] + dc];
-            double w = (dr == 0 ? 4.0 : 1.0) * (dc == 0 ? 4.0 : 1.0) / 36.0;
-            limit += w * glm::dvec3(d.controlPoints[3 * v], d.controlPoints[3 * v + 1], d.controlPoints[3 * v + 2]);
-          }
+        glm::vec3 limit = d.evaluatePatch(f, kCorner[k][0], kCorner[k][1]);
         glm::vec3 corner = d.position(d.cageFaceVertices[face.firstVertex + uint32_t(k)]);
-        if (glm::distance(limit, glm::dvec3(corner)) > tolerance)
-          return fail("cage face " + std::to_string(f) + ": its patch's corner " + str(glm::vec3(limit)) + " is not its leaf vertex " + str(corner));
+        if (glm::distance(glm::dvec3(limit), glm::dvec3(corner)) > tolerance)
+          return fail(what + ": its patch's corner " + str(limit) + " is not its leaf vertex " + str(corner));
       }
     }
     return true;
@@ -238,7 +248,7 @@ CheckResult checkVgeo(const VgeoData& data, const CheckOptions& options) {
     maxLevels = std::max(maxLevels, g.levelCount);
     for (uint32_t i = g.clusterOffset; i < g.clusterOffset + g.clusterCount; i++)
       if (std::isinf(data.clusters[i].parentError)) result.rootClusters++;
-    if (checker.structure() && checker.patches(result.regularPatches)) {
+    if (checker.structure() && checker.patches(result.checkedPatches)) {
       checker.prepare();
       glm::vec3 center(g.boundsSphere);
       float radius = std::max(g.boundsSphere.w, 1e-6f);
@@ -265,7 +275,7 @@ CheckResult checkVgeo(const VgeoData& data, const CheckOptions& options) {
   }
   std::ostringstream s;
   s << "ok: " << data.geometries.size() << " geometries, " << data.instances.size() << " instances, " << totalClusters << " clusters, "
-    << totalGroups << " groups, up to " << maxLevels << " levels, " << result.rootClusters << " root clusters, " << result.regularPatches
+    << totalGroups << " groups, up to " << maxLevels << " levels, " << result.rootClusters << " root clusters, " << result.checkedPatches
     << " patches through their leaf vertices; " << checkedCuts
     << " random cuts watertight and covering every leaf once (mean " << (checkedCuts ? result.cutClusters / checkedCuts : 0)
     << " clusters, " << (checkedCuts ? result.cutTriangles / checkedCuts : 0) << " triangles)";

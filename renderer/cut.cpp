@@ -11,7 +11,7 @@ std::vector<uint32_t> selectCut(const VgeoData& data, uint32_t geometry, const L
     const shaderio::Cluster& c = data.clusters[i];
     float self = shaderio::projectedError(c.selfSphere, c.selfError, view.eye, view.projScale, view.znear);
     float parent = shaderio::projectedError(c.parentSphere, c.parentError, view.eye, view.projScale, view.znear);
-    if (self <= view.tau && view.tau < parent) cut.push_back(i);
+    if (shaderio::inCut(self, parent, view.tau, c.producer == VGEO_NO_GROUP)) cut.push_back(i);
   }
   return cut;
 }

@@ -33,7 +33,7 @@ struct CheckResult {
   uint64_t cutClusters = 0;    // summed over the checked cuts
   uint64_t cutTriangles = 0;
   uint32_t rootClusters = 0;
-  uint64_t regularPatches = 0;  // B-spline patches checked to pass through their leaf vertices
+  uint64_t checkedPatches = 0;  // patches (regular and ring) checked to pass through their leaf vertices
 };
 // Checks invariants 1-5 of DESIGN.md on every geometry: cluster sizes; shared self per producing group
 // and shared parent per group; monotonic errors and enclosing spheres (self spheres also enclose their

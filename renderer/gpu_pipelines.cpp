@@ -9,6 +9,9 @@
 #include "shaders/draw_vert.h"
 #include "shaders/finalize_comp.h"
 #include "shaders/finalize_triangles_comp.h"
+#include "shaders/patch_tesc.h"
+#include "shaders/patch_tese.h"
+#include "shaders/patch_vert.h"
 #include "shaders/prepare_flat_comp.h"
 #include "shaders/prepare_level_comp.h"
 #include "shaders/reset_flat_comp.h"
@@ -112,7 +115,9 @@ void GpuRenderer::createPipelines() {
   VkDescriptorSetLayoutBinding bindings[kRendererBindings];
   for (uint32_t i = 0; i < kRendererBindings; i++) {
     bindings[i] = {i, i == 0 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
-                   VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+                   VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT |
+                       (vk_.tessellation() ? VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT | VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT : 0u),
+                   nullptr};
   }
   VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   setInfo.bindingCount = kRendererBindings;
@@ -207,6 +212,31 @@ void GpuRenderer::createPipelines() {
   blend.srcAlphaBlendFactor = blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
   blend.colorBlendOp = blend.alphaBlendOp = VK_BLEND_OP_ADD;
   vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &drawOverdraw_), "vkCreateGraphicsPipelines");
+
+  // The patch draw: the same state, one control point a patch, tessellated (patch.tesc, patch.tese).
+  // Without tessellation shaders on the device, leaves stay triangles.
+  if (vk_.tessellation()) {
+    VkShaderModule patchVert = vk_.createShaderModule(patch_vert, sizeof(patch_vert));
+    VkShaderModule tesc = vk_.createShaderModule(patch_tesc, sizeof(patch_tesc));
+    VkShaderModule tese = vk_.createShaderModule(patch_tese, sizeof(patch_tese));
+    VkPipelineShaderStageCreateInfo patchStages[4] = {
+        {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, patchVert, "main", nullptr},
+        {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT, tesc, "main", nullptr},
+        {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT, tese, "main", nullptr},
+        {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, frag, "main", nullptr}};
+    VkPipelineTessellationStateCreateInfo tessellation{VK_STRUCTURE_TYPE_PIPELINE_TESSELLATION_STATE_CREATE_INFO};
+    tessellation.patchControlPoints = 1;
+    assembly.topology = VK_PRIMITIVE_TOPOLOGY_PATCH_LIST;
+    info.stageCount = 4;
+    info.pStages = patchStages;
+    info.pTessellationState = &tessellation;
+    vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &drawPatchesOverdraw_), "vkCreateGraphicsPipelines (patches)");
+    depth.depthTestEnable = VK_TRUE;
+    depth.depthWriteEnable = VK_TRUE;
+    blend.blendEnable = VK_FALSE;
+    vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &drawPatches_), "vkCreateGraphicsPipelines (patches)");
+    for (VkShaderModule m : {patchVert, tesc, tese}) vkDestroyShaderModule(dev, m, nullptr);
+  }
   vkDestroyShaderModule(dev, vert, nullptr);
   vkDestroyShaderModule(dev, frag, nullptr);
 }

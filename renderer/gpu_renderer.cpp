@@ -22,7 +22,7 @@
 namespace vgeo {
 namespace {
 
-constexpr uint32_t kSceneBindings = 10;  // bindings 1..9: geometries .. BVH nodes; 13: cluster cones
+constexpr uint32_t kSceneBindings = 15;  // bindings 1..9: geometries .. BVH nodes; 13: cluster cones; 15..19: patches
 // lavapipe ends every loop after 65,535 iterations per invocation (GPU-NOTES 1): persistent workers
 // leave on their own well before, holding nothing, and enough of them are dispatched to carry on.
 constexpr uint32_t kLavapipeIterationBudget = 50000;
@@ -70,6 +70,11 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
       {d.groups.data(), d.groups.size() * sizeof(shaderio::Group)},
       {d.nodes.data(), d.nodes.size() * sizeof(shaderio::BvhNode)},
       {d.clusterCones.data(), d.clusterCones.size() * sizeof(shaderio::ClusterCone)},
+      {d.controlPoints.data(), d.controlPoints.size() * sizeof(float)},
+      {d.cageFaces.data(), d.cageFaces.size() * sizeof(shaderio::CageFace)},
+      {d.cageFaceVertices.data(), d.cageFaceVertices.size() * sizeof(uint32_t)},
+      {d.patches.data(), d.patches.size() * sizeof(shaderio::Patch)},
+      {d.patchPoints.data(), d.patchPoints.size() * sizeof(uint32_t)},
   };
   for (const auto& s : sections) {
     if (s.bytes > range)
@@ -129,18 +134,26 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
   q.queryType = VK_QUERY_TYPE_TIMESTAMP;
   q.queryCount = kTimestamps;
   vkCheck(vkCreateQueryPool(vk_.device(), &q, nullptr, &queries_), "vkCreateQueryPool");
+  if (vk_.pipelineStatistics()) {
+    VkQueryPoolCreateInfo stats{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    stats.queryType = VK_QUERY_TYPE_PIPELINE_STATISTICS;
+    stats.queryCount = 1;
+    stats.pipelineStatistics = VK_QUERY_PIPELINE_STATISTIC_CLIPPING_INVOCATIONS_BIT;
+    vkCheck(vkCreateQueryPool(vk_.device(), &stats, nullptr, &statistics_), "vkCreateQueryPool (statistics)");
+  }
 }
 
 GpuRenderer::~GpuRenderer() {
   VkDevice dev = vk_.device();
   vkDeviceWaitIdle(dev);
   for (VkPipeline p : {cull_, persistent_, level_, prepareLevel_, flat_, prepareFlat_, resetFlat_, finalize_, cullTriangles_, finalizeTriangles_,
-                       draw_, drawOverdraw_})
+                       draw_, drawOverdraw_, drawPatches_, drawPatchesOverdraw_})
     vkDestroyPipeline(dev, p, nullptr);
   vkDestroyPipelineLayout(dev, layout_, nullptr);
   vkDestroyDescriptorPool(dev, descriptorPool_, nullptr);
   vkDestroyDescriptorSetLayout(dev, setLayout_, nullptr);
   vkDestroyQueryPool(dev, queries_, nullptr);
+  if (statistics_) vkDestroyQueryPool(dev, statistics_, nullptr);
   vkDestroyFramebuffer(dev, framebuffer_, nullptr);
   vkDestroyRenderPass(dev, renderPass_, nullptr);
   vkDestroyImageView(dev, colorView_, nullptr);
@@ -149,7 +162,7 @@ GpuRenderer::~GpuRenderer() {
   vkDestroyImage(dev, depth_, nullptr);
   vkFreeMemory(dev, colorMemory_, nullptr);
   vkFreeMemory(dev, depthMemory_, nullptr);
-  for (Buffer* b : {&frameData_, &counters_, &countersReadback_, &queue_, &drawList_, &drawListReadback_, &imageReadback_, &triangleList_})
+  for (Buffer* b : {&frameData_, &counters_, &countersReadback_, &queue_, &drawList_, &drawListReadback_, &imageReadback_, &triangleList_, &patchList_})
     vk_.destroyBuffer(*b);
   for (Buffer& b : sceneBuffers_) vk_.destroyBuffer(b);
 }
@@ -160,20 +173,24 @@ void GpuRenderer::createQueueAndDrawList() {
   // A triangle-list entry holds the draw-list entry in 25 bits.
   drawCapacity_ = uint32_t(std::min<VkDeviceSize>({drawCapacity_, range / 8, VGEO_MAX_DRAW_ENTRIES}));
   triangleCapacity_ = uint32_t(std::min<VkDeviceSize>(triangleCapacity_, range / 4));
+  patchCapacity_ = uint32_t(std::min<VkDeviceSize>(patchCapacity_, range / 4));
   queue_ = vk_.createBuffer(VkDeviceSize(queueCapacity_) * 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   drawList_ = vk_.createBuffer(VkDeviceSize(drawCapacity_) * 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   triangleList_ = vk_.createBuffer(VkDeviceSize(triangleCapacity_) * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  patchList_ = vk_.createBuffer(VkDeviceSize(patchCapacity_) * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   // Every queue slot starts unwritten; consumers put them back that way.
   VkCommandBuffer cmd = vk_.beginCommands();
   vkCmdFillBuffer(cmd, queue_.buffer, 0, VK_WHOLE_SIZE, VGEO_INVALID);
   vk_.submitAndWait(cmd);
 }
 
-void GpuRenderer::setCapacities(uint32_t queueItems, uint32_t drawEntries, uint32_t triangles) {
+void GpuRenderer::setCapacities(uint32_t queueItems, uint32_t drawEntries, uint32_t triangles, uint32_t patches) {
   vkDeviceWaitIdle(vk_.device());
   vk_.destroyBuffer(queue_);
   vk_.destroyBuffer(drawList_);
   vk_.destroyBuffer(triangleList_);
+  vk_.destroyBuffer(patchList_);
+  patchCapacity_ = std::max(patches, 1u);
   queueCapacity_ = std::max(queueItems, 1u);
   drawCapacity_ = std::max(drawEntries, 1u);
   triangleCapacity_ = std::max(triangles, 1u);
@@ -189,6 +206,8 @@ void GpuRenderer::writeDescriptors() {
   buffers.push_back(&drawList_);
   buffers.push_back(&sceneBuffers_[9]);
   buffers.push_back(&triangleList_);
+  for (uint32_t i = 10; i < kSceneBindings; i++) buffers.push_back(&sceneBuffers_[i]);
+  buffers.push_back(&patchList_);
   VkDescriptorBufferInfo infos[kRendererBindings];
   VkWriteDescriptorSet writes[kRendererBindings];
   for (uint32_t i = 0; i < kRendererBindings; i++) {
@@ -300,10 +319,18 @@ void GpuRenderer::recordRenderPass(VkCommandBuffer cmd, const FrameSettings& set
   begin.renderArea = {{0, 0}, {width_, height_}};
   begin.clearValueCount = 2;
   begin.pClearValues = clears;
+  if (patchesOn_ && statistics_) vkCmdResetQueryPool(cmd, statistics_, 0, 1);
   vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, settings.mode == VGEO_MODE_OVERDRAW ? drawOverdraw_ : draw_);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
   vkCmdDrawIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, draw), 1, sizeof(VkDrawIndirectCommand));
+  // The leaf patches: one more indirect draw, tessellated (patch.tesc, patch.tese).
+  if (patchesOn_) {
+    if (statistics_) vkCmdBeginQuery(cmd, statistics_, 0, 0);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, settings.mode == VGEO_MODE_OVERDRAW ? drawPatchesOverdraw_ : drawPatches_);
+    vkCmdDrawIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, patchDraw), 1, sizeof(VkDrawIndirectCommand));
+    if (statistics_) vkCmdEndQuery(cmd, statistics_, 0);
+  }
   vkCmdEndRenderPass(cmd);
 }
 
@@ -328,6 +355,9 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
   frame.triangleCapacity = triangleCapacity_;
   frame.viewportWidth = float(width_);
   frame.viewportHeight = float(height_);
+  patchesOn_ = cullTriangles && settings.patches && drawPatches_ != VK_NULL_HANDLE;
+  frame.patches = patchesOn_ ? 1u : 0u;
+  frame.patchCapacity = patchCapacity_;
   std::memcpy(frameData_.mapped, &frame, sizeof(frame));
   if (settings.readDrawList && drawListReadback_.size != drawList_.size) {
     vk_.destroyBuffer(drawListReadback_);
@@ -381,6 +411,16 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
   std::memcpy(&result.counters, countersReadback_.mapped, sizeof(result.counters));
   const auto& c = result.counters;
   result.trianglesDrawn = cullTriangles ? std::min(c.trianglesDrawn, triangleCapacity_) : c.triangles;
+  result.patchesDrawn = std::min(c.patchesDrawn, patchCapacity_);
+  if (patchesOn_ && statistics_ && settings.draw) {
+    uint64_t primitives = 0;
+    vkCheck(vkGetQueryPoolResults(vk_.device(), statistics_, 0, 1, sizeof(primitives), &primitives, sizeof(primitives),
+                                  VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+            "vkGetQueryPoolResults (statistics)");
+    result.patchTriangles = int64_t(primitives);
+  } else if (!patchesOn_) {
+    result.patchTriangles = 0;
+  }
   if (settings.readImage && settings.draw) {
     result.rgba.resize(size_t(width_) * height_ * 4);
     std::memcpy(result.rgba.data(), imageReadback_.mapped, result.rgba.size());
@@ -389,22 +429,22 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
     uint32_t n = std::min(c.drawCount, drawCapacity_);
     const uint32_t* p = static_cast<const uint32_t*>(drawListReadback_.mapped);
     result.drawList.resize(n);
-    for (uint32_t i = 0; i < n; i++) result.drawList[i] = {p[2 * i], p[2 * i + 1]};
+    for (uint32_t i = 0; i < n; i++) result.drawList[i] = {p[2 * i], p[2 * i + 1] & ~VGEO_DRAW_PATCHES_BIT};
   }
   bool drained = c.itemsDone == c.queueWrite;
-  result.complete = c.queueOverflow == 0 && c.drawOverflow == 0 && c.triangleOverflow == 0 && drained;
+  result.complete = c.queueOverflow == 0 && c.drawOverflow == 0 && c.triangleOverflow == 0 && c.patchOverflow == 0 && drained;
   if (!drained && c.queueOverflow == 0)
     throw std::runtime_error("traversal did not drain its queue (" + std::to_string(c.itemsDone) + " of " + std::to_string(c.queueWrite) +
                              " items done, " + std::to_string(c.queueRead) + " claimed; " + std::to_string(c.workgroupsExited) + " of " +
                              std::to_string(persistentWorkgroups_) + " workers left, " + std::to_string(c.budgetExits) + " on their budget)");
   // Grow what overflowed, for the next frame.
-  if (c.queueOverflow || c.drawOverflow || c.triangleOverflow) {
+  if (c.queueOverflow || c.drawOverflow || c.triangleOverflow || c.patchOverflow) {
     auto grown = [](bool overflowed, uint32_t capacity, uint32_t needed) {
       uint64_t want = overflowed ? std::max<uint64_t>(uint64_t(capacity) * 2, uint64_t(needed) * 5 / 4) : capacity;
       return uint32_t(std::min<uint64_t>(want, UINT32_MAX / 2));
     };
     setCapacities(grown(c.queueOverflow, queueCapacity_, c.queueHighWater), grown(c.drawOverflow, drawCapacity_, c.drawCount),
-                  grown(c.triangleOverflow, triangleCapacity_, c.trianglesDrawn));
+                  grown(c.triangleOverflow, triangleCapacity_, c.trianglesDrawn), grown(c.patchOverflow, patchCapacity_, c.patchesDrawn));
   }
   return result;
 }

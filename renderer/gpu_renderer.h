@@ -25,11 +25,14 @@ struct FrameSettings {
   bool readImage = true;
   bool draw = true;          // false: selection only (cut benchmarks); no image
   bool triangleCull = true;  // cull_triangles.comp before the draw (no change to the picture)
+  bool patches = true;       // leaves too coarse for tau drawn as tessellated patches (needs triangleCull)
 };
 
 struct FrameResult {
   shaderio::Counters counters{};
   uint32_t trianglesDrawn = 0;     // sent to the rasterizer: after triangle culling, else the cut's triangles
+  uint32_t patchesDrawn = 0;       // patches in the tessellated draw
+  int64_t patchTriangles = -1;     // triangles the tessellator made of them (-1: no pipeline statistics)
   std::vector<CutEntry> drawList;  // when readDrawList
   std::vector<uint8_t> rgba;       // when readImage: width x height x 4
   double instanceCullMs = 0.0, traversalMs = 0.0, triangleCullMs = 0.0, drawMs = 0.0, frameMs = 0.0;
@@ -51,8 +54,9 @@ class GpuRenderer {
   uint32_t queueCapacity() const { return queueCapacity_; }
   uint32_t drawCapacity() const { return drawCapacity_; }
   uint32_t triangleCapacity() const { return triangleCapacity_; }
+  uint32_t patchCapacity() const { return patchCapacity_; }
   // Sets the capacities (tests use tiny ones to provoke overflow).
-  void setCapacities(uint32_t queueItems, uint32_t drawEntries, uint32_t triangles);
+  void setCapacities(uint32_t queueItems, uint32_t drawEntries, uint32_t triangles, uint32_t patches);
   uint32_t persistentWorkgroups() const { return persistentWorkgroups_; }
   // Overrides the persistent traversal's workgroup count (benchmarks; the default is what the device
   // runs at once).
@@ -73,11 +77,12 @@ class GpuRenderer {
   VulkanContext& vk_;
   const RenderScene& scene_;
   uint32_t width_, height_;
-  uint32_t queueCapacity_ = 1u << 20, drawCapacity_ = 1u << 20, triangleCapacity_ = 1u << 22;
+  uint32_t queueCapacity_ = 1u << 20, drawCapacity_ = 1u << 20, triangleCapacity_ = 1u << 22, patchCapacity_ = 1u << 18;
   uint32_t persistentWorkgroups_ = 0, iterationBudget_ = 0, claimMode_ = 0;
+  bool patchesOn_ = false;  // this frame draws patches
 
-  Buffer frameData_, counters_, countersReadback_, queue_, drawList_, drawListReadback_, imageReadback_, triangleList_;
-  std::vector<Buffer> sceneBuffers_;  // bindings 1..9, then 13
+  Buffer frameData_, counters_, countersReadback_, queue_, drawList_, drawListReadback_, imageReadback_, triangleList_, patchList_;
+  std::vector<Buffer> sceneBuffers_;  // bindings 1..9, then 13, then 15..19
   VkImage color_ = VK_NULL_HANDLE, depth_ = VK_NULL_HANDLE;
   VkDeviceMemory colorMemory_ = VK_NULL_HANDLE, depthMemory_ = VK_NULL_HANDLE;
   VkImageView colorView_ = VK_NULL_HANDLE, depthView_ = VK_NULL_HANDLE;
@@ -90,14 +95,15 @@ class GpuRenderer {
   VkPipeline cull_ = VK_NULL_HANDLE, persistent_ = VK_NULL_HANDLE, level_ = VK_NULL_HANDLE, prepareLevel_ = VK_NULL_HANDLE,
              flat_ = VK_NULL_HANDLE, prepareFlat_ = VK_NULL_HANDLE, resetFlat_ = VK_NULL_HANDLE, finalize_ = VK_NULL_HANDLE, draw_ = VK_NULL_HANDLE,
              cullTriangles_ = VK_NULL_HANDLE, finalizeTriangles_ = VK_NULL_HANDLE,
-             drawOverdraw_ = VK_NULL_HANDLE;
+             drawOverdraw_ = VK_NULL_HANDLE, drawPatches_ = VK_NULL_HANDLE, drawPatchesOverdraw_ = VK_NULL_HANDLE;
   VkQueryPool queries_ = VK_NULL_HANDLE;
+  VkQueryPool statistics_ = VK_NULL_HANDLE;  // clipping invocations of the patch draw (its triangles)
 };
 
 const char* traversalName(Traversal t);
 
-// Binding count of the one descriptor set (common.glsl): 0 frame data, 1..9 and 13 the scene, 10 counters,
-// 11 queue, 12 draw list, 14 triangle list.
-constexpr uint32_t kRendererBindings = 15;
+// Binding count of the one descriptor set (common.glsl): 0 frame data, 1..9, 13 and 15..19 the scene,
+// 10 counters, 11 queue, 12 draw list, 14 triangle list, 20 patch list.
+constexpr uint32_t kRendererBindings = 21;
 
 }  // namespace vgeo

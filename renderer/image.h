@@ -1,6 +1,7 @@
 // image.h: writing the rendered image (image.cpp).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -18,6 +19,18 @@ inline uint64_t coveredPixels(const std::vector<uint8_t>& rgba) {
   uint64_t covered = 0;
   for (size_t i = 0; i + 3 < rgba.size(); i += 4) covered += isCovered(&rgba[i]);
   return covered;
+}
+
+// Pixels of a VGEO_MODE_PATCH frame drawn by the patch draw: tinted by their factor, where the
+// triangles are grey.
+inline uint64_t patchPixels(const std::vector<uint8_t>& rgba) {
+  uint64_t tinted = 0;
+  for (size_t i = 0; i + 3 < rgba.size(); i += 4) {
+    const uint8_t* p = &rgba[i];
+    int lo = std::min({p[0], p[1], p[2]}), hi = std::max({p[0], p[1], p[2]});
+    tinted += isCovered(p) && hi - lo > 8;
+  }
+  return tinted;
 }
 
 }  // namespace vgeo

@@ -40,9 +40,10 @@ SceneCut selectSceneCut(const RenderScene& scene, const View& cull, float tau, f
       float selfError = shaderio::projectedError(self, cl.selfError * inst.maxScale, cull.eye, cull.projScale, cull.znear);
       float parentError = shaderio::projectedError(worldSphere(inst, cl.parentSphere), cl.parentError * inst.maxScale, cull.eye,
                                                    cull.projScale, cull.znear);
-      bool drawn = margin >= 0.0f && selfError <= tau && tau < parentError;
+      const bool leaf = cl.producer == VGEO_NO_GROUP;
+      bool drawn = margin >= 0.0f && shaderio::inCut(selfError, parentError, tau, leaf);
       bool borderline = std::abs(margin) <= epsilon * std::max(self.w, 1e-30f) || std::abs(boundsMargin) <= epsilon * bounds.w ||
-                        std::abs(selfError - tau) <= epsilon * tau || std::abs(parentError - tau) <= epsilon * tau;
+                        (!leaf && std::abs(selfError - tau) <= epsilon * tau) || std::abs(parentError - tau) <= epsilon * tau;
       if ((inst.flags & VGEO_INSTANCE_CONE_CULL) && drawn) {
         const shaderio::ClusterCone& cc = d.clusterCones[c];
         glm::vec3 axis = glm::normalize(glm::vec3(glm::dot(glm::vec3(inst.row0), glm::vec3(cc.cone)), glm::dot(glm::vec3(inst.row1), glm::vec3(cc.cone)),

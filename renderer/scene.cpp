@@ -29,7 +29,7 @@ uint32_t appendVgeo(VgeoData& dst, const VgeoData& src) {
                  clusterBase = uint32_t(dst.clusters.size()), groupBase = uint32_t(dst.groups.size()),
                  nodeBase = uint32_t(dst.nodes.size()), clusterVertexBase = uint32_t(dst.clusterVertices.size()),
                  clusterTriangleBase = uint32_t(dst.clusterTriangles.size()), cageBase = uint32_t(dst.cageFaces.size()),
-                 cageVertexBase = uint32_t(dst.cageFaceVertices.size());
+                 cageVertexBase = uint32_t(dst.cageFaceVertices.size()), patchPointBase = uint32_t(dst.patchPoints.size());
   for (auto g : src.geometries) {
     g.clusterOffset += clusterBase;
     g.groupOffset += groupBase;
@@ -71,10 +71,12 @@ uint32_t appendVgeo(VgeoData& dst, const VgeoData& src) {
   dst.clusterCones.insert(dst.clusterCones.end(), src.clusterCones.begin(), src.clusterCones.end());
   dst.controlPoints.insert(dst.controlPoints.end(), src.controlPoints.begin(), src.controlPoints.end());
   for (auto p : src.patches) {
-    if (p.points[0] != VGEO_NO_PATCH)
-      for (uint32_t& v : p.points) v += vertexBase;
+    p.firstPoint += patchPointBase;
+    for (uint32_t& n : p.neighbours)
+      if (n != VGEO_INVALID) n += cageBase << 2;
     dst.patches.push_back(p);
   }
+  for (uint32_t v : src.patchPoints) dst.patchPoints.push_back(v + vertexBase);
   return geometryBase;
 }
 

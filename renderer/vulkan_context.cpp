@@ -133,6 +133,9 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
   enabled.vertexPipelineStoresAndAtomics = supported.vertexPipelineStoresAndAtomics;
   enabled.fragmentStoresAndAtomics = supported.fragmentStoresAndAtomics;
   enabled.tessellationShader = supported.tessellationShader;
+  enabled.pipelineStatisticsQuery = supported.pipelineStatisticsQuery;
+  tessellation_ = supported.tessellationShader;
+  pipelineStatistics_ = supported.pipelineStatisticsQuery;
   VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   deviceInfo.queueCreateInfoCount = 1;
   deviceInfo.pQueueCreateInfos = &queueInfo;

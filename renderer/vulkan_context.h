@@ -37,6 +37,8 @@ class VulkanContext {
   std::string deviceName() const { return properties_.deviceName; }
   std::string driverName() const { return driverName_; }
   bool isLavapipe() const { return driverId_ == VK_DRIVER_ID_MESA_LLVMPIPE; }
+  bool tessellation() const { return tessellation_; }            // tessellationShader enabled
+  bool pipelineStatistics() const { return pipelineStatistics_; }  // pipelineStatisticsQuery enabled
   // Nanoseconds per timestamp tick; 0 when the queue has no timestamps.
   double timestampPeriod() const { return timestampValidBits_ ? double(properties_.limits.timestampPeriod) : 0.0; }
   // Validation messages seen so far (warnings and errors); each is also printed to stderr.
@@ -72,6 +74,7 @@ class VulkanContext {
   VkPhysicalDeviceProperties properties_{};
   VkPhysicalDeviceMemoryProperties memory_{};
   VkDriverId driverId_{};
+  bool tessellation_ = false, pipelineStatistics_ = false;
   std::string driverName_;
   uint32_t validationMessages_ = 0;
 };

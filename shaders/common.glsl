@@ -23,10 +23,38 @@ layout(set = 0, binding = 12, std430) buffer DrawListBuffer { uint drawList[]; }
 layout(set = 0, binding = 13, std430) readonly buffer ClusterConeBuffer { ClusterCone clusterCones[]; };
 // Triangle list (cull_triangles.comp): entry i is (draw-list entry << VGEO_TRIANGLE_BITS | triangle).
 layout(set = 0, binding = 14, std430) buffer TriangleListBuffer { uint triangleList[]; };
+// Leaves as patches (shaderio.h, Patch; patch_eval.h): the cage's control points, its faces, their patches.
+layout(set = 0, binding = 15, std430) readonly buffer ControlPointBuffer { float controlPoints[]; };
+layout(set = 0, binding = 16, std430) readonly buffer CageFaceBuffer { CageFace cageFaces[]; };
+layout(set = 0, binding = 17, std430) readonly buffer CageFaceVertexBuffer { uint cageFaceVertices[]; };
+layout(set = 0, binding = 18, std430) readonly buffer PatchBuffer { Patch patches[]; };
+layout(set = 0, binding = 19, std430) readonly buffer PatchPointBuffer { uint patchPoints[]; };
+// Patch list (cull_triangles.comp): entry i is (draw-list entry << VGEO_TRIANGLE_BITS | cage face in its cluster).
+layout(set = 0, binding = 20, std430) buffer PatchListBuffer { uint patchList[]; };
 
 vec3 toWorld(Instance inst, vec3 p) {
   vec4 h = vec4(p, 1.0);
   return vec3(dot(inst.row0, h), dot(inst.row1, h), dot(inst.row2, h));
+}
+
+vec3 vertexPosition(uint vertex) { return vec3(positions[3u * vertex], positions[3u * vertex + 1u], positions[3u * vertex + 2u]); }
+
+// Clip position of an object-space point: the triangle and patch draws compute shared corners with this
+// one expression, and `precise` forbids fused multiply-adds that a compiler could place differently in
+// the two shaders, so both give the same bits. (`invariant gl_Position` would say the same, but Debian
+// 12's glslang decorates a struct member with it, which the validation layer reports.)
+vec4 clipPosition(Instance inst, vec3 p) {
+  precise vec3 world = toWorld(inst, p);
+  precise vec4 clip = frame.viewProjection * vec4(world, 1.0);
+  return clip;
+}
+
+// Octahedral unit normal (vgeo_file.h, encodeNormal).
+vec3 decodeNormal(uint packed) {
+  vec2 e = vec2(float(int(packed << 16) >> 16), float(int(packed) >> 16)) / 32767.0;
+  vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+  if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+  return normalize(n);
 }
 
 vec4 worldSphere(Instance inst, vec4 sphere) {

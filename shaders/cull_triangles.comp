@@ -5,6 +5,9 @@
 //   - all three corners beyond one plane of the view volume (left, right, top, bottom, near);
 //   - facing away from the eye on a closed, outward-facing instance (the front side hides it);
 //   - its screen bounding box holds no pixel centre, so it makes no fragment.
+// A leaf cluster flagged for patches (VGEO_DRAW_PATCHES_BIT) lists its cage faces instead, one thread a
+// face, in the patch list of the tessellated draw (patch.tesc), unless the face's bounding sphere (its
+// corners, grown by its chord error: the surface is that close to its triangles) is outside the frustum.
 // None of these changes the picture: they keep the rasterizer from setting up triangles that make no
 // fragment, which is where the time of a virtual-geometry frame goes once clusters are small on
 // screen (GPU-NOTES 6 and 8). The cut itself (the draw list) is untouched.
@@ -28,7 +31,7 @@ bool visible(Instance inst, Cluster c, uint triangle) {
   vec4 clip[3];
   for (uint k = 0u; k < 3u; k++) {
     uint vertex = clusterVertices[c.vertexOffset + ((packed >> (8u * k)) & 0xffu)];
-    world[k] = toWorld(inst, vec3(positions[3u * vertex], positions[3u * vertex + 1u], positions[3u * vertex + 2u]));
+    world[k] = toWorld(inst, vertexPosition(vertex));
     clip[k] = frame.viewProjection * vec4(world[k], 1.0);
   }
   // Outside one plane of the view volume (-w <= x, y <= w; the near plane is z <= w; reversed infinite
@@ -55,13 +58,43 @@ bool visible(Instance inst, Cluster c, uint triangle) {
   return !(noPixelCentre(lo.x, hi.x) || noPixelCentre(lo.y, hi.y));
 }
 
+bool faceVisible(Instance inst, uint face) {
+  CageFace f = cageFaces[face];
+  vec3 corner[4];
+  for (uint k = 0u; k < 4u; k++) corner[k] = toWorld(inst, vertexPosition(cageFaceVertices[f.firstVertex + k]));
+  vec3 centre = 0.25 * (corner[0] + corner[1] + corner[2] + corner[3]);
+  float radius = max(max(distance(centre, corner[0]), distance(centre, corner[1])), max(distance(centre, corner[2]), distance(centre, corner[3])));
+  return sphereInFrustum(vec4(centre, radius + patches[face].faceError * inst.maxScale));
+}
+
+// The faces of a patch-drawn cluster that may be seen join the patch list.
+void listPatches(uint entry, Instance inst, Cluster c) {
+  uint local = gl_LocalInvocationIndex;
+  bool keep = local < clusterCageFaceCount(c.counts) && faceVisible(inst, c.cageFaceOffset + local);
+  uint slot = keep ? atomicAdd(sKept, 1u) : 0u;
+  barrier();
+  if (gl_LocalInvocationIndex == 0u) {
+    sBase = sKept == 0u ? 0u : atomicAdd(counters.patchesDrawn, sKept);
+    uint end = sBase + sKept;
+    if (end > frame.patchCapacity) atomicAdd(counters.patchOverflow, min(sKept, end - frame.patchCapacity));
+    atomicAdd(counters.patchClusters, 1u);
+  }
+  barrier();
+  slot += sBase;
+  if (keep && slot < frame.patchCapacity) patchList[slot] = entry << VGEO_TRIANGLE_BITS | local;
+}
+
 void main() {
   uint entry = gl_WorkGroupID.y * 65535u + gl_WorkGroupID.x;
   if (entry >= min(counters.drawCount, frame.drawCapacity)) return;  // the whole workgroup
   if (gl_LocalInvocationIndex == 0u) sKept = 0u;
   barrier();
   uint instance = drawList[2u * entry], cluster = drawList[2u * entry + 1u];
-  Cluster c = clusters[cluster];
+  Cluster c = clusters[cluster & ~VGEO_DRAW_PATCHES_BIT];
+  if ((cluster & VGEO_DRAW_PATCHES_BIT) != 0u) {  // the same for the whole workgroup
+    listPatches(entry, instances[instance], c);
+    return;
+  }
   uint triangle = gl_LocalInvocationIndex;
   bool keep = triangle < clusterTriangleCount(c.counts) && visible(instances[instance], c, triangle);
   uint slot = keep ? atomicAdd(sKept, 1u) : 0u;

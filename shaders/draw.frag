@@ -1,6 +1,6 @@
 #version 450
 // draw.frag: the debug views of `--mode` (lit, normal, cluster, group, lod, triangle, instance, error,
-// wire, overdraw, frozen-diff). Ids get stable colours from a hash, so the same cluster keeps its colour
+// wire, overdraw, frozen-diff, patch). Ids get stable colours from a hash, so the same cluster keeps its colour
 // from frame to frame and between runs.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
@@ -46,6 +46,8 @@ void main() {
   else if (mode == VGEO_MODE_INSTANCE) color = idColor(inIds.z) * light;
   else if (mode == VGEO_MODE_ERROR) color = heat(inInfo.x) * light;  // projected error / tau: red at tau
   else if (mode == VGEO_MODE_OVERDRAW) color = vec3(0.09, 0.05, 0.02);
+  else if (mode == VGEO_MODE_PATCH)  // patches by their largest tessellation factor (blue 1, green 8, red 64); triangles grey
+    color = (inInfo.x < 0.0 ? vec3(0.55) : heat(inInfo.x)) * light;
   else if (mode == VGEO_MODE_FROZEN_DIFF)
     color = (inInfo.y == 0.0 ? vec3(0.3, 0.85, 0.3) : inInfo.y == 1.0 ? vec3(0.95, 0.3, 0.25) : vec3(0.3, 0.45, 0.95)) * light;
   else color = vec3(0.82, 0.8, 0.76) * light;

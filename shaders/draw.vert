@@ -14,13 +14,6 @@ layout(location = 2) flat out uvec4 outIds;   // cluster, group, instance, level
 layout(location = 4) flat out uint outTriangle;
 layout(location = 3) flat out vec2 outInfo;   // projected self error / tau; frozen-diff state
 
-vec3 decodeNormal(uint packed) {
-  vec2 e = vec2(float(int(packed << 16) >> 16), float(int(packed) >> 16)) / 32767.0;
-  vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
-  if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
-  return normalize(n);
-}
-
 void main() {
   uint entry = uint(gl_InstanceIndex), triangle = uint(gl_VertexIndex) / 3u, corner = uint(gl_VertexIndex) % 3u;
   if (frame.triangleCull != 0u) {
@@ -35,11 +28,13 @@ void main() {
   }
   uint instance = drawList[2 * entry];
   uint cluster = drawList[2 * entry + 1];
+  bool patchDrawn = (cluster & VGEO_DRAW_PATCHES_BIT) != 0u;  // drawn by patch.tese instead
+  cluster &= ~VGEO_DRAW_PATCHES_BIT;
   Cluster c = clusters[cluster];
   outBarycentric = vec3(corner == 0u ? 1.0 : 0.0, corner == 1u ? 1.0 : 0.0, corner == 2u ? 1.0 : 0.0);
   outIds = uvec4(cluster, c.group, instance, clusterLevel(c.counts));
   outTriangle = triangle;
-  if (triangle >= clusterTriangleCount(c.counts)) {
+  if (triangle >= clusterTriangleCount(c.counts) || patchDrawn) {
     gl_Position = vec4(0.0, 0.0, 2.0, 1.0);
     outNormal = vec3(0.0);
     outInfo = vec2(0.0);
@@ -48,8 +43,7 @@ void main() {
   uint local = (clusterTriangles[c.triangleOffset + triangle] >> (8u * corner)) & 0xffu;
   uint vertex = clusterVertices[c.vertexOffset + local];
   Instance inst = instances[instance];
-  vec3 world = toWorld(inst, vec3(positions[3u * vertex], positions[3u * vertex + 1u], positions[3u * vertex + 2u]));
-  gl_Position = frame.viewProjection * vec4(world, 1.0);
+  gl_Position = clipPosition(inst, vertexPosition(vertex));
   vec3 n = decodeNormal(normals[vertex]);
   outNormal = normalize(vec3(dot(inst.row0.xyz, n), dot(inst.row1.xyz, n), dot(inst.row2.xyz, n)));
 
@@ -58,5 +52,5 @@ void main() {
   float liveSelf = projectedError(worldSphere(inst, c.selfSphere), c.selfError * inst.maxScale, frame.drawEye.xyz, frame.projScale, frame.znear);
   float liveParent = projectedError(worldSphere(inst, c.parentSphere), c.parentError * inst.maxScale, frame.drawEye.xyz, frame.projScale, frame.znear);
   float state = liveSelf > frame.tau ? 1.0 : (liveParent <= frame.tau ? 2.0 : 0.0);
-  outInfo = vec2(self / frame.tau, state);
+  outInfo = vec2(frame.mode == VGEO_MODE_PATCH ? -1.0 : self / frame.tau, state);
 }

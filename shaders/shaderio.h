@@ -22,7 +22,6 @@ using glm::dot;
 #define VGEO_BVH_WIDTH 8
 #define VGEO_NODE_LEAF_BIT 0x80000000u
 #define VGEO_NO_GROUP 0xffffffffu
-#define VGEO_NO_PATCH 0xffffffffu
 
 // One cluster: <= 128 triangles over <= 256 vertices (8-bit local indices).
 // self   = (error, sphere) of the group that produced it (leaves: error 0, the cluster's own sphere);
@@ -118,13 +117,46 @@ struct CageFace {
   uint firstTriangle;   // its first triangle within that cluster (a face's triangles are consecutive)
 };
 
-// The bicubic uniform B-spline patch of a regular face of the level-N cage (its four corners interior, of
-// valence 4): absolute indices of its 4 x 4 control points (the control-point section), row by row;
-// the face is the middle cell, corners points[5], [6], [10], [9] in the face's order. A face next to
-// an extraordinary vertex or a boundary has points[0] == VGEO_INVALID (no patch yet). One per cage face.
-struct BsplinePatch {
-  uint points[16];
+// The limit-surface patch of a face of the level-N cage (patch_eval.h evaluates it), one per cage face.
+// Face parameters (s, t): corner 0 at (0, 0), 1 at (1, 0), 2 at (1, 1), 3 at (0, 1); edge k runs from
+// corner k to corner k + 1.
+//   VGEO_PATCH_REGULAR: four interior corners of valence 4: a bicubic B-spline patch, 16 control points
+//     row by row, the face the middle cell (corners points 5, 6, 10, 9).
+//   VGEO_PATCH_RING: one extraordinary interior corner (corner(), valence()): its 2N + 8 control points
+//     in Stam's order (patch_eval.h).
+//   VGEO_PATCH_NONE: next to a boundary, or two extraordinary corners: drawn flat (its two leaf
+//     triangles), every edge at factor 1.
+// Tessellation factors come from each edge alone (its corners and edgeError), so the two faces of an
+// edge agree; a locked edge stays at factor 1 (the border of a level-0 group, whose other side may be a
+// coarser cluster, or an edge of a flat face). Edge points are evaluated on the face of the lower index
+// (neighbours), so both sides compute the same vertices bit for bit.
+#define VGEO_PATCH_NONE 0u
+#define VGEO_PATCH_REGULAR 1u
+#define VGEO_PATCH_RING 2u
+struct Patch {
+  uint firstPoint;      // into the patch-point section (absolute control-point indices)
+  uint info;            // kind (bits 0-1), ring: corner (bits 2-3), valence (bits 8-15); locked edges (bits 16-19)
+  float faceError;      // object-space chord error of the face's leaf triangles against the patch (>= edgeError)
+  uint pad;
+  uint neighbours[4];   // across edge k: the face's absolute index << 2 | its edge; VGEO_INVALID on a boundary
+  vec4 edgeError;       // chord error of edge k's leaf segment against the limit curve, the same on both sides
 };
+#ifdef __cplusplus
+inline
+#endif
+uint patchKind(uint info) { return info & 3u; }
+#ifdef __cplusplus
+inline
+#endif
+uint patchCorner(uint info) { return (info >> 2u) & 3u; }
+#ifdef __cplusplus
+inline
+#endif
+uint patchValence(uint info) { return (info >> 8u) & 0xffu; }
+#ifdef __cplusplus
+inline
+#endif
+bool patchEdgeLocked(uint info, uint edge) { return ((info >> (16u + edge)) & 1u) != 0u; }
 
 // ---- Renderer -------------------------------------------------------------------------------------
 
@@ -140,6 +172,7 @@ struct BsplinePatch {
 #define VGEO_MODE_WIRE 8
 #define VGEO_MODE_OVERDRAW 9
 #define VGEO_MODE_FROZEN_DIFF 10
+#define VGEO_MODE_PATCH 11
 
 #define VGEO_INVALID 0xffffffffu
 #define VGEO_ITEM_GROUP_BIT 0x80000000u  // queue item names a group, not a BVH node
@@ -166,8 +199,8 @@ struct FrameData {
   uint triangleCapacity; // entries in the triangle list
   float viewportWidth;   // pixels
   float viewportHeight;
-  uint pad0;
-  uint pad1;
+  uint patches;          // 1: leaf clusters whose chord error projects above tau are drawn as patches
+  uint patchCapacity;    // entries in the patch list
 };
 
 // GPU counters of one frame, and the indirect arguments built from them.
@@ -191,13 +224,17 @@ struct Counters {
   uint dispatch[4];      // indirect dispatch arguments (x, y, z): levels and flat traversal, triangle culling
   uint draw[4];          // VkDrawIndirectCommand
   uint triangleOverflow; // triangles that did not fit the triangle list
-  uint pad0;
-  uint pad1;
-  uint pad2;
+  uint patchesDrawn;     // patches listed for the tessellated draw (requested; see patchOverflow)
+  uint patchOverflow;    // patches that did not fit the patch list
+  uint patchClusters;    // draw-list entries drawn as patches
+  uint patchDraw[4];     // VkDrawIndirectCommand of the patch draw (one vertex a patch)
 };
 
-// Triangle list entry: draw-list entry << 7 | triangle within its cluster.
+// Triangle list entry: draw-list entry << 7 | triangle within its cluster. Patch list entry: draw-list
+// entry << 7 | cage face within its (leaf) cluster.
 #define VGEO_TRIANGLE_BITS 7u
+// Draw-list cluster word: set when the leaf cluster is drawn as patches (its chord error projects above tau).
+#define VGEO_DRAW_PATCHES_BIT 0x80000000u
 #define VGEO_MAX_DRAW_ENTRIES (1u << 25)
 
 // Packing of Cluster.counts: vertex count (9 bits), triangle count (8), level (7), cage face count (8).
@@ -245,6 +282,14 @@ float projectedError(vec4 sphere, float error, vec3 eye, float projScale, float 
   return error * projScale / d;
 }
 
+// The cut rule (invariant 4) with its one exception: a leaf (no producer) has nothing finer below it, so
+// it is drawn whenever its parent is too coarse, whatever its own error (its chord error against the limit
+// surface); with self > tau the renderer draws its patches instead of its triangles (DESIGN.md, leaves).
+#ifdef __cplusplus
+inline
+#endif
+bool inCut(float self, float parent, float tau, bool leaf) { return (self <= tau || leaf) && tau < parent; }
+
 #ifdef __cplusplus
 static_assert(sizeof(Cluster) == 64, "Cluster layout");
 static_assert(sizeof(Group) == 32, "Group layout");
@@ -253,9 +298,9 @@ static_assert(sizeof(Geometry) == 64, "Geometry layout");
 static_assert(sizeof(Instance) == 64, "Instance layout");
 static_assert(sizeof(CageFace) == 16, "CageFace layout");
 static_assert(sizeof(ClusterCone) == 32, "ClusterCone layout");
-static_assert(sizeof(BsplinePatch) == 64, "BsplinePatch layout");
+static_assert(sizeof(Patch) == 48, "Patch layout");
 static_assert(sizeof(FrameData) == 64 + 96 + 32 + 64, "FrameData layout");
-static_assert(sizeof(Counters) == 112, "Counters layout");
+static_assert(sizeof(Counters) == 128, "Counters layout");
 }  // namespace shaderio
 #endif
 

@@ -67,7 +67,7 @@ void appendDraw(uint instance, uint cluster) {
   if (index < frame.drawCapacity) {
     drawList[2 * index] = instance;
     drawList[2 * index + 1] = cluster;
-    gTriangles += clusterTriangleCount(clusters[cluster].counts);
+    gTriangles += clusterTriangleCount(clusters[cluster & ~VGEO_DRAW_PATCHES_BIT].counts);
   } else {
     atomicAdd(counters.drawOverflow, 1u);
   }
@@ -81,14 +81,16 @@ void testCluster(uint instance, uint cluster) {
   if (!sphereInFrustum(worldSphere(inst, c.selfSphere))) return;
   float self = projectedErrorWorld(inst, c.selfSphere, c.selfError);
   float parent = projectedErrorWorld(inst, c.parentSphere, c.parentError);
-  if (!(self <= frame.tau && frame.tau < parent)) return;
+  if (!inCut(self, parent, frame.tau, c.producer == VGEO_NO_GROUP)) return;
+  // A leaf too coarse for tau: its patches are drawn (cull_triangles.comp lists them).
+  uint patchBit = frame.patches != 0u && c.producer == VGEO_NO_GROUP && self > frame.tau ? VGEO_DRAW_PATCHES_BIT : 0u;
   // Closed, uniformly scaled: a cluster whose every triangle faces away cannot be seen.
   if ((inst.flags & VGEO_INSTANCE_CONE_CULL) != 0u) {
     ClusterCone cc = clusterCones[cluster];
     vec3 axis = normalize(vec3(dot(inst.row0.xyz, cc.cone.xyz), dot(inst.row1.xyz, cc.cone.xyz), dot(inst.row2.xyz, cc.cone.xyz)));
     if (clusterFacesAway(vec4(axis, cc.cone.w), worldSphere(inst, cc.sphere), frame.cullEye.xyz)) return;
   }
-  appendDraw(instance, cluster);
+  appendDraw(instance, cluster | patchBit);
 }
 
 // May anything below this (sphere, error) be drawn? Pruned only when clearly outside the frustum, or when

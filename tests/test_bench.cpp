@@ -22,7 +22,7 @@ TEST(BenchCut, WritesRecordsOnWhichAllModesAgree) {
   std::string dir = test::tempDir();
   writeVgeo(test::build(test::asset("horned_cube.obj"), 2), dir + "/h.vgeo");
   nlohmann::json records = benchRecords("cut " + dir + "/h.vgeo --sizes 1,9 --taus 1,4 --frames 1 --size 160x120", dir + "/cut.json");
-  EXPECT_EQ(records.size(), 2u * 2u * 5u * 2u * 4u);  // layouts x sizes x cameras x taus x modes
+  EXPECT_EQ(records.size(), 2u * 2u * 6u * 2u * 4u);  // layouts x sizes x cameras x taus x modes
   std::map<std::string, std::vector<uint64_t>> drawn;
   for (const auto& rec : records) {
     for (const char* key : {"layout", "instances", "camera", "tau", "mode", "traversal_ms", "visible_clusters", "device", "commit"})
@@ -35,23 +35,32 @@ TEST(BenchCut, WritesRecordsOnWhichAllModesAgree) {
     for (uint64_t c : counts) EXPECT_EQ(c, counts[0]) << group;
 }
 
-TEST(BenchFrame, SplitsTheFrameWithAndWithoutTriangleCulling) {
+TEST(BenchFrame, SplitsTheFrameWithAndWithoutTriangleCullingAndPatches) {
   std::string dir = test::tempDir();
   writeVgeo(test::build(test::asset("horned_cube.obj"), 2), dir + "/h.vgeo");
-  nlohmann::json records = benchRecords("frame " + dir + "/h.vgeo --grids 1,3 --sizes 160x120 --cameras corner,far --frames 1", dir + "/frame.json");
-  ASSERT_EQ(records.size(), 2u * 2u * 2u);  // grids x cameras x triangle culling on/off
-  for (size_t i = 0; i < records.size(); i += 2) {
-    const auto &on = records[i], &off = records[i + 1];
-    for (const char* key : {"instance_cull_ms", "traversal_ms", "triangle_cull_ms", "draw_ms", "frame_ms", "pixels_covered", "device", "commit"})
-      EXPECT_TRUE(on.contains(key)) << key;
-    EXPECT_TRUE(on["triangle_cull"].get<bool>());
-    EXPECT_FALSE(off["triangle_cull"].get<bool>());
+  nlohmann::json records =
+      benchRecords("frame " + dir + "/h.vgeo --grids 1,3 --sizes 160x120 --cameras corner,surface --frames 1", dir + "/frame.json");
+  ASSERT_EQ(records.size(), 2u * 2u * 3u);  // grids x cameras x (patches, triangle culling only, neither)
+  for (size_t i = 0; i < records.size(); i += 3) {
+    const auto &patches = records[i], &on = records[i + 1], &off = records[i + 2];
+    for (const char* key : {"instance_cull_ms", "traversal_ms", "triangle_cull_ms", "draw_ms", "frame_ms", "pixels_covered", "patches_drawn",
+                            "patch_triangles", "patch_pixels", "device", "commit"})
+      EXPECT_TRUE(patches.contains(key)) << key;
+    EXPECT_TRUE(patches["patches"].get<bool>() && patches["triangle_cull"].get<bool>());
+    EXPECT_TRUE(on["triangle_cull"].get<bool>() && !on["patches"].get<bool>());
+    EXPECT_FALSE(off["triangle_cull"].get<bool>() || off["patches"].get<bool>());
     EXPECT_EQ(on["visible_clusters"], off["visible_clusters"]);
+    EXPECT_EQ(patches["visible_clusters"], on["visible_clusters"]);
     EXPECT_EQ(off["triangles_drawn"], off["triangles"]);
     EXPECT_LT(on["triangles_drawn"].get<uint64_t>(), on["triangles"].get<uint64_t>());
     EXPECT_GT(on["pixels_covered"].get<uint64_t>(), 0u);
+    EXPECT_EQ(on["patches_drawn"].get<uint64_t>(), 0u);
+    if (patches["camera"] == "surface") {
+      EXPECT_GT(patches["patches_drawn"].get<uint64_t>(), 0u);
+      EXPECT_GT(patches["patch_pixels"].get<uint64_t>(), 0u);
+    }
   }
-  EXPECT_EQ(records[4]["instances"].get<int>(), 9);
+  EXPECT_EQ(records[6]["instances"].get<int>(), 9);
 }
 
 TEST(BenchBuild, OneRecordPerMeshSubdivAndThreads) {

@@ -21,13 +21,23 @@ TEST(Check, FindsALeafVertexOffItsPatch) {
   VgeoData data = scene();
   CheckResult good = checkVgeo(data, {1, 1});
   ASSERT_TRUE(good.ok) << good.firstViolation;
-  EXPECT_GT(good.regularPatches, data.patches.size() / 2);  // a subdivided quad torus: nearly all regular
+  EXPECT_GT(good.checkedPatches, data.patches.size() / 2);  // a subdivided quad torus: nearly all regular
   for (const auto& patch : data.patches)
-    if (patch.points[0] != VGEO_NO_PATCH) {
-      data.controlPoints[3 * patch.points[5]] += 0.01f * data.geometries[0].boundsSphere.w;
+    if (shaderio::patchKind(patch.info) == VGEO_PATCH_REGULAR) {
+      data.controlPoints[3 * data.patchPoints[patch.firstPoint + 5]] += 0.01f * data.geometries[0].boundsSphere.w;
       break;
     }
   expectViolation(data, "is not its leaf vertex");
+}
+
+TEST(Check, FindsNeighboursThatDisagreeOnAnEdge) {
+  VgeoData data = scene();
+  data.patches[3].edgeError[1] *= 1.5f;
+  data.patches[3].faceError *= 1.5f;
+  expectViolation(data, "disagree on its chord error");
+  data = scene();
+  data.patches[5].info ^= 1u << 17;  // lock or unlock edge 1 on one side only
+  expectViolation(data, "disagree on whether it is locked");
 }
 
 TEST(Check, FindsAReversedTriangle) {

@@ -102,14 +102,17 @@ TEST_F(Render, GpuDrawListEqualsCpuCutForAllTraversals) {
 }
 
 TEST_F(Render, NoCracksAtTau1And8) {
-  // Background inside the silhouette of the full-detail render (tau 0) would be a crack. The picture
-  // may shrink by up to tau pixels at the silhouette (that much error is allowed), so the full-detail
-  // mask is eroded by ceil(tau) + 1 pixels first.
+  // Background inside the silhouette of the full-detail render (tau 0: every leaf, as its triangles)
+  // would be a crack. The picture may shrink by up to tau pixels at the silhouette (that much error is
+  // allowed), so the full-detail mask is eroded by ceil(tau) + 1 pixels first. (Patches at the leaves:
+  // test_render_patches.cpp.)
   for (const RenderScene* scene : {single, armadillo}) {
     GpuRenderer renderer(*vk, *scene, kW, kH);
     for (int view = 0; view < 6; view++) {
       Camera camera = orbit(*scene, 1.1f * float(view), 0.9f * std::sin(float(view)), view % 2 ? 1.6f : 2.6f);
-      std::vector<uint8_t> full = coverage(renderer.renderFrame(settingsFor(*scene, camera, 0.0f)));
+      FrameSettings leaves = settingsFor(*scene, camera, 0.0f);
+      leaves.patches = false;
+      std::vector<uint8_t> full = coverage(renderer.renderFrame(leaves));
       for (float tau : {1.0f, 8.0f}) {
         std::vector<uint8_t> lod = coverage(renderer.renderFrame(settingsFor(*scene, camera, tau)));
         int erode = int(std::ceil(tau)) + 1, leaks = 0;
@@ -155,7 +158,7 @@ TEST_F(Render, OverflowIsReportedAndTheNextFrameIsComplete) {
   FrameSettings s = settingsFor(*grid, orbit(*grid, 0.3f, 0.5f, 1.2f), 1.0f);
   for (bool tinyQueue : {true, false}) {
     GpuRenderer renderer(*vk, *grid, kW, kH);
-    renderer.setCapacities(tinyQueue ? 4 : 1u << 16, tinyQueue ? 1u << 16 : 8, 1u << 20);
+    renderer.setCapacities(tinyQueue ? 4 : 1u << 16, tinyQueue ? 1u << 16 : 8, 1u << 20, 1u << 16);
     FrameResult first = renderer.renderFrame(s);
     EXPECT_FALSE(first.complete);
     if (tinyQueue) {
@@ -178,7 +181,7 @@ TEST_F(Render, EveryDebugModeRenders) {
   FrameSettings s = settingsFor(*grid, orbit(*grid, 0.3f, 0.5f, 1.2f), 1.0f);
   s.readDrawList = false;
   std::vector<std::vector<uint8_t>> images;
-  for (uint32_t mode = VGEO_MODE_LIT; mode <= VGEO_MODE_FROZEN_DIFF; mode++) {
+  for (uint32_t mode = VGEO_MODE_LIT; mode <= VGEO_MODE_PATCH; mode++) {
     s.mode = mode;
     FrameResult r = renderer.renderFrame(s);
     std::vector<uint8_t> mask = coverage(r);
@@ -254,6 +257,7 @@ TEST_F(Render, TriangleCullingKeepsThePicture) {
       for (uint32_t mode : {VGEO_MODE_LIT, VGEO_MODE_TRIANGLE}) {
         FrameSettings s = settingsFor(*k.scene, camera, 1.0f);
         s.mode = mode;
+        s.patches = false;  // without triangle culling there are no patches: compare triangles with triangles
         FrameResult culled = renderer.renderFrame(s);
         s.triangleCull = false;
         FrameResult all = renderer.renderFrame(s);
@@ -279,7 +283,7 @@ TEST_F(Render, TriangleCullingKeepsThePicture) {
 TEST_F(Render, TriangleListOverflowIsReportedAndTheNextFrameIsComplete) {
   FrameSettings s = settingsFor(*grid, orbit(*grid, 0.3f, 0.5f, 1.2f), 1.0f);
   GpuRenderer ample(*vk, *grid, kW, kH), tiny(*vk, *grid, kW, kH);
-  tiny.setCapacities(1u << 16, 1u << 16, 16);
+  tiny.setCapacities(1u << 16, 1u << 16, 16, 1u << 16);
   FrameResult want = ample.renderFrame(s), first = tiny.renderFrame(s);
   EXPECT_FALSE(first.complete);
   EXPECT_GT(first.counters.triangleOverflow, 0u);

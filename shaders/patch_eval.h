@@ -1,0 +1,213 @@
+// patch_eval.h: evaluation of a Catmull-Clark limit surface patch, written once in the subset of GLSL and
+// C++ (with glm) that both compile, so the builder (chord errors), the tests and the tessellation
+// shaders evaluate the same surface with the same arithmetic.
+//
+// - Regular face (four interior corners of valence 4): the uniform bicubic B-spline patch of its 4 x 4
+//   control points (Catmull & Clark 1978).
+// - Face with one extraordinary corner of valence N (interior): its "ring" of 2N + 8 control points in
+//   Stam's order ("Exact evaluation of Catmull-Clark subdivision surfaces at arbitrary parameter values",
+//   SIGGRAPH 1998): the extraordinary vertex; for each sector i the edge neighbour e_i and the face
+//   vertex f_i, with face i = (v, e_i, f_i, e_(i+1)) and face 0 the patch; then the 7 outer points of the
+//   patch's 4 x 4 neighbourhood. Where Stam projects onto the eigenbasis, this evaluates the same limit by
+//   subdividing the ring explicitly: a point at (a, b) with max(a, b) in [2^-(n+1), 2^-n) lies on a
+//   regular sub-patch after n + 1 local subdivisions, which is then a B-spline patch (feature-adaptive
+//   subdivision, Niessner et al. 2012, done per evaluated point). Tessellated vertices sit at multiples
+//   of 1/64 or coarser, so at most 7 rounds of O(N) work each. (a, b) = (0, 0) is the vertex's limit
+//   point (Halstead et al. 1993 masks).
+// The ring's parameters: a runs from v towards e_0, b from v towards e_1.
+#ifndef VGEO_PATCH_EVAL_H
+#define VGEO_PATCH_EVAL_H
+
+#define VGEO_MAX_VALENCE 16
+#define VGEO_MAX_RING (2 * VGEO_MAX_VALENCE + 8)
+
+#include "shaderio.h"
+
+#ifdef __cplusplus
+#include <cmath>
+namespace shaderio {
+using glm::vec2;
+using glm::cross;
+using glm::max;
+using glm::normalize;
+#define VGEO_INLINE inline
+#define VGEO_OUT(T) T&
+#define VGEO_OUT_ARRAY(T, name, n) T (&name)[n]
+#else
+#define VGEO_INLINE
+#define VGEO_OUT(T) out T
+#define VGEO_OUT_ARRAY(T, name, n) out T name[n]
+#endif
+
+// Uniform cubic B-spline basis at t, and its derivative.
+VGEO_INLINE void bsplineBasis(float t, VGEO_OUT(vec4) b, VGEO_OUT(vec4) d) {
+  float s = 1.0f - t;
+  b = vec4(s * s * s, 3.0f * t * t * t - 6.0f * t * t + 4.0f, -3.0f * t * t * t + 3.0f * t * t + 3.0f * t + 1.0f, t * t * t) / 6.0f;
+  d = vec4(-0.5f * s * s, 1.5f * t * t - 2.0f * t, -1.5f * t * t + t + 0.5f, 0.5f * t * t);
+}
+
+// The bicubic B-spline patch of 16 control points (row by row) at (u, v): u along a row (from p[5] to
+// p[6]), v down the columns (from p[5] to p[9]); du, dv its partial derivatives.
+VGEO_INLINE vec3 evaluateBspline(vec3 p[16], float u, float v, VGEO_OUT(vec3) du, VGEO_OUT(vec3) dv) {
+  vec4 bu, bv, su, sv;
+  bsplineBasis(u, bu, su);
+  bsplineBasis(v, bv, sv);
+  vec3 pos = vec3(0.0f);
+  du = vec3(0.0f);
+  dv = vec3(0.0f);
+  for (int r = 0; r < 4; r++) {
+    vec3 row = bu[0] * p[4 * r] + bu[1] * p[4 * r + 1] + bu[2] * p[4 * r + 2] + bu[3] * p[4 * r + 3];
+    vec3 rowD = su[0] * p[4 * r] + su[1] * p[4 * r + 1] + su[2] * p[4 * r + 2] + su[3] * p[4 * r + 3];
+    pos += bv[r] * row;
+    du += bv[r] * rowD;
+    dv += sv[r] * row;
+  }
+  return pos;
+}
+
+// The limit point and limit normal of the ring's extraordinary vertex (Halstead et al. 1993).
+VGEO_INLINE vec3 ringLimit(vec3 ring[VGEO_MAX_RING], int n, VGEO_OUT(vec3) normal) {
+  float nn = float(n);
+  float a = 1.0f + cos(6.28318531f / nn) + cos(3.14159265f / nn) * sqrt(2.0f * (9.0f + cos(6.28318531f / nn)));
+  vec3 sumE = vec3(0.0f), sumF = vec3(0.0f), t1 = vec3(0.0f), t2 = vec3(0.0f);
+  for (int j = 0; j < n; j++) {
+    vec3 e = ring[1 + 2 * j], f = ring[2 + 2 * j];
+    sumE += e;
+    sumF += f;
+    float c0 = cos(6.28318531f * float(j) / nn), c1 = cos(6.28318531f * float(j + 1) / nn);
+    float s0 = sin(6.28318531f * float(j) / nn), s1 = sin(6.28318531f * float(j + 1) / nn);
+    t1 += a * c0 * e + (c0 + c1) * f;
+    t2 += a * s0 * e + (s0 + s1) * f;
+  }
+  normal = normalize(cross(t1, t2));
+  return (nn * nn * ring[0] + 4.0f * sumE + sumF) / (nn * (nn + 5.0f));
+}
+
+// One Catmull-Clark round on the ring: the next ring (the sub-face at v) in `next`, and in `grid` the
+// 5 x 5 chart of new points around the sub-faces, grid[5 (y + 1) + x + 1] for x, y in -1..3 (v at
+// (0, 0), e_0 at (2, 0), e_1 at (0, 2), the patch the cell [0, 2]^2). The regular sub-patch of the
+// cell with lower corner (cx, cy) has the control points grid(cx - 1 + c, cy - 1 + r).
+VGEO_INLINE void subdivideRing(vec3 ring[VGEO_MAX_RING], int n, VGEO_OUT_ARRAY(vec3, next, VGEO_MAX_RING), VGEO_OUT_ARRAY(vec3, grid, 25)) {
+  // Face points of the sectors, then edge points of the spokes, then the vertex point.
+  vec3 faceSum = vec3(0.0f), edgeSum = vec3(0.0f);
+  for (int i = 0; i < n; i++) {
+    next[2 + 2 * i] = 0.25f * (ring[0] + ring[1 + 2 * i] + ring[2 + 2 * i] + ring[1 + 2 * ((i + 1) % n)]);
+    faceSum += next[2 + 2 * i];
+    edgeSum += ring[1 + 2 * i];
+  }
+  for (int i = 0; i < n; i++)
+    next[1 + 2 * i] = 0.25f * (ring[0] + ring[1 + 2 * i] + next[2 + 2 * i] + next[2 + 2 * ((i + n - 1) % n)]);
+  float nn = float(n);
+  // (Q + 2R + (n - 3) v) / n with Q the mean face point and R the mean spoke midpoint.
+  next[0] = (faceSum / nn + (ring[0] + edgeSum / nn) + (nn - 3.0f) * ring[0]) / nn;
+  vec3 v = ring[0], e0 = ring[1], f0 = ring[2], e1 = ring[3], f1 = ring[4];
+  vec3 fLast = ring[2 * n], o0 = ring[2 * n + 1], o1 = ring[2 * n + 2], o2 = ring[2 * n + 3], o3 = ring[2 * n + 4];
+  vec3 o4 = ring[2 * n + 5], o5 = ring[2 * n + 6], o6 = ring[2 * n + 7];
+  vec3 face0 = next[2], face1 = next[4], faceLast = next[2 * n];
+  // Face points of the outer cells: A right of the patch, B below A, C above A, D above the patch, E left of D.
+  vec3 fA = 0.25f * (e0 + o1 + o2 + f0), fB = 0.25f * (e0 + fLast + o0 + o1), fC = 0.25f * (f0 + o2 + o3 + o4);
+  vec3 fD = 0.25f * (e1 + f0 + o4 + o5), fE = 0.25f * (e1 + o5 + o6 + f1);
+  // Vertex points of the regular corners e_0, f_0, e_1: (Q + 2R + v) / 4 over their four faces and edges.
+  vec3 ve0 = ((faceLast + face0 + fA + fB) * 0.25f + (4.0f * e0 + v + f0 + o1 + fLast) * 0.25f + e0) * 0.25f;
+  vec3 vf0 = ((face0 + fA + fC + fD) * 0.25f + (4.0f * f0 + e0 + o2 + o4 + e1) * 0.25f + f0) * 0.25f;
+  vec3 ve1 = ((face0 + face1 + fD + fE) * 0.25f + (4.0f * e1 + v + f0 + o5 + f1) * 0.25f + e1) * 0.25f;
+  grid[6] = next[0];                      // (0, 0)
+  grid[7] = next[1];                      // (1, 0) = e'_0
+  grid[11] = next[3];                     // (0, 1) = e'_1
+  grid[12] = face0;                       // (1, 1)
+  grid[1] = next[2 * n - 1];              // (0, -1) = e'_(n-1)
+  grid[2] = faceLast;                     // (1, -1)
+  grid[5] = next[5];                      // (-1, 0) = e'_2
+  grid[10] = face1;                       // (-1, 1)
+  grid[3] = 0.25f * (e0 + fLast + faceLast + fB);  // (2, -1): edge e_0 f_(n-1)
+  grid[8] = ve0;                                    // (2, 0)
+  grid[13] = 0.25f * (e0 + f0 + face0 + fA);        // (2, 1): edge e_0 f_0
+  grid[18] = vf0;                                   // (2, 2)
+  grid[17] = 0.25f * (e1 + f0 + face0 + fD);        // (1, 2): edge e_1 f_0
+  grid[16] = ve1;                                   // (0, 2)
+  grid[15] = 0.25f * (e1 + f1 + face1 + fE);        // (-1, 2): edge e_1 f_1
+  grid[4] = fB;                                     // (3, -1)
+  grid[9] = 0.25f * (e0 + o1 + fA + fB);            // (3, 0): edge e_0 o_1
+  grid[14] = fA;                                    // (3, 1)
+  grid[19] = 0.25f * (f0 + o2 + fA + fC);           // (3, 2): edge f_0 o_2
+  grid[24] = fC;                                    // (3, 3)
+  grid[23] = 0.25f * (f0 + o4 + fC + fD);           // (2, 3): edge f_0 o_4
+  grid[22] = fD;                                    // (1, 3)
+  grid[21] = 0.25f * (e1 + o5 + fD + fE);           // (0, 3): edge e_1 o_5
+  grid[20] = fE;                                    // (-1, 3)
+  grid[0] = grid[6];                                // (-1, -1): not part of any sub-patch
+  // The next ring's outer points: (2, -1), (2, 0), (2, 1), (2, 2), (1, 2), (0, 2), (-1, 2).
+  next[2 * n + 1] = grid[3];
+  next[2 * n + 2] = grid[8];
+  next[2 * n + 3] = grid[13];
+  next[2 * n + 4] = grid[18];
+  next[2 * n + 5] = grid[17];
+  next[2 * n + 6] = grid[16];
+  next[2 * n + 7] = grid[15];
+}
+
+// The limit surface of a ring patch at (a, b) in [0, 1]^2, with its partial derivatives.
+VGEO_INLINE vec3 evaluateRing(vec3 ring[VGEO_MAX_RING], int n, float a, float b, VGEO_OUT(vec3) da, VGEO_OUT(vec3) db) {
+  vec3 cur[VGEO_MAX_RING];
+  vec3 next[VGEO_MAX_RING];
+  vec3 grid[25];
+  vec3 sub[16];
+  for (int i = 0; i < 2 * n + 8; i++) cur[i] = ring[i];
+  float scale = 1.0f;
+  for (int level = 0; level < 24; level++) {
+    subdivideRing(cur, n, next, grid);
+    if (max(a, b) >= 0.5f) {
+      int cx = a >= 0.5f ? 1 : 0, cy = b >= 0.5f ? 1 : 0;
+      for (int r = 0; r < 4; r++)
+        for (int c = 0; c < 4; c++) sub[4 * r + c] = grid[5 * (cy + r) + cx + c];
+      vec3 p = evaluateBspline(sub, 2.0f * a - float(cx), 2.0f * b - float(cy), da, db);
+      da *= 2.0f * scale;
+      db *= 2.0f * scale;
+      return p;
+    }
+    for (int i = 0; i < 2 * n + 8; i++) cur[i] = next[i];
+    a *= 2.0f;
+    b *= 2.0f;
+    scale *= 2.0f;
+  }
+  // Within 2^-24 of the vertex: its limit point, with tangents spanning its tangent plane.
+  vec3 normal;
+  vec3 p = ringLimit(ring, n, normal);
+  da = normalize(cross(normal, cur[3] - cur[0]));
+  db = cross(normal, da);
+  return p;
+}
+
+// Face parameters (s, t) to the ring's (a, b) when the extraordinary vertex is corner `corner`: a runs
+// towards the next corner, b towards the previous one (the same turn, so normals keep their side).
+VGEO_INLINE vec2 ringParameters(uint corner, float s, float t) {
+  if (corner == 0u) return vec2(s, t);
+  if (corner == 1u) return vec2(t, 1.0f - s);
+  if (corner == 2u) return vec2(1.0f - s, 1.0f - t);
+  return vec2(1.0f - t, s);
+}
+
+// A face's patch (shaderio.h, Patch) at face parameters (s, t), with its unit normal: `points` holds the
+// patch's control points (16 for VGEO_PATCH_REGULAR, 2N + 8 for VGEO_PATCH_RING).
+VGEO_INLINE vec3 evaluatePatch(uint kind, uint corner, int valence, vec3 points[VGEO_MAX_RING], float s, float t, VGEO_OUT(vec3) normal) {
+  vec3 du, dv, p;
+  if (kind == VGEO_PATCH_REGULAR) {
+    vec3 grid[16];
+    for (int i = 0; i < 16; i++) grid[i] = points[i];
+    p = evaluateBspline(grid, s, t, du, dv);
+  } else {
+    vec2 ab = ringParameters(corner, s, t);
+    p = evaluateRing(points, valence, ab.x, ab.y, du, dv);
+  }
+  normal = normalize(cross(du, dv));
+  return p;
+}
+
+#ifdef __cplusplus
+#undef VGEO_INLINE
+#undef VGEO_OUT
+#undef VGEO_OUT_ARRAY
+}  // namespace shaderio
+#endif
+
+#endif

@@ -1,0 +1,174 @@
+// test_render_patches.cpp: leaves drawn as tessellated limit-surface patches (patch.tesc, patch.tese),
+// on lavapipe (or any device) with the validation layer: no crack where most leaves are patches nor at
+// the transition between patch-drawn and triangle-drawn leaves, a silhouette within a pixel of the
+// surface subdivided 6 levels deeper, the same shading as the triangles, and the stats.
+#include <cmath>
+
+#include "../renderer/gpu_renderer.h"
+#include "../renderer/image.h"
+#include "test_util.h"
+
+namespace vgeo {
+namespace {
+
+constexpr uint32_t kW = 256, kH = 192;
+
+std::string cubeCage(const std::string& dir) {
+  return test::writeFile(dir, "cube.obj",
+                         "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+                         "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n");
+}
+
+class RenderPatches : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    vk = new VulkanContext({"", true});
+    dir = new std::string(std::filesystem::temp_directory_path() / "vgeo_render_patch_tests");
+    std::filesystem::create_directories(*dir);
+    // The shipped cage at --subdiv 2 (patches) and at --subdiv 5 (leaves fine enough to stand for the surface).
+    writeVgeo(test::build(test::asset("horned_cube.obj"), 2), *dir + "/horned2.vgeo");
+    writeVgeo(test::build(test::asset("horned_cube.obj"), 5), *dir + "/horned5.vgeo");
+    horned = new RenderScene(loadRenderScene(*dir + "/horned2.vgeo"));
+    hornedFine = new RenderScene(loadRenderScene(*dir + "/horned5.vgeo"));
+  }
+  static void TearDownTestSuite() {
+    delete horned;
+    delete hornedFine;
+    delete vk;
+    delete dir;
+  }
+  void TearDown() override { EXPECT_EQ(vk->validationMessages(), 0u) << "validation messages (see stderr)"; }
+
+  static FrameSettings settings(const RenderScene& scene, const Camera& camera, float tau, bool patches) {
+    FrameSettings s;
+    s.drawView = s.cullView = makeView(camera, kW, kH, scene.bounds);
+    s.tau = tau;
+    s.patches = patches;
+    s.readDrawList = true;
+    return s;
+  }
+  static Camera orbit(const RenderScene& scene, float azimuth, float elevation, float distanceInRadii) {
+    Camera c;
+    c.target = glm::vec3(scene.bounds);
+    c.eye = c.target + scene.bounds.w * distanceInRadii *
+                           glm::vec3(std::cos(elevation) * std::cos(azimuth), std::sin(elevation), std::cos(elevation) * std::sin(azimuth));
+    return c;
+  }
+  static std::vector<uint8_t> coverage(const FrameResult& r) {
+    std::vector<uint8_t> mask(kW * kH);
+    for (uint32_t i = 0; i < kW * kH; i++) mask[i] = isCovered(&r.rgba[4 * i]);
+    return mask;
+  }
+  // Pixels covered in `a` with no pixel of `b` within `radius` (Chebyshev distance), inside a margin.
+  static int farFrom(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, int radius, bool covered) {
+    int count = 0;
+    for (int y = radius; y < int(kH) - radius; y++)
+      for (int x = radius; x < int(kW) - radius; x++) {
+        if (a[size_t(y * int(kW) + x)] != covered) continue;
+        bool near = false;
+        for (int dy = -radius; dy <= radius && !near; dy++)
+          for (int dx = -radius; dx <= radius && !near; dx++) near = b[size_t((y + dy) * int(kW) + x + dx)] == covered;
+        if (!near) count++;
+      }
+    return count;
+  }
+
+  static VulkanContext* vk;
+  static std::string* dir;
+  static RenderScene *horned, *hornedFine;
+};
+VulkanContext* RenderPatches::vk = nullptr;
+std::string* RenderPatches::dir = nullptr;
+RenderScene* RenderPatches::horned = nullptr;
+RenderScene* RenderPatches::hornedFine = nullptr;
+
+TEST_F(RenderPatches, NoCracksCloseUpAndAtTheTransition) {
+  // Background where the fine surface (subdiv 5, every leaf, no patches) covers a pixel and all its
+  // neighbours within ceil(tau) + 1 would be a crack. Close views draw most leaves as patches; farther
+  // ones mix patch-drawn and triangle-drawn leaves.
+  GpuRenderer renderer(*vk, *horned, kW, kH), fine(*vk, *hornedFine, kW, kH);
+  int closeViews = 0, transitionViews = 0;
+  for (int view = 0; view < 8; view++) {
+    Camera camera = orbit(*horned, 0.8f * float(view), 0.7f * std::sin(1.3f * float(view)), view % 2 ? 0.75f : 1.3f);
+    std::vector<uint8_t> full = coverage(fine.renderFrame(settings(*hornedFine, camera, 0.0f, false)));
+    for (float tau : {0.5f, 1.0f, 4.0f}) {
+      FrameResult r = renderer.renderFrame(settings(*horned, camera, tau, true));
+      ASSERT_TRUE(r.complete);
+      const uint32_t listed = r.counters.drawCount, patched = r.counters.patchClusters;
+      if (patched * 2 > listed) closeViews++;
+      if (patched > 0 && patched < listed) transitionViews++;
+      // A pixel deep inside the fine surface's silhouette (its whole neighbourhood covered) left uncovered.
+      std::vector<uint8_t> inverse(kW * kH);
+      for (size_t i = 0; i < inverse.size(); i++) inverse[i] = !full[i];
+      std::vector<uint8_t> lod = coverage(r);
+      int radius = int(std::ceil(tau)) + 1, leaks = 0;
+      for (int y = radius; y < int(kH) - radius; y++)
+        for (int x = radius; x < int(kW) - radius; x++) {
+          bool deep = true;
+          for (int dy = -radius; dy <= radius && deep; dy++)
+            for (int dx = -radius; dx <= radius && deep; dx++) deep = full[size_t((y + dy) * int(kW) + x + dx)];
+          if (deep && !lod[size_t(y * int(kW) + x)]) leaks++;
+        }
+      EXPECT_EQ(leaks, 0) << "view " << view << " tau " << tau << ": " << patched << " of " << listed << " clusters as patches";
+    }
+  }
+  EXPECT_GE(closeViews, 4) << "views where most listed clusters are patch-drawn";
+  EXPECT_GE(transitionViews, 4) << "views mixing patch-drawn and triangle-drawn leaves";
+}
+
+TEST_F(RenderPatches, ShadingMatchesTheTriangles) {
+  // The same close view with and without patches: patches are the surface the leaf triangles sample,
+  // with the same normals at the corners, so the lit pictures differ little (a flipped winding or normal
+  // would darken every patch).
+  GpuRenderer renderer(*vk, *horned, kW, kH);
+  Camera camera = orbit(*horned, 0.9f, 0.4f, 0.75f);
+  FrameResult with = renderer.renderFrame(settings(*horned, camera, 1.0f, true));
+  FrameResult without = renderer.renderFrame(settings(*horned, camera, 1.0f, false));
+  ASSERT_GT(with.patchesDrawn, 100u);
+  EXPECT_EQ(without.patchesDrawn, 0u);
+  EXPECT_EQ(without.patchTriangles, 0);
+  if (with.patchTriangles >= 0) EXPECT_GE(with.patchTriangles, int64_t(2 * with.patchesDrawn));
+  double difference = 0.0;
+  uint64_t both = 0;
+  for (uint32_t i = 0; i < kW * kH; i++)
+    if (isCovered(&with.rgba[4 * i]) && isCovered(&without.rgba[4 * i])) {
+      both++;
+      for (int c = 0; c < 3; c++) difference += std::abs(int(with.rgba[4 * i + c]) - int(without.rgba[4 * i + c]));
+    }
+  ASSERT_GT(both, kW * kH / 4);
+  EXPECT_LT(difference / double(3 * both), 4.0) << "mean channel difference of the covered pixels";
+  // The patch debug view colours patches (by factor) apart from triangles (grey).
+  FrameSettings s = settings(*horned, camera, 1.0f, true);
+  s.mode = VGEO_MODE_PATCH;
+  FrameResult colours = renderer.renderFrame(s);
+  uint64_t tinted = 0;
+  for (uint32_t i = 0; i < kW * kH; i++) {
+    const uint8_t* p = &colours.rgba[4 * i];
+    if (isCovered(p) && (std::abs(int(p[0]) - int(p[2])) > 40)) tinted++;
+  }
+  EXPECT_GT(tinted, both / 2);
+}
+
+TEST_F(RenderPatches, SilhouetteWithinAPixelOfSixLevelsDeeper) {
+  // A cube cage after one round (every face a ring around a valence-3 vertex), drawn close up with
+  // patches, against the same cage after 7 rounds drawn as its leaf triangles (at limit positions).
+  std::string cage = cubeCage(test::tempDir());
+  writeVgeo(test::build(cage, 1), *dir + "/cube1.vgeo");
+  writeVgeo(test::build(cage, 7), *dir + "/cube7.vgeo");
+  RenderScene coarse = loadRenderScene(*dir + "/cube1.vgeo"), deep = loadRenderScene(*dir + "/cube7.vgeo");
+  GpuRenderer withPatches(*vk, coarse, kW, kH), reference(*vk, deep, kW, kH);
+  for (int view = 0; view < 4; view++) {
+    Camera camera = orbit(coarse, 0.5f + 1.7f * float(view), 0.35f * float(view % 3) - 0.3f, 1.35f);
+    FrameResult r = withPatches.renderFrame(settings(coarse, camera, 1.0f, true));
+    ASSERT_GT(r.patchesDrawn, 0u) << "view " << view;
+    std::vector<uint8_t> a = coverage(r), b = coverage(reference.renderFrame(settings(deep, camera, 0.0f, false)));
+    EXPECT_EQ(farFrom(a, b, 1, true), 0) << "view " << view << ": covered pixels more than a pixel outside the deep silhouette";
+    EXPECT_EQ(farFrom(a, b, 1, false), 0) << "view " << view << ": background more than a pixel inside it";
+    // Drawn as its leaf triangles instead, the same cage is visibly off: the test can fail.
+    std::vector<uint8_t> flat = coverage(withPatches.renderFrame(settings(coarse, camera, 1.0f, false)));
+    EXPECT_GT(farFrom(flat, b, 1, true) + farFrom(flat, b, 1, false), 20) << "view " << view;
+  }
+}
+
+}  // namespace
+}  // namespace vgeo
