@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # vgeo bench frame on an NVIDIA machine (see bench/gpu_run.sh for what .gl/ and .dev/ must hold): the main
 # job's default scene (shipped cage --subdiv 4, 32 x 32) and the largest cut scene (armadillo --subdiv 2,
-# 316 x 316 = 99,856 instances) at 1280x720 and 1920x1080; and the default scene under validation.
+# 316 x 316 = 99,856 instances) at 1280x720 and 1920x1080, with the surface close-up (leaves as patches);
+# and the default scene and a patch close-up under validation.
 set -uo pipefail
 for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig
 export LD_LIBRARY_PATH=$PWD/.dev/lib
@@ -12,5 +13,11 @@ $V build .dev/data/armadillo.off --subdiv 2 -o /tmp/arm2.vgeo --threads 16 -q > 
 mkdir -p /tmp/vl && dpkg -x .dev/vulkan-validationlayers_*.deb /tmp/vl
 VK_LAYER_PATH=/tmp/vl/usr/share/vulkan/explicit_layer.d LD_LIBRARY_PATH=$LD_LIBRARY_PATH:/tmp/vl/usr/lib/x86_64-linux-gnu \
   $V render /tmp/hc.vgeo --grid 32 --size 1280x720 --validate --compare-cpu -o $OUT/default.png --stats $OUT/validate_default.json 2>&1 | tail -3
-$V bench frame /tmp/hc.vgeo --grids 32 --sizes 1280x720,1920x1080 --cameras corner,inside --frames 20 -o $OUT/frame_default.json 2>&1 | tail -8
+$V build assets/horned_cube.obj --subdiv 2 -o /tmp/hc2.vgeo -q > /dev/null
+for mode in lit patch; do
+  VK_LAYER_PATH=/tmp/vl/usr/share/vulkan/explicit_layer.d LD_LIBRARY_PATH=$LD_LIBRARY_PATH:/tmp/vl/usr/lib/x86_64-linux-gnu \
+    $V render /tmp/hc2.vgeo --size 1280x720 --camera 1.2,1.0,2.2,0,0,0.5 --mode $mode --validate --compare-cpu -o $OUT/patches_$mode.png \
+    --stats $OUT/validate_patches_$mode.json 2>&1 | tail -3
+done
+$V bench frame /tmp/hc.vgeo --grids 32 --sizes 1280x720,1920x1080 --cameras corner,inside,surface --frames 20 -o $OUT/frame_default.json 2>&1 | tail -8
 $V bench frame /tmp/arm2.vgeo --grids 100,316 --sizes 1280x720,1920x1080 --cameras corner,inside --frames 20 -o $OUT/frame_largest.json 2>&1 | tail -16
