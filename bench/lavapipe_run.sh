@@ -21,7 +21,7 @@ for what in ${@:-build frame}; do
         --subdiv 0,1,2,3 --threads 1,2 --repeat 3 -o "$out/build.json" ;;
     frame)
       $V build assets/horned_cube.obj --subdiv 4 -o "$work/horned_cube.vgeo" -q > /dev/null
-      $V bench frame "$work/horned_cube.vgeo" --grids 32,316 --sizes 1280x720,1920x1080 --cameras corner,inside --frames 5 \
+      $V bench frame "$work/horned_cube.vgeo" --grids 32,316 --sizes 1280x720,1920x1080 --cameras corner,inside,surface --frames 5 \
         -o "$out/frame.json" ;;
     *) echo "unknown benchmark '$what' (build or frame)" >&2; exit 1 ;;
   esac

@@ -123,8 +123,8 @@ struct FacePatch {
   uint32_t neighbours[4] = {UINT32_MAX, UINT32_MAX, UINT32_MAX, UINT32_MAX};  // across edge k: face << 2 | its edge
 };
 // Chord errors of a face's leaf geometry against its patch, object space: edge[k] the largest distance of
-// the limit curve of edge k from its segment, the same value on both faces of an edge (the larger of the
-// two sides' estimates); face the largest distance of the surface from the face's two triangles, and
+// the limit curve of edge k from its segment, the same value on both faces of an edge (measured once, by
+// the face of the lower index); face the largest distance of the surface from the face's two triangles, and
 // at least every edge's. Zero for VGEO_PATCH_NONE faces.
 struct PatchErrors {
   float edge[4] = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -146,7 +146,7 @@ class Patcher {
 };
 // The patch at face parameters (s, t) (shaderio.h), with its unit normal; controlPoints are the cage's.
 glm::vec3 evaluateFacePatch(const FacePatch& patch, const std::vector<glm::vec3>& controlPoints, float s, float t, glm::vec3* normal = nullptr);
-// Every face's chord errors (sampled at sixths of the parameters and scaled up 5% for what falls between).
+// Every face's chord errors (sampled at quarters of the parameters and scaled up 12% for what falls between).
 // `limitMesh` holds the leaf vertices (limit positions), `controlPoints` the cage before the limit.
 std::vector<PatchErrors> patchChordErrors(const PolygonMesh& limitMesh, const std::vector<glm::vec3>& controlPoints, uint32_t threads);
 

@@ -11,6 +11,7 @@
 // Chord errors measure how far the leaf triangles are from the surface (DESIGN.md, leaves): they are the
 // leaf clusters' self error and drive the tessellation factors.
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "../common/parallel.h"
@@ -137,25 +138,29 @@ glm::vec3 evaluateFacePatch(const FacePatch& patch, const std::vector<glm::vec3>
 std::vector<PatchErrors> patchChordErrors(const PolygonMesh& limitMesh, const std::vector<glm::vec3>& controlPoints, uint32_t threads) {
   const size_t faceCount = limitMesh.faceCount();
   std::vector<PatchErrors> own(faceCount), merged(faceCount);
-  std::vector<uint8_t> patched(faceCount, 0);
   if (controlPoints.size() != limitMesh.positions.size()) return merged;
+  std::vector<uint8_t> patched(faceCount, 0);
+  std::vector<std::array<uint32_t, 4>> neighbours(faceCount);
   Patcher patcher(limitMesh);
   const std::vector<glm::vec3>& x = limitMesh.positions;
-  // Sixths of the parameters: the bulge of a bicubic between its corners peaks near the middle; 5% more
-  // covers what falls between the samples.
-  constexpr float kSlack = 1.05f;
+  // Quarter parameters: the bulge of a bicubic between its corners peaks near the middle; 12% more
+  // covers what falls between the samples (tests/test_patch.cpp checks against 16ths). An edge is
+  // measured once, by the face of the lower index (or the only one, on a boundary).
+  constexpr float kSlack = 1.12f;
   static const float kCorner[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   parallelFor(faceCount, int(threads), [&](size_t f) {
     FacePatch patch = patcher.patch(uint32_t(f));
+    for (int k = 0; k < 4; k++) neighbours[f][size_t(k)] = patch.neighbours[k];
     if (patch.kind == VGEO_PATCH_NONE) return;
     patched[f] = 1;
     const uint32_t* v = limitMesh.face(f);
     PatchErrors& e = own[f];
     for (int k = 0; k < 4; k++) {
+      if (patch.neighbours[k] != UINT32_MAX && (patch.neighbours[k] >> 2) < f) continue;
       glm::dvec3 a(x[v[k]]), b(x[v[(k + 1) % 4]]);
       double worst = 0.0;
-      for (int i = 1; i < 6; i++) {
-        float u = float(i) / 6.0f;
+      for (int i = 1; i < 4; i++) {
+        float u = float(i) / 4.0f;
         float s = kCorner[k][0] + u * (kCorner[(k + 1) % 4][0] - kCorner[k][0]), t = kCorner[k][1] + u * (kCorner[(k + 1) % 4][1] - kCorner[k][1]);
         glm::dvec3 p(evaluateFacePatch(patch, controlPoints, s, t));
         worst = std::max(worst, pointSegmentDistance(p, a, b));
@@ -165,24 +170,23 @@ std::vector<PatchErrors> patchChordErrors(const PolygonMesh& limitMesh, const st
     std::vector<uint32_t> tris;
     triangulateFace(x.data(), v, 4, tris);
     double worst = 0.0;
-    for (int i = 1; i < 6; i++)
-      for (int j = 1; j < 6; j++) {
-        glm::dvec3 p(evaluateFacePatch(patch, controlPoints, float(i) / 6.0f, float(j) / 6.0f));
+    for (int i = 1; i < 4; i++)
+      for (int j = 1; j < 4; j++) {
+        glm::dvec3 p(evaluateFacePatch(patch, controlPoints, float(i) / 4.0f, float(j) / 4.0f));
         double d = std::min(pointTriangleDistance(p, x[tris[0]], x[tris[1]], x[tris[2]]), pointTriangleDistance(p, x[tris[3]], x[tris[4]], x[tris[5]]));
         worst = std::max(worst, d);
       }
     e.face = float(worst * kSlack);
   });
-  // One value an edge, the larger of its two faces' estimates (0 next to a flat face: the edge stays
-  // straight there); a face's error covers its edges'.
+  // One value an edge, the measuring face's (0 next to a flat face: the edge stays straight there); a
+  // face's error covers its edges'.
   parallelFor(faceCount, int(threads), [&](size_t f) {
     if (!patched[f]) return;
-    FacePatch patch = patcher.patch(uint32_t(f));
     PatchErrors& out = merged[f];
     out.face = own[f].face;
     for (int k = 0; k < 4; k++) {
-      uint32_t n = patch.neighbours[k];
-      out.edge[k] = n == UINT32_MAX ? own[f].edge[k] : patched[n >> 2] ? std::max(own[f].edge[k], own[n >> 2].edge[n & 3]) : 0.0f;
+      uint32_t n = neighbours[f][size_t(k)];
+      out.edge[k] = n == UINT32_MAX ? own[f].edge[k] : !patched[n >> 2] ? 0.0f : (n >> 2) < f ? own[n >> 2].edge[n & 3] : own[f].edge[k];
       out.face = std::max(out.face, out.edge[k]);
     }
   });

@@ -48,6 +48,12 @@ double msSince(std::chrono::steady_clock::time_point t) {
 
 }  // namespace
 
+// The draws' geometry stages that read what the compute passes wrote (lists, counters).
+VkPipelineStageFlags GpuRenderer::drawShaderStages() const {
+  return VK_PIPELINE_STAGE_VERTEX_SHADER_BIT |
+         (vk_.tessellation() ? VK_PIPELINE_STAGE_TESSELLATION_CONTROL_SHADER_BIT | VK_PIPELINE_STAGE_TESSELLATION_EVALUATION_SHADER_BIT : 0u);
+}
+
 const char* traversalName(Traversal t) {
   return t == Traversal::Persistent ? "persistent" : t == Traversal::Levels ? "levels" : "flat";
 }
@@ -272,7 +278,7 @@ void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& sett
   vkCmdDispatch(cmd, 1, 1, 1);
   // Read by triangle culling (indirect dispatch and counters), or else by the draw and the copies.
   globalBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_VERTEX_SHADER_BIT |
+                VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | drawShaderStages() |
                     VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                 VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT);
 }
@@ -286,7 +292,7 @@ void GpuRenderer::recordTriangleCull(VkCommandBuffer cmd) {
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, finalizeTriangles_);
   vkCmdDispatch(cmd, 1, 1, 1);
   globalBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | drawShaderStages() | VK_PIPELINE_STAGE_TRANSFER_BIT,
                 VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
 }
 

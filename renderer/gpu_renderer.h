@@ -73,6 +73,7 @@ class GpuRenderer {
   void recordTriangleCull(VkCommandBuffer cmd);
   void recordDraw(VkCommandBuffer cmd, const FrameSettings& settings);
   void recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings);
+  VkPipelineStageFlags drawShaderStages() const;
 
   VulkanContext& vk_;
   const RenderScene& scene_;

@@ -6,6 +6,7 @@
 
 #include "../renderer/gpu_renderer.h"
 #include "../renderer/image.h"
+#include "render_util.h"
 #include "test_util.h"
 
 namespace vgeo {
@@ -48,17 +49,9 @@ class RenderPatches : public ::testing::Test {
     return s;
   }
   static Camera orbit(const RenderScene& scene, float azimuth, float elevation, float distanceInRadii) {
-    Camera c;
-    c.target = glm::vec3(scene.bounds);
-    c.eye = c.target + scene.bounds.w * distanceInRadii *
-                           glm::vec3(std::cos(elevation) * std::cos(azimuth), std::sin(elevation), std::cos(elevation) * std::sin(azimuth));
-    return c;
+    return test::orbit(scene, azimuth, elevation, distanceInRadii);
   }
-  static std::vector<uint8_t> coverage(const FrameResult& r) {
-    std::vector<uint8_t> mask(kW * kH);
-    for (uint32_t i = 0; i < kW * kH; i++) mask[i] = isCovered(&r.rgba[4 * i]);
-    return mask;
-  }
+  static std::vector<uint8_t> coverage(const FrameResult& r) { return test::coverage(r); }
   // Pixels covered in `a` with no pixel of `b` within `radius` (Chebyshev distance), inside a margin.
   static int farFrom(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, int radius, bool covered) {
     int count = 0;

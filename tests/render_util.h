@@ -1,0 +1,29 @@
+// render_util.h: what the GPU renderer tests share (test_render.cpp, test_render_patches.cpp): cameras
+// orbiting a scene and coverage masks of frames.
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include "../renderer/gpu_renderer.h"
+#include "../renderer/image.h"
+
+namespace vgeo::test {
+
+// A camera at `distanceInRadii` bounding radii from the scene's centre, looking at it.
+inline Camera orbit(const RenderScene& scene, float azimuth, float elevation, float distanceInRadii) {
+  Camera c;
+  c.target = glm::vec3(scene.bounds);
+  c.eye = c.target + scene.bounds.w * distanceInRadii *
+                         glm::vec3(std::cos(elevation) * std::cos(azimuth), std::sin(elevation), std::cos(elevation) * std::sin(azimuth));
+  return c;
+}
+
+// 1 where a frame's pixel is not the clear colour.
+inline std::vector<uint8_t> coverage(const FrameResult& r) {
+  std::vector<uint8_t> mask(r.rgba.size() / 4);
+  for (size_t i = 0; i < mask.size(); i++) mask[i] = isCovered(&r.rgba[4 * i]);
+  return mask;
+}
+
+}  // namespace vgeo::test
