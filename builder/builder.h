@@ -129,6 +129,7 @@ struct FacePatch {
 struct PatchErrors {
   float edge[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   float face = 0.0f;
+  bool patched = false;  // the face has a patch (not VGEO_PATCH_NONE)
 };
 class Patcher {
  public:

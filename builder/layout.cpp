@@ -98,17 +98,13 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
   std::unique_ptr<Patcher> patcher;
   if (!controlPoints.empty()) patcher = std::make_unique<Patcher>(leafMesh);
   std::vector<uint32_t> fileFace(leafMesh.faceCount(), UINT32_MAX), faceGroup(leafMesh.faceCount(), UINT32_MAX);
-  std::vector<uint8_t> faceKind(leafMesh.faceCount(), uint8_t(VGEO_PATCH_NONE));
-  {
-    uint32_t next = cageOffset;
-    for (uint32_t id : clusterOrder)
-      for (uint32_t f : dag.clusters[id].cageFaces) {
-        fileFace[f] = next++;
-        faceGroup[f] = dag.clusters[id].group;
-      }
-    if (patcher)
-      for (uint32_t f = 0; f < leafMesh.faceCount(); f++) faceKind[f] = uint8_t(patcher->patch(f).kind);
-  }
+  uint32_t nextFace = cageOffset;
+  for (uint32_t id : clusterOrder)
+    for (uint32_t f : dag.clusters[id].cageFaces) {
+      fileFace[f] = nextFace++;
+      faceGroup[f] = dag.clusters[id].group;
+    }
+  auto flat = [&](uint32_t f) { return f >= patchErrors.size() || !patchErrors[f].patched; };
   auto filePatch = [&](uint32_t f) {
     shaderio::Patch out{};
     out.firstPoint = uint32_t(file.patchPoints.size());
@@ -119,7 +115,7 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
     for (uint32_t k = 0; k < 4; k++) {
       uint32_t n = patch.neighbours[k];
       if (n != UINT32_MAX && fileFace[n >> 2] != UINT32_MAX) out.neighbours[k] = fileFace[n >> 2] << 2 | (n & 3u);
-      if (patch.kind == VGEO_PATCH_NONE || n == UINT32_MAX || faceKind[n >> 2] == VGEO_PATCH_NONE || faceGroup[n >> 2] != faceGroup[f])
+      if (patch.kind == VGEO_PATCH_NONE || n == UINT32_MAX || flat(n >> 2) || faceGroup[n >> 2] != faceGroup[f])
         locked |= 1u << k;
     }
     out.info = patch.kind | patch.corner << 2 | patch.valence << 8 | locked << 16;

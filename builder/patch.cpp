@@ -139,7 +139,6 @@ std::vector<PatchErrors> patchChordErrors(const PolygonMesh& limitMesh, const st
   const size_t faceCount = limitMesh.faceCount();
   std::vector<PatchErrors> own(faceCount), merged(faceCount);
   if (controlPoints.size() != limitMesh.positions.size()) return merged;
-  std::vector<uint8_t> patched(faceCount, 0);
   std::vector<std::array<uint32_t, 4>> neighbours(faceCount);
   Patcher patcher(limitMesh);
   const std::vector<glm::vec3>& x = limitMesh.positions;
@@ -152,7 +151,7 @@ std::vector<PatchErrors> patchChordErrors(const PolygonMesh& limitMesh, const st
     FacePatch patch = patcher.patch(uint32_t(f));
     for (int k = 0; k < 4; k++) neighbours[f][size_t(k)] = patch.neighbours[k];
     if (patch.kind == VGEO_PATCH_NONE) return;
-    patched[f] = 1;
+    own[f].patched = true;
     const uint32_t* v = limitMesh.face(f);
     PatchErrors& e = own[f];
     for (int k = 0; k < 4; k++) {
@@ -181,12 +180,13 @@ std::vector<PatchErrors> patchChordErrors(const PolygonMesh& limitMesh, const st
   // One value an edge, the measuring face's (0 next to a flat face: the edge stays straight there); a
   // face's error covers its edges'.
   parallelFor(faceCount, int(threads), [&](size_t f) {
-    if (!patched[f]) return;
+    if (!own[f].patched) return;
     PatchErrors& out = merged[f];
+    out.patched = true;
     out.face = own[f].face;
     for (int k = 0; k < 4; k++) {
       uint32_t n = neighbours[f][size_t(k)];
-      out.edge[k] = n == UINT32_MAX ? own[f].edge[k] : !patched[n >> 2] ? 0.0f : (n >> 2) < f ? own[n >> 2].edge[n & 3] : own[f].edge[k];
+      out.edge[k] = n == UINT32_MAX ? own[f].edge[k] : !own[n >> 2].patched ? 0.0f : (n >> 2) < f ? own[n >> 2].edge[n & 3] : own[f].edge[k];
       out.face = std::max(out.face, out.edge[k]);
     }
   });

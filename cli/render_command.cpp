@@ -127,8 +127,8 @@ int runRender(const RenderArgs& a) {
   j["triangles_per_covered_pixel"] = covered ? double(drawn) / double(covered) : 0.0;
   j["cut_triangles_per_covered_pixel"] = covered ? double(c.triangles) / double(covered) : 0.0;
   // Leaves too coarse for tau drawn as tessellated patches: clusters, faces (patches) and the triangles
-  // the tessellator made (pipeline statistics; -1 where the device has none); the pixels they cover
-  // (the same view rendered without patches hides them: see patch_pixels_covered in bench frame).
+  // the tessellator made (pipeline statistics; -1 where the device has none). `bench frame` also counts
+  // the pixels they cover (patch_pixels).
   j["patches"] = settings.patches && settings.triangleCull;
   j["patch_clusters"] = c.patchClusters;
   j["patches_drawn"] = result.patchesDrawn;

@@ -247,31 +247,29 @@ void GpuRenderer::recordInstanceCull(VkCommandBuffer cmd) {
 
 void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& settings) {
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
-  // 3. Traversal.
-  if (settings.traversal == Traversal::Persistent) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, persistent_);
-    vkCmdDispatch(cmd, persistentWorkgroups_, 1, 1);
+  // 3. Traversal. Every pass is followed by a barrier before the next reads what it wrote.
+  auto dispatch = [&](VkPipeline pipeline, uint32_t workgroups) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    vkCmdDispatch(cmd, workgroups, 1, 1);
     computeToCompute(cmd);
+  };
+  auto dispatchIndirect = [&](VkPipeline pipeline) {  // sized by the preceding prepare pass
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, dispatch));
+    computeToCompute(cmd);
+  };
+  if (settings.traversal == Traversal::Persistent) {
+    dispatch(persistent_, persistentWorkgroups_);
   } else if (settings.traversal == Traversal::Levels) {
     // Root nodes, then one level of nodes per dispatch, then the groups: depth + 1 windows.
     for (uint32_t level = 0; level <= scene_.maxBvhDepth; level++) {
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, prepareLevel_);
-      vkCmdDispatch(cmd, 1, 1, 1);
-      computeToCompute(cmd);
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, level_);
-      vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, dispatch));
-      computeToCompute(cmd);
+      dispatch(prepareLevel_, 1);
+      dispatchIndirect(level_);
     }
   } else {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, prepareFlat_);
-    vkCmdDispatch(cmd, 1, 1, 1);
-    computeToCompute(cmd);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, flat_);
-    vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, dispatch));
-    computeToCompute(cmd);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, resetFlat_);
-    vkCmdDispatch(cmd, (uint32_t(scene_.data.instances.size()) + 63) / 64, 1, 1);
-    computeToCompute(cmd);
+    dispatch(prepareFlat_, 1);
+    dispatchIndirect(flat_);
+    dispatch(resetFlat_, (uint32_t(scene_.data.instances.size()) + 63) / 64);
   }
   // 4. Triangle-culling dispatch or draw arguments.
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, finalize_);
@@ -325,13 +323,14 @@ void GpuRenderer::recordRenderPass(VkCommandBuffer cmd, const FrameSettings& set
   begin.renderArea = {{0, 0}, {width_, height_}};
   begin.clearValueCount = 2;
   begin.pClearValues = clears;
-  if (patchesOn_ && statistics_) vkCmdResetQueryPool(cmd, statistics_, 0, 1);
+  const bool patches = drawsPatches(settings);
+  if (patches && statistics_) vkCmdResetQueryPool(cmd, statistics_, 0, 1);
   vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, settings.mode == VGEO_MODE_OVERDRAW ? drawOverdraw_ : draw_);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
   vkCmdDrawIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, draw), 1, sizeof(VkDrawIndirectCommand));
   // The leaf patches: one more indirect draw, tessellated (patch.tesc, patch.tese).
-  if (patchesOn_) {
+  if (patches) {
     if (statistics_) vkCmdBeginQuery(cmd, statistics_, 0, 0);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, settings.mode == VGEO_MODE_OVERDRAW ? drawPatchesOverdraw_ : drawPatches_);
     vkCmdDrawIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, patchDraw), 1, sizeof(VkDrawIndirectCommand));
@@ -361,8 +360,8 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
   frame.triangleCapacity = triangleCapacity_;
   frame.viewportWidth = float(width_);
   frame.viewportHeight = float(height_);
-  patchesOn_ = cullTriangles && settings.patches && drawPatches_ != VK_NULL_HANDLE;
-  frame.patches = patchesOn_ ? 1u : 0u;
+  const bool patches = drawsPatches(settings);
+  frame.patches = patches ? 1u : 0u;
   frame.patchCapacity = patchCapacity_;
   std::memcpy(frameData_.mapped, &frame, sizeof(frame));
   if (settings.readDrawList && drawListReadback_.size != drawList_.size) {
@@ -418,13 +417,13 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
   const auto& c = result.counters;
   result.trianglesDrawn = cullTriangles ? std::min(c.trianglesDrawn, triangleCapacity_) : c.triangles;
   result.patchesDrawn = std::min(c.patchesDrawn, patchCapacity_);
-  if (patchesOn_ && statistics_ && settings.draw) {
+  if (patches && statistics_) {
     uint64_t primitives = 0;
     vkCheck(vkGetQueryPoolResults(vk_.device(), statistics_, 0, 1, sizeof(primitives), &primitives, sizeof(primitives),
                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
             "vkGetQueryPoolResults (statistics)");
     result.patchTriangles = int64_t(primitives);
-  } else if (!patchesOn_) {
+  } else if (!patches) {
     result.patchTriangles = 0;
   }
   if (settings.readImage && settings.draw) {

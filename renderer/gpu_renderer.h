@@ -74,13 +74,14 @@ class GpuRenderer {
   void recordDraw(VkCommandBuffer cmd, const FrameSettings& settings);
   void recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings);
   VkPipelineStageFlags drawShaderStages() const;
+  // Whether a frame with these settings draws leaves as patches (the patch list is made by triangle culling).
+  bool drawsPatches(const FrameSettings& s) const { return s.draw && s.triangleCull && s.patches && drawPatches_ != VK_NULL_HANDLE; }
 
   VulkanContext& vk_;
   const RenderScene& scene_;
   uint32_t width_, height_;
   uint32_t queueCapacity_ = 1u << 20, drawCapacity_ = 1u << 20, triangleCapacity_ = 1u << 22, patchCapacity_ = 1u << 18;
   uint32_t persistentWorkgroups_ = 0, iterationBudget_ = 0, claimMode_ = 0;
-  bool patchesOn_ = false;  // this frame draws patches
 
   Buffer frameData_, counters_, countersReadback_, queue_, drawList_, drawListReadback_, imageReadback_, triangleList_, patchList_;
   std::vector<Buffer> sceneBuffers_;  // bindings 1..9, then 13, then 15..19

@@ -27,14 +27,12 @@ void main() {
     triangle = packed & ((1u << VGEO_TRIANGLE_BITS) - 1u);
   }
   uint instance = drawList[2 * entry];
-  uint cluster = drawList[2 * entry + 1];
-  bool patchDrawn = (cluster & VGEO_DRAW_PATCHES_BIT) != 0u;  // drawn by patch.tese instead
-  cluster &= ~VGEO_DRAW_PATCHES_BIT;
+  uint cluster = drawList[2 * entry + 1];  // never VGEO_DRAW_PATCHES_BIT: patch-drawn clusters list no triangles
   Cluster c = clusters[cluster];
   outBarycentric = vec3(corner == 0u ? 1.0 : 0.0, corner == 1u ? 1.0 : 0.0, corner == 2u ? 1.0 : 0.0);
   outIds = uvec4(cluster, c.group, instance, clusterLevel(c.counts));
   outTriangle = triangle;
-  if (triangle >= clusterTriangleCount(c.counts) || patchDrawn) {
+  if (triangle >= clusterTriangleCount(c.counts)) {
     gl_Position = vec4(0.0, 0.0, 2.0, 1.0);
     outNormal = vec3(0.0);
     outInfo = vec2(0.0);

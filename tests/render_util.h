@@ -26,4 +26,19 @@ inline std::vector<uint8_t> coverage(const FrameResult& r) {
   return mask;
 }
 
+// Cracks: pixels of `lod` left uncovered although `full` covers them and every pixel within `radius`
+// (Chebyshev distance), so that an allowed shrink of the silhouette by up to radius - 1 pixels is not
+// counted. Both masks are width x height.
+inline int leaks(const std::vector<uint8_t>& full, const std::vector<uint8_t>& lod, int width, int height, int radius) {
+  int count = 0;
+  for (int y = radius; y < height - radius; y++)
+    for (int x = radius; x < width - radius; x++) {
+      bool deep = true;
+      for (int dy = -radius; dy <= radius && deep; dy++)
+        for (int dx = -radius; dx <= radius && deep; dx++) deep = full[size_t((y + dy) * width + x + dx)];
+      if (deep && !lod[size_t(y * width + x)]) count++;
+    }
+  return count;
+}
+
 }  // namespace vgeo::test

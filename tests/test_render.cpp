@@ -107,15 +107,7 @@ TEST_F(Render, NoCracksAtTau1And8) {
       std::vector<uint8_t> full = coverage(renderer.renderFrame(leaves));
       for (float tau : {1.0f, 8.0f}) {
         std::vector<uint8_t> lod = coverage(renderer.renderFrame(settingsFor(*scene, camera, tau)));
-        int erode = int(std::ceil(tau)) + 1, leaks = 0;
-        for (int y = erode; y < int(kH) - erode; y++)
-          for (int x = erode; x < int(kW) - erode; x++) {
-            bool deep = true;
-            for (int dy = -erode; dy <= erode && deep; dy++)
-              for (int dx = -erode; dx <= erode && deep; dx++) deep = full[size_t((y + dy) * int(kW) + x + dx)];
-            if (deep && !lod[size_t(y * int(kW) + x)]) leaks++;
-          }
-        EXPECT_EQ(leaks, 0) << "view " << view << " tau " << tau;
+        EXPECT_EQ(test::leaks(full, lod, int(kW), int(kH), int(std::ceil(tau)) + 1), 0) << "view " << view << " tau " << tau;
       }
     }
   }

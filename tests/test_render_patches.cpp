@@ -90,19 +90,8 @@ TEST_F(RenderPatches, NoCracksCloseUpAndAtTheTransition) {
       const uint32_t listed = r.counters.drawCount, patched = r.counters.patchClusters;
       if (patched * 2 > listed) closeViews++;
       if (patched > 0 && patched < listed) transitionViews++;
-      // A pixel deep inside the fine surface's silhouette (its whole neighbourhood covered) left uncovered.
-      std::vector<uint8_t> inverse(kW * kH);
-      for (size_t i = 0; i < inverse.size(); i++) inverse[i] = !full[i];
-      std::vector<uint8_t> lod = coverage(r);
-      int radius = int(std::ceil(tau)) + 1, leaks = 0;
-      for (int y = radius; y < int(kH) - radius; y++)
-        for (int x = radius; x < int(kW) - radius; x++) {
-          bool deep = true;
-          for (int dy = -radius; dy <= radius && deep; dy++)
-            for (int dx = -radius; dx <= radius && deep; dx++) deep = full[size_t((y + dy) * int(kW) + x + dx)];
-          if (deep && !lod[size_t(y * int(kW) + x)]) leaks++;
-        }
-      EXPECT_EQ(leaks, 0) << "view " << view << " tau " << tau << ": " << patched << " of " << listed << " clusters as patches";
+      EXPECT_EQ(test::leaks(full, coverage(r), int(kW), int(kH), int(std::ceil(tau)) + 1), 0)
+          << "view " << view << " tau " << tau << ": " << patched << " of " << listed << " clusters as patches";
     }
   }
   EXPECT_GE(closeViews, 4) << "views where most listed clusters are patch-drawn";
@@ -120,7 +109,9 @@ TEST_F(RenderPatches, ShadingMatchesTheTriangles) {
   ASSERT_GT(with.patchesDrawn, 100u);
   EXPECT_EQ(without.patchesDrawn, 0u);
   EXPECT_EQ(without.patchTriangles, 0);
-  if (with.patchTriangles >= 0) EXPECT_GE(with.patchTriangles, int64_t(2 * with.patchesDrawn));
+  if (with.patchTriangles >= 0) {
+    EXPECT_GE(with.patchTriangles, int64_t(2 * with.patchesDrawn));
+  }
   double difference = 0.0;
   uint64_t both = 0;
   for (uint32_t i = 0; i < kW * kH; i++)
