@@ -60,7 +60,7 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
 
   std::vector<PolygonMesh> leaves(scene.meshes.size());
   std::vector<std::vector<glm::vec3>> leafNormals(scene.meshes.size());  // limit normals of subdivided cages
-  std::vector<std::vector<glm::vec3>> controlPoints(scene.meshes.size());  // and their control points
+  std::vector<MeshPatches> patches(scene.meshes.size());  // and their limit-surface patches
   std::vector<std::vector<PatchErrors>> patchErrors(scene.meshes.size());  // chord errors of their faces
   std::vector<bool> closed(scene.meshes.size());
   for (size_t m = 0; m < scene.meshes.size(); m++) {
@@ -90,11 +90,12 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
     }
     // A subdivided cage's leaves sample the limit surface: limit positions and normals (limit.cpp).
     if (options.subdivisionLevels >= 1) {
-      controlPoints[m] = leaves[m].positions;
+      const uint32_t threads = uint32_t(std::max(options.threads, 1));
+      patches[m] = buildPatches(leaves[m], leaves[m].positions, threads);
       moveToLimit(leaves[m], leafNormals[m]);
+      patchErrors[m] = patchChordErrors(leaves[m], patches[m], threads);
     }
     fanLargeFaces(leaves[m]);
-    if (options.subdivisionLevels >= 1) patchErrors[m] = patchChordErrors(leaves[m], controlPoints[m], uint32_t(std::max(options.threads, 1)));
     stats.leafTriangles += leaves[m].triangleCount();
   }
   stats.subdivideSeconds = secondsSince(subdivideStart);
@@ -108,7 +109,7 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
     if (options.progress)
       bo.progress = [&, m](double f, const char* stage) { options.progress((double(m) + f) / double(leaves.size()), stage); };
     Dag dag = buildDag(leaves[m], bo);
-    appendGeometry(data, dag, leaves[m], leafNormals[m], controlPoints[m], patchErrors[m], closed[m]);
+    appendGeometry(data, dag, leaves[m], leafNormals[m], patches[m], patchErrors[m], closed[m]);
     stats.clusters += dag.clusters.size();
     stats.leafClusters += dag.levelClusters[0];
     for (const auto& c : dag.clusters) stats.clusterTriangles += c.indices.size() / 3;
@@ -123,6 +124,7 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
     stats.relaxedGroups += dag.relaxedGroups;
     stats.stuckGroups += dag.stuckGroups;
     patchErrors[m] = {};
+    patches[m] = MeshPatches();
     leaves[m] = PolygonMesh();  // free as we go: peak memory is one mesh's build
   }
   stats.buildSeconds = secondsSince(buildStart);

@@ -4,6 +4,7 @@
 // thread count. Errors in the input are thrown as InputError with one line "FILE: cause".
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <stdexcept>
@@ -113,15 +114,55 @@ bool moveToLimit(PolygonMesh& mesh, std::vector<glm::vec3>& normals);
 double pointTriangleDistance(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c);
 
 // ---- patch.cpp --------------------------------------------------------------------------------------
-// The limit-surface patch of each face of a quad mesh (a cage after >= 1 round; shaderio.h, Patch).
+// Which control points make the limit-surface patch of a face of a quad mesh (a cage after >= 1 round;
+// shaderio.h, Patch): topology only, positions are not read.
 struct FacePatch {
-  uint32_t kind = VGEO_PATCH_NONE;  // VGEO_PATCH_REGULAR, VGEO_PATCH_RING or VGEO_PATCH_NONE
+  uint32_t kind = VGEO_PATCH_NONE;  // VGEO_PATCH_REGULAR, VGEO_PATCH_RING or VGEO_PATCH_NONE (no rule here)
   uint32_t corner = 0;              // ring: the extraordinary corner
   uint32_t valence = 0;             // ring: its valence
   uint32_t pointCount = 0;          // 16 (regular) or 2 valence + 8 (ring)
-  uint32_t points[VGEO_MAX_RING];   // control points: vertex indices of the mesh
+  uint32_t points[VGEO_MAX_RING];   // control points: vertex indices of the mesh; UINT32_MAX for a phantom
+  // Phantom points beyond a boundary, in the order to compute them: points[slot] = 2 points[a] - points[b].
+  uint32_t phantomCount = 0;
+  uint8_t phantoms[12][3];          // slot, a, b
   uint32_t neighbours[4] = {UINT32_MAX, UINT32_MAX, UINT32_MAX, UINT32_MAX};  // across edge k: face << 2 | its edge
 };
+class Patcher {
+ public:
+  explicit Patcher(const PolygonMesh& mesh);
+  // The face's patch: regular (four corners of valence 4, interior or on a boundary) or a ring (one
+  // interior extraordinary corner); VGEO_PATCH_NONE for anything else, or when some face is not a quad.
+  FacePatch patch(uint32_t face) const;
+  const QuadCorners& corners() const { return corners_; }
+
+ private:
+  enum class VertexKind { Interior, Boundary, Corner, Irregular };
+  VertexKind vertexKind(uint32_t v) const;
+  bool ring(uint32_t face, uint32_t corner, FacePatch& out) const;
+  const PolygonMesh& mesh_;
+  QuadCorners corners_;
+  bool quads_ = false;
+};
+// The patch's control points in `points` (pointCount of them), phantom points computed.
+void facePatchPoints(const FacePatch& patch, const std::vector<glm::vec3>& controlPoints, glm::vec3* points);
+// The patch at face parameters (s, t) (shaderio.h), with its unit normal; controlPoints are the mesh's.
+glm::vec3 evaluateFacePatch(const FacePatch& patch, const std::vector<glm::vec3>& controlPoints, float s, float t, glm::vec3* normal = nullptr);
+
+// ---- mesh_patches.cpp -------------------------------------------------------------------------------
+// Every face's patch as the .vgeo stores it (shaderio.h, Patch): Patcher's where it has one, else a tree
+// of the face subdivided locally (VGEO_PATCH_TREE), so every face of a quad mesh gets the limit surface.
+struct MeshPatches {
+  std::vector<uint32_t> info;                       // per face: kind | corner << 2 | valence << 8
+  std::vector<uint32_t> first;                      // per face: its first word; faceCount + 1 entries
+  std::vector<std::array<uint32_t, 4>> neighbours;  // per face: across edge k, face << 2 | its edge
+  std::vector<uint32_t> words;                      // control-point indices and tree nodes (shaderio.h)
+  std::vector<glm::vec3> points;                    // the mesh's control points, then phantom and tree points
+  bool patched(size_t face) const { return shaderio::patchKind(info[face]) != VGEO_PATCH_NONE; }
+  // Face `face`'s patch at (s, t), with its unit normal; not for VGEO_PATCH_NONE faces.
+  glm::vec3 evaluate(uint32_t face, float s, float t, glm::vec3* normal = nullptr) const;
+};
+MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints, uint32_t threads);
+
 // Chord errors of a face's leaf geometry against its patch, object space: edge[k] the largest distance of
 // the limit curve of edge k from its segment, the same value on both faces of an edge (measured once, by
 // the face of the lower index); face the largest distance of the surface from the face's two triangles, and
@@ -131,25 +172,9 @@ struct PatchErrors {
   float face = 0.0f;
   bool patched = false;  // the face has a patch (not VGEO_PATCH_NONE)
 };
-class Patcher {
- public:
-  explicit Patcher(const PolygonMesh& mesh);
-  // The face's patch; VGEO_PATCH_NONE next to a boundary, with two extraordinary corners, a valence
-  // above VGEO_MAX_VALENCE, or when some face of the mesh is not a quad.
-  FacePatch patch(uint32_t face) const;
-
- private:
-  bool regular(uint32_t v) const;
-  bool ring(uint32_t face, uint32_t corner, FacePatch& out) const;
-  const PolygonMesh& mesh_;
-  QuadCorners corners_;
-  bool quads_ = false;
-};
-// The patch at face parameters (s, t) (shaderio.h), with its unit normal; controlPoints are the cage's.
-glm::vec3 evaluateFacePatch(const FacePatch& patch, const std::vector<glm::vec3>& controlPoints, float s, float t, glm::vec3* normal = nullptr);
 // Every face's chord errors (sampled at quarters of the parameters and scaled up 12% for what falls between).
-// `limitMesh` holds the leaf vertices (limit positions), `controlPoints` the cage before the limit.
-std::vector<PatchErrors> patchChordErrors(const PolygonMesh& limitMesh, const std::vector<glm::vec3>& controlPoints, uint32_t threads);
+// `limitMesh` holds the leaf vertices (limit positions).
+std::vector<PatchErrors> patchChordErrors(const PolygonMesh& limitMesh, const MeshPatches& patches, uint32_t threads);
 
 // ---- partition.cpp ----------------------------------------------------------------------------------
 // A graph in compressed rows: node i's neighbours are adjacency[offsets[i] .. offsets[i+1]).

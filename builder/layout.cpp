@@ -40,7 +40,7 @@ glm::vec4 normalCone(const std::vector<uint32_t>& indices, const std::vector<glm
 }  // namespace
 
 void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh, const std::vector<glm::vec3>& leafNormals,
-                    const std::vector<glm::vec3>& controlPoints, const std::vector<PatchErrors>& patchErrors, bool closed) {
+                    const MeshPatches& patches, const std::vector<PatchErrors>& patchErrors, bool closed) {
   Bvh bvh = buildBvh(dag.groups);
   const uint32_t vertexOffset = uint32_t(file.vertexCount()), clusterOffset = uint32_t(file.clusters.size()),
                  groupOffset = uint32_t(file.groups.size()), nodeOffset = uint32_t(file.nodes.size()),
@@ -61,7 +61,7 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
   for (const BuildCluster& c : dag.clusters) triangles += c.indices.size() / 3, faces += c.cageFaces.size();
   const size_t vertices = leafMesh.positions.size();
   file.positions.reserve(file.positions.size() + 3 * vertices);
-  file.controlPoints.reserve(file.controlPoints.size() + 3 * vertices);
+  file.controlPoints.reserve(file.controlPoints.size() + 3 * patches.points.size());
   file.normals.reserve(file.normals.size() + vertices);
   file.clusterTriangles.reserve(file.clusterTriangles.size() + triangles);
   file.clusterVertices.reserve(file.clusterVertices.size() + 3 * triangles / 2 + 2 * dag.clusters.size());
@@ -69,7 +69,7 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
   file.clusterCones.reserve(file.clusterCones.size() + dag.clusters.size());
   file.cageFaces.reserve(file.cageFaces.size() + faces);
   file.patches.reserve(file.patches.size() + faces);
-  file.patchPoints.reserve(file.patchPoints.size() + (controlPoints.empty() ? 0 : 17 * faces));
+  file.patchPoints.reserve(file.patchPoints.size() + patches.words.size());
   file.cageFaceVertices.reserve(file.cageFaceVertices.size() + 4 * faces);
 
   // Vertices, with the limit normals when given, else area-weighted normals of the leaf triangles.
@@ -85,18 +85,17 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
   }
   for (size_t v = 0; v < leafMesh.positions.size(); v++) {
     file.positions.insert(file.positions.end(), {leafMesh.positions[v].x, leafMesh.positions[v].y, leafMesh.positions[v].z});
-    const glm::vec3& control = controlPoints.empty() ? leafMesh.positions[v] : controlPoints[v];
-    file.controlPoints.insert(file.controlPoints.end(), {control.x, control.y, control.z});
     float len = glm::length(normals[v]);
     file.normals.push_back(encodeNormal(len > 0.0f ? normals[v] / len : glm::vec3(0.0f, 0.0f, 1.0f)));
   }
 
-  // One patch per face of the cage, from its topology; the control points are the cage before the limit.
-  // Neighbours name faces by their index in the file, whose order (cluster order) is known first; an
-  // edge is locked at factor 1 where the face on its other side belongs to another level-0 group
-  // (which may be drawn coarser) or is flat.
-  std::unique_ptr<Patcher> patcher;
-  if (!controlPoints.empty()) patcher = std::make_unique<Patcher>(leafMesh);
+  // One patch per face of the cage (its words verbatim: control-point indices relative to the
+  // geometry's first control point). Neighbours name faces by their index in the file, whose order
+  // (cluster order) is known first; an edge is locked at factor 1 where the face on its other side
+  // belongs to another level-0 group (which may be drawn coarser) or is flat.
+  const uint32_t pointBase = uint32_t(file.controlPoints.size() / 3);
+  for (const glm::vec3& p : patches.points) file.controlPoints.insert(file.controlPoints.end(), {p.x, p.y, p.z});
+  const bool patched = patches.info.size() == leafMesh.faceCount();
   std::vector<uint32_t> fileFace(leafMesh.faceCount(), UINT32_MAX), faceGroup(leafMesh.faceCount(), UINT32_MAX);
   uint32_t nextFace = cageOffset;
   for (uint32_t id : clusterOrder)
@@ -104,26 +103,32 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
       fileFace[f] = nextFace++;
       faceGroup[f] = dag.clusters[id].group;
     }
-  auto flat = [&](uint32_t f) { return f >= patchErrors.size() || !patchErrors[f].patched; };
+  auto flat = [&](uint32_t f) { return !patched || !patches.patched(f) || f >= patchErrors.size(); };
   auto filePatch = [&](uint32_t f) {
     shaderio::Patch out{};
     out.firstPoint = uint32_t(file.patchPoints.size());
+    out.pointBase = pointBase;
     for (uint32_t& n : out.neighbours) n = VGEO_INVALID;
-    FacePatch patch;
-    if (patcher) patch = patcher->patch(f);
+    if (flat(f)) {
+      out.info = 0xfu << 16;  // VGEO_PATCH_NONE, every edge locked
+      if (patched)
+        for (uint32_t k = 0; k < 4; k++) {
+          uint32_t n = patches.neighbours[f][k];
+          if (n != UINT32_MAX && fileFace[n >> 2] != UINT32_MAX) out.neighbours[k] = fileFace[n >> 2] << 2 | (n & 3u);
+        }
+      return out;
+    }
     uint32_t locked = 0;
     for (uint32_t k = 0; k < 4; k++) {
-      uint32_t n = patch.neighbours[k];
-      if (n != UINT32_MAX && fileFace[n >> 2] != UINT32_MAX) out.neighbours[k] = fileFace[n >> 2] << 2 | (n & 3u);
-      if (patch.kind == VGEO_PATCH_NONE || n == UINT32_MAX || flat(n >> 2) || faceGroup[n >> 2] != faceGroup[f])
-        locked |= 1u << k;
+      uint32_t n = patches.neighbours[f][k];
+      if (n == UINT32_MAX) continue;  // a boundary: nothing on the other side to disagree with
+      if (fileFace[n >> 2] != UINT32_MAX) out.neighbours[k] = fileFace[n >> 2] << 2 | (n & 3u);
+      if (flat(n >> 2) || faceGroup[n >> 2] != faceGroup[f]) locked |= 1u << k;
     }
-    out.info = patch.kind | patch.corner << 2 | patch.valence << 8 | locked << 16;
-    for (uint32_t i = 0; i < patch.pointCount; i++) file.patchPoints.push_back(vertexOffset + patch.points[i]);
-    if (patch.kind != VGEO_PATCH_NONE && f < patchErrors.size()) {
-      out.faceError = patchErrors[f].face;
-      out.edgeError = glm::vec4(patchErrors[f].edge[0], patchErrors[f].edge[1], patchErrors[f].edge[2], patchErrors[f].edge[3]);
-    }
+    out.info = patches.info[f] | locked << 16;
+    file.patchPoints.insert(file.patchPoints.end(), patches.words.begin() + patches.first[f], patches.words.begin() + patches.first[f + 1]);
+    out.faceError = patchErrors[f].face;
+    out.edgeError = glm::vec4(patchErrors[f].edge[0], patchErrors[f].edge[1], patchErrors[f].edge[2], patchErrors[f].edge[3]);
     return out;
   };
   std::vector<uint32_t> local;

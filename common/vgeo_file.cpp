@@ -272,21 +272,25 @@ VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name) {
   }
   for (uint32_t v : data.cageFaceVertices)
     if (v >= vertices) fail("a cage face uses a vertex out of range");
-  if (data.controlPoints.size() != data.positions.size()) fail("control points and vertices differ in count");
+  if (data.controlPoints.size() % 3 != 0) fail("the control points are not x, y, z triples");
   for (float x : data.controlPoints)
     if (!std::isfinite(x)) fail("a control point is not finite");
   if (data.patches.size() != data.cageFaces.size()) fail("patches and cage faces differ in count");
+  const size_t controlPoints = data.controlPoints.size() / 3;
   for (size_t i = 0; i < data.patches.size(); i++) {
     const shaderio::Patch& p = data.patches[i];
     std::string what = "patch " + std::to_string(i);
-    uint32_t kind = shaderio::patchKind(p.info), valence = shaderio::patchValence(p.info);
-    if (kind > VGEO_PATCH_RING || (kind == VGEO_PATCH_RING && (valence < 3 || valence > VGEO_MAX_VALENCE)))
-      fail(what + " is of an unknown kind");
-    if (kind != VGEO_PATCH_NONE && data.cageFaces[i].vertexCount != 4) fail(what + " belongs to a face that is not a quad");
-    uint32_t points = kind == VGEO_PATCH_REGULAR ? 16u : kind == VGEO_PATCH_RING ? 2u * valence + 8u : 0u;
-    if (!within(p.firstPoint, points, data.patchPoints.size())) fail(what + " refers outside the patch points");
-    for (uint32_t k = 0; k < points; k++)
-      if (data.patchPoints[p.firstPoint + k] >= vertices) fail(what + " uses a control point out of range");
+    const uint32_t kind = shaderio::patchKind(p.info);
+    if (kind != VGEO_PATCH_NONE) {
+      if (data.cageFaces[i].vertexCount != 4) fail(what + " belongs to a face that is not a quad");
+      if (p.firstPoint > data.patchPoints.size()) fail(what + " refers outside the patch points");
+      const uint32_t* words = data.patchPoints.data() + p.firstPoint;
+      bool inRange = true;
+      auto point = [&](size_t w) { inRange = inRange && p.pointBase < controlPoints && words[w] < controlPoints - p.pointBase; };
+      if (!shaderio::forEachPatchPoint(p.info, words, data.patchPoints.size() - p.firstPoint, point))
+        fail(what + " has malformed words (unknown kind, a node outside the patch points or a tree too deep)");
+      if (!inRange) fail(what + " uses a control point out of range");
+    }
     for (uint32_t n : p.neighbours)
       if (n != VGEO_INVALID && (n >> 2) >= data.patches.size()) fail(what + " names a missing neighbour");
     if (!(p.faceError >= 0.0f) || !std::isfinite(p.faceError)) fail(what + " has a bad chord error");
@@ -298,22 +302,15 @@ VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name) {
 
 glm::vec3 VgeoData::evaluatePatch(uint32_t face, float s, float t, glm::vec3* normal) const {
   const shaderio::Patch& patch = patches[face];
-  const uint32_t kind = shaderio::patchKind(patch.info), valence = shaderio::patchValence(patch.info);
-  glm::vec3 n, p;
-  if (kind == VGEO_PATCH_NONE) {
-    const uint32_t* v = &cageFaceVertices[cageFaces[face].firstVertex];
-    glm::vec3 a = position(v[0]), b = position(v[1]), c = position(v[2]), d = position(v[3]);
-    p = glm::mix(glm::mix(a, b, s), glm::mix(d, c, s), t);
-    n = glm::normalize(glm::cross(glm::mix(b - a, c - d, t), glm::mix(d - a, c - b, s)));
-  } else {
-    glm::vec3 points[VGEO_MAX_RING];
-    uint32_t count = kind == VGEO_PATCH_REGULAR ? 16u : 2u * valence + 8u;
-    for (uint32_t i = 0; i < count; i++) {
-      uint32_t v = patchPoints[patch.firstPoint + i];
-      points[i] = glm::vec3(controlPoints[3 * v], controlPoints[3 * v + 1], controlPoints[3 * v + 2]);
-    }
-    p = shaderio::evaluatePatch(kind, shaderio::patchCorner(patch.info), int(valence), points, s, t, n);
-  }
+  const uint32_t* corners = &cageFaceVertices[cageFaces[face].firstVertex];
+  auto point = [&](uint32_t i) {
+    const float* x = &controlPoints[3 * (size_t(patch.pointBase) + i)];
+    return glm::vec3(x[0], x[1], x[2]);
+  };
+  auto corner = [&](uint32_t k) { return position(corners[k]); };
+  glm::vec3 n;
+  const uint32_t* words = patchPoints.data() + std::min<size_t>(patch.firstPoint, patchPoints.size());
+  glm::vec3 p = shaderio::evaluatePatchWords(patch.info, words, point, corner, s, t, n);
   if (normal) *normal = n;
   return p;
 }

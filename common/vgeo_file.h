@@ -18,8 +18,9 @@
 
 namespace vgeo {
 
-constexpr uint32_t kVgeoVersion = 4;  // 2: cluster normal cones; 3: leaves on the limit surface, control points, patches;
-                                      // 4: patches for every interior face (rings), chord errors, patch points
+constexpr uint32_t kVgeoVersion = 5;  // 2: cluster normal cones; 3: leaves on the limit surface, control points, patches;
+                                      // 4: patches for every interior face (rings), chord errors, patch points;
+                                      // 5: boundary and tree patches, control points apart from vertices
 
 enum class Section : uint32_t {
   Geometries = 1,
@@ -34,9 +35,9 @@ enum class Section : uint32_t {
   CageFaces,
   CageFaceVertices,  // absolute vertex index per cage face corner
   ClusterCones,      // shaderio::ClusterCone per cluster (normal cone and tight sphere)
-  ControlPoints,     // float x, y, z per vertex: the level-N cage's control points (positions are limit points)
+  ControlPoints,     // float x, y, z: each subdivided geometry's level-N cage, then its phantom and tree points
   Patches,           // shaderio::Patch per cage face
-  PatchPoints,       // absolute control-point index per patch control point
+  PatchPoints,       // the patches' words (shaderio.h): control-point indices relative to Patch.pointBase, tree nodes
   Count_
 };
 const char* sectionName(Section s);
@@ -54,13 +55,13 @@ struct VgeoData {
   std::vector<shaderio::CageFace> cageFaces;
   std::vector<uint32_t> cageFaceVertices;
   std::vector<shaderio::ClusterCone> clusterCones;
-  std::vector<float> controlPoints;  // as positions
+  std::vector<float> controlPoints;  // x, y, z each
   std::vector<shaderio::Patch> patches;
   std::vector<uint32_t> patchPoints;
 
   size_t vertexCount() const { return positions.size() / 3; }
-  // Cage face `face`'s patch at face parameters (s, t) (shaderio.h, Patch), with its unit normal; a flat
-  // face (VGEO_PATCH_NONE) is bilinear between its corners' leaf vertices.
+  // Cage face `face`'s patch at face parameters (s, t) (shaderio.h, Patch), with its unit normal, as
+  // patch.tese evaluates it; a flat face (VGEO_PATCH_NONE) is bilinear between its corners' leaf vertices.
   glm::vec3 evaluatePatch(uint32_t face, float s, float t, glm::vec3* normal = nullptr) const;
   glm::vec3 position(uint32_t v) const { return {positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]}; }
 };

@@ -29,7 +29,8 @@ uint32_t appendVgeo(VgeoData& dst, const VgeoData& src) {
                  clusterBase = uint32_t(dst.clusters.size()), groupBase = uint32_t(dst.groups.size()),
                  nodeBase = uint32_t(dst.nodes.size()), clusterVertexBase = uint32_t(dst.clusterVertices.size()),
                  clusterTriangleBase = uint32_t(dst.clusterTriangles.size()), cageBase = uint32_t(dst.cageFaces.size()),
-                 cageVertexBase = uint32_t(dst.cageFaceVertices.size()), patchPointBase = uint32_t(dst.patchPoints.size());
+                 cageVertexBase = uint32_t(dst.cageFaceVertices.size()), patchPointBase = uint32_t(dst.patchPoints.size()),
+                 controlPointBase = uint32_t(dst.controlPoints.size() / 3);
   for (auto g : src.geometries) {
     g.clusterOffset += clusterBase;
     g.groupOffset += groupBase;
@@ -72,11 +73,12 @@ uint32_t appendVgeo(VgeoData& dst, const VgeoData& src) {
   dst.controlPoints.insert(dst.controlPoints.end(), src.controlPoints.begin(), src.controlPoints.end());
   for (auto p : src.patches) {
     p.firstPoint += patchPointBase;
+    p.pointBase += controlPointBase;
     for (uint32_t& n : p.neighbours)
       if (n != VGEO_INVALID) n += cageBase << 2;
     dst.patches.push_back(p);
   }
-  for (uint32_t v : src.patchPoints) dst.patchPoints.push_back(v + vertexBase);
+  dst.patchPoints.insert(dst.patchPoints.end(), src.patchPoints.begin(), src.patchPoints.end());
   return geometryBase;
 }
 

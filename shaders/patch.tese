@@ -7,7 +7,8 @@
 //     at i / factor along that face's edge (i counted from its end), so both sides run the same
 //     arithmetic on the same data;
 //   - any other vertex is evaluated on its own face.
-// A flat face (VGEO_PATCH_NONE) is bilinear between its corners; all its edges are at factor 1.
+// A flat face (VGEO_PATCH_NONE) is bilinear between its corners; all its edges are at factor 1. A tree
+// (VGEO_PATCH_TREE) is walked down to the patch of the quadrant the vertex lies in.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 #include "patch_eval.h"
@@ -27,24 +28,23 @@ vec2 onEdge(uint k, uint i, uint n) {
   return k == 0u ? vec2(t, 0.0) : k == 1u ? vec2(1.0, t) : k == 2u ? vec2(r, 1.0) : vec2(0.0, r);
 }
 
-vec3 cornerPosition(uint face, uint k) { return vertexPosition(cageFaceVertices[cageFaces[face].firstVertex + k]); }
-
+// Face `face`'s patch at st: down its tree (if any) to a B-spline, ring or bilinear patch.
 vec3 evaluateFace(uint face, vec2 st, out vec3 normal) {
   Patch p = patches[face];
-  uint kind = patchKind(p.info);
-  if (kind == VGEO_PATCH_NONE) {
-    vec3 a = cornerPosition(face, 0u), b = cornerPosition(face, 1u), c = cornerPosition(face, 2u), d = cornerPosition(face, 3u);
-    normal = normalize(cross(mix(b - a, c - d, st.y), mix(d - a, c - b, st.x)));
-    return mix(mix(a, b, st.x), mix(d, c, st.x), st.y);
+  uint info = p.info, at = p.firstPoint;
+  for (int depth = 0; depth < VGEO_MAX_PATCH_DEPTH && patchKind(info) == VGEO_PATCH_TREE; depth++) {
+    uint node = p.firstPoint + patchPoints[at + patchQuadrant(st)];
+    info = patchPoints[node];
+    at = node + 1u;
   }
-  int valence = int(patchValence(p.info));
-  uint count = kind == VGEO_PATCH_REGULAR ? 16u : uint(2 * valence + 8);
   vec3 points[VGEO_MAX_RING];
+  uint count = patchWordCount(info);
+  bool flatFace = patchKind(p.info) == VGEO_PATCH_NONE;
   for (uint i = 0u; i < count; i++) {
-    uint v = patchPoints[p.firstPoint + i];
-    points[i] = vec3(controlPoints[3u * v], controlPoints[3u * v + 1u], controlPoints[3u * v + 2u]);
+    uint v = flatFace ? cageFaceVertices[cageFaces[face].firstVertex + i] : p.pointBase + patchPoints[at + i];
+    points[i] = flatFace ? vertexPosition(v) : vec3(controlPoints[3u * v], controlPoints[3u * v + 1u], controlPoints[3u * v + 2u]);
   }
-  return evaluatePatch(kind, patchCorner(p.info), valence, points, st.x, st.y, normal);
+  return evaluatePatch(patchKind(info), patchCorner(info), int(patchValence(info)), points, st.x, st.y, normal);
 }
 
 void main() {

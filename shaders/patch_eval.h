@@ -15,6 +15,8 @@
 //   of 1/64 or coarser, so at most 7 rounds of O(N) work each. (a, b) = (0, 0) is the vertex's limit
 //   point (Halstead et al. 1993 masks).
 // The ring's parameters: a runs from v towards e_0, b from v towards e_1.
+// - Anything else (shaderio.h, VGEO_PATCH_TREE): a quadtree of the face subdivided locally, walked down
+//   by patchQuadrant to a patch of the kinds above; its last irregular quadrant is bilinear.
 #ifndef VGEO_PATCH_EVAL_H
 #define VGEO_PATCH_EVAL_H
 
@@ -30,13 +32,16 @@ using glm::vec2;
 using glm::cross;
 using glm::max;
 using glm::normalize;
+using glm::mix;
 #define VGEO_INLINE inline
 #define VGEO_OUT(T) T&
 #define VGEO_OUT_ARRAY(T, name, n) T (&name)[n]
+#define VGEO_INOUT(T) T&
 #else
 #define VGEO_INLINE
 #define VGEO_OUT(T) out T
 #define VGEO_OUT_ARRAY(T, name, n) out T name[n]
+#define VGEO_INOUT(T) inout T
 #endif
 
 // Uniform cubic B-spline basis at t, and its derivative.
@@ -187,26 +192,81 @@ VGEO_INLINE vec2 ringParameters(uint corner, float s, float t) {
   return vec2(1.0f - t, s);
 }
 
-// A face's patch (shaderio.h, Patch) at face parameters (s, t), with its unit normal: `points` holds the
-// patch's control points (16 for VGEO_PATCH_REGULAR, 2N + 8 for VGEO_PATCH_RING).
+// One step down a patch tree (shaderio.h, VGEO_PATCH_TREE): the quadrant of the face that (s, t) lies in,
+// i.e. the sub-face at that corner after one Catmull-Clark round, and (s, t) in the sub-face's own
+// parameters (its corner 0 is the face's corner, its corner 1 the midpoint of the edge that follows).
+VGEO_INLINE uint patchQuadrant(VGEO_INOUT(vec2) st) {
+  uint q = st.x >= 0.5f ? (st.y >= 0.5f ? 2u : 1u) : (st.y >= 0.5f ? 3u : 0u);
+  st = 2.0f * ringParameters(q, st.x, st.y);
+  return q;
+}
+
+// A patch (shaderio.h, Patch) of kind VGEO_PATCH_REGULAR, VGEO_PATCH_RING or VGEO_PATCH_NONE (bilinear
+// between points 0..3, the corners in order) at face parameters (s, t), with its unit normal.
 VGEO_INLINE vec3 evaluatePatch(uint kind, uint corner, int valence, vec3 points[VGEO_MAX_RING], float s, float t, VGEO_OUT(vec3) normal) {
   vec3 du, dv, p;
   if (kind == VGEO_PATCH_REGULAR) {
     vec3 grid[16];
     for (int i = 0; i < 16; i++) grid[i] = points[i];
     p = evaluateBspline(grid, s, t, du, dv);
-  } else {
+  } else if (kind == VGEO_PATCH_RING) {
     vec2 ab = ringParameters(corner, s, t);
     p = evaluateRing(points, valence, ab.x, ab.y, du, dv);
+  } else {
+    du = mix(points[1] - points[0], points[2] - points[3], t);
+    dv = mix(points[3] - points[0], points[2] - points[1], s);
+    p = mix(mix(points[0], points[1], s), mix(points[3], points[2], s), t);
   }
   normal = normalize(cross(du, dv));
   return p;
 }
 
 #ifdef __cplusplus
+// The C++ side of a patch's words (shaderio.h): `words` starts at the patch's firstPoint and holds `size`
+// words; point(i) gives control point i (relative to pointBase). Tree walks stop at VGEO_MAX_PATCH_DEPTH.
+
+// Calls visit(word index) for every control-point word of the patch (every node of a tree); false when
+// the words are malformed (a node outside them, an unknown kind, a tree too deep).
+template <class Visit>
+bool forEachPatchPoint(uint info, const uint* words, size_t size, Visit visit, int depth = 0, size_t at = 0) {
+  const uint kind = patchKind(info), valence = patchValence(info);
+  if (kind == VGEO_PATCH_RING && (valence < 3u || valence > uint(VGEO_MAX_VALENCE))) return false;
+  if (at > size || patchWordCount(info) > size - at) return false;
+  if (kind != VGEO_PATCH_TREE) {
+    for (uint i = 0; i < patchWordCount(info); i++) visit(at + i);
+    return true;
+  }
+  if (depth >= VGEO_MAX_PATCH_DEPTH) return false;
+  for (uint q = 0; q < 4u; q++) {
+    size_t child = words[at + q];
+    if (child <= at || child >= size) return false;  // children lie after their parent
+    if (!forEachPatchPoint(words[child], words, size, visit, depth + 1, child + 1)) return false;
+  }
+  return true;
+}
+
+// The patch at (s, t) with its unit normal; a top-level VGEO_PATCH_NONE gives its corners as corner(k).
+template <class Point, class Corner>
+vec3 evaluatePatchWords(uint info, const uint* words, Point point, Corner corner, float s, float t, vec3& normal) {
+  vec2 st(s, t);
+  size_t at = 0;
+  for (int depth = 0; depth < VGEO_MAX_PATCH_DEPTH && patchKind(info) == VGEO_PATCH_TREE; depth++) {
+    size_t node = words[at + patchQuadrant(st)];
+    info = words[node];
+    at = node + 1;
+  }
+  vec3 points[VGEO_MAX_RING];
+  const bool flatFace = at == 0 && patchKind(info) == VGEO_PATCH_NONE;
+  for (uint i = 0; i < patchWordCount(info); i++) points[i] = flatFace ? corner(i) : point(words[at + i]);
+  return evaluatePatch(patchKind(info), patchCorner(info), int(patchValence(info)), points, st.x, st.y, normal);
+}
+#endif
+
+#ifdef __cplusplus
 #undef VGEO_INLINE
 #undef VGEO_OUT
 #undef VGEO_OUT_ARRAY
+#undef VGEO_INOUT
 }  // namespace shaderio
 #endif
 

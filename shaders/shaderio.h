@@ -120,12 +120,22 @@ struct CageFace {
 // The limit-surface patch of a face of the level-N cage (patch_eval.h evaluates it), one per cage face.
 // Face parameters (s, t): corner 0 at (0, 0), 1 at (1, 0), 2 at (1, 1), 3 at (0, 1); edge k runs from
 // corner k to corner k + 1.
-//   VGEO_PATCH_REGULAR: four interior corners of valence 4: a bicubic B-spline patch, 16 control points
-//     row by row, the face the middle cell (corners points 5, 6, 10, 9).
+//   VGEO_PATCH_REGULAR: a bicubic B-spline patch, 16 control points row by row, the face the middle cell
+//     (corners points 5, 6, 10, 9): four corners of valence 4, or on a boundary of 2 faces (1 face: a
+//     corner), the points beyond a boundary mirrored across it (phantom points, 2 b - a).
 //   VGEO_PATCH_RING: one extraordinary interior corner (corner(), valence()): its 2N + 8 control points
 //     in Stam's order (patch_eval.h).
-//   VGEO_PATCH_NONE: next to a boundary, or two extraordinary corners: drawn flat (its two leaf
-//     triangles), every edge at factor 1.
+//   VGEO_PATCH_TREE: anything else (two extraordinary corners, an extraordinary corner on a boundary, a
+//     valence above VGEO_MAX_VALENCE): the face subdivided locally, a quadtree of at most
+//     VGEO_MAX_PATCH_DEPTH levels whose leaves are patches of the kinds above (feature-adaptive
+//     subdivision); the last level's quadrant at the irregular corner is bilinear between its corners'
+//     limit points, smaller than the finest tessellation step (1 / 64), so only its corners are evaluated.
+//   VGEO_PATCH_NONE: no patch (a cage that was not subdivided, or topology no rule covers): drawn flat
+//     (its leaf triangles), every edge at factor 1.
+// A patch's words start at patchPoints[firstPoint]: the control-point indices of a REGULAR or RING patch
+// (relative to pointBase); for a TREE the four child offsets (relative to firstPoint) of the quadrants at
+// corners 0..3, each child a node: one info word (kind, corner, valence as in Patch.info) followed by its
+// own words; a NONE node holds the 4 points it is bilinear between.
 // Tessellation factors come from each edge alone (its corners and edgeError), so the two faces of an
 // edge agree; a locked edge stays at factor 1 (the border of a level-0 group, whose other side may be a
 // coarser cluster, or an edge of a flat face). Edge points are evaluated on the face of the lower index
@@ -133,11 +143,13 @@ struct CageFace {
 #define VGEO_PATCH_NONE 0u
 #define VGEO_PATCH_REGULAR 1u
 #define VGEO_PATCH_RING 2u
+#define VGEO_PATCH_TREE 3u
+#define VGEO_MAX_PATCH_DEPTH 6
 struct Patch {
-  uint firstPoint;      // into the patch-point section (absolute control-point indices)
+  uint firstPoint;      // into the patch-point section: the patch's words
   uint info;            // kind (bits 0-1), ring: corner (bits 2-3), valence (bits 8-15); locked edges (bits 16-19)
   float faceError;      // object-space chord error of the face's leaf triangles against the patch (>= edgeError)
-  uint pad;
+  uint pointBase;       // control point of index 0 in the patch's words (its geometry's first control point)
   uint neighbours[4];   // across edge k: the face's absolute index << 2 | its edge; VGEO_INVALID on a boundary
   vec4 edgeError;       // chord error of edge k's leaf segment against the limit curve, the same on both sides
 };
@@ -157,6 +169,14 @@ uint patchValence(uint info) { return (info >> 8u) & 0xffu; }
 inline
 #endif
 bool patchEdgeLocked(uint info, uint edge) { return ((info >> (16u + edge)) & 1u) != 0u; }
+#ifdef __cplusplus
+inline
+#endif
+// Control points of a patch or tree node of this kind (a tree node: its 4 children).
+uint patchWordCount(uint info) {
+  uint kind = patchKind(info);
+  return kind == VGEO_PATCH_REGULAR ? 16u : kind == VGEO_PATCH_RING ? 2u * patchValence(info) + 8u : 4u;
+}
 
 // ---- Renderer -------------------------------------------------------------------------------------
 

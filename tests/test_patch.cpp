@@ -1,12 +1,15 @@
-// test_patch.cpp: the limit-surface patches of cage faces (patch.cpp, shaders/patch_eval.h): regular
-// B-spline patches and rings around extraordinary vertices must be the Catmull-Clark limit surface (at
-// dyadic parameters exactly the limit points of the mesh subdivided further; anywhere, close to the
-// mesh subdivided 6 more levels), neighbours must meet with the same position and normal, chord errors
-// must bound the leaf triangles' distance, and the .vgeo must carry all of it.
+// test_patch.cpp: the limit-surface patches of cage faces (patch.cpp, mesh_patches.cpp,
+// shaders/patch_eval.h): regular B-spline patches (interior or with phantom points beyond a boundary),
+// rings around extraordinary vertices and trees of locally subdivided faces must be the Catmull-Clark
+// limit surface with subdivide.cpp's boundary rules (at dyadic parameters exactly the limit points of the
+// mesh subdivided further; anywhere, close to the mesh subdivided 6 more levels), neighbours must meet
+// with the same position and normal, chord errors must bound the leaf triangles' distance, and the
+// .vgeo must carry all of it.
 #include <cmath>
 #include <map>
 #include <unordered_map>
 
+#include "cages.h"
 #include "test_util.h"
 
 namespace vgeo {
@@ -17,21 +20,6 @@ PolygonMesh cage(const std::string& path, int levels) {
   repairMesh(m, path);
   for (int l = 0; l < levels; l++) m = subdivideCatmullClark(m);
   return m;
-}
-
-// A hexagonal prism of two hexagons and six quads: after one round its hexagons' face points have
-// valence 6 and its corners valence 3.
-std::string hexagonalPrism(const std::string& dir) {
-  std::string obj;
-  for (int z = 0; z < 2; z++)
-    for (int i = 0; i < 6; i++)
-      obj += "v " + std::to_string(std::cos(i * 1.0471976)) + " " + std::to_string(std::sin(i * 1.0471976)) + " " + std::to_string(z * 1.3) + "\n";
-  obj += "f 6 5 4 3 2 1\nf 7 8 9 10 11 12\n";
-  for (int i = 0; i < 6; i++) {
-    int a = i + 1, b = (i + 1) % 6 + 1;
-    obj += "f " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(b + 6) + " " + std::to_string(a + 6) + "\n";
-  }
-  return test::writeFile(dir, "hexagonal_prism.obj", obj);
 }
 
 float diagonal(const std::vector<glm::vec3>& points) {
@@ -84,135 +72,210 @@ struct PointGrid {
 };
 
 struct Accuracy {
-  size_t regular = 0, ring = 0, none = 0;
-  float regularWorst = 0.0f, ringWorst = 0.0f, normalWorst = 0.0f;
+  size_t regular = 0, boundary = 0, ring = 0, tree = 0, none = 0;
+  float regularWorst = 0.0f, ringWorst = 0.0f, treeWorst = 0.0f, normalWorst = 0.0f;
 };
 
+bool onBoundary(const MeshPatches& patches, uint32_t face) {
+  for (uint32_t n : patches.neighbours[face])
+    if (n == UINT32_MAX) return true;
+  return false;
+}
+
 // Every patch of `coarse` at parameters (i / steps, j / steps) against the nearest vertex of `fine`
-// (distances relative to the diagonal) and that vertex's normal.
+// (distances relative to the diagonal) and that vertex's normal. A tree's corner normals are left out:
+// the renderer shades corners with the leaf vertex normals, and at an extraordinary boundary vertex
+// limit.cpp's normal is an approximation.
 Accuracy compare(const PolygonMesh& coarse, const std::vector<glm::vec3>& fine, const std::vector<glm::vec3>& fineNormals, int steps) {
-  Patcher patcher(coarse);
+  const MeshPatches patches = buildPatches(coarse, coarse.positions, 2);
   const float d = diagonal(coarse.positions);
   PointGrid grid(fine, d * 2e-3f);
   Accuracy a;
   for (uint32_t f = 0; f < coarse.faceCount(); f++) {
-    FacePatch patch = patcher.patch(f);
-    if (patch.kind == VGEO_PATCH_NONE) {
+    const uint32_t kind = shaderio::patchKind(patches.info[f]);
+    if (kind == VGEO_PATCH_NONE) {
       a.none++;
       continue;
     }
-    (patch.kind == VGEO_PATCH_REGULAR ? a.regular : a.ring)++;
-    float& worst = patch.kind == VGEO_PATCH_REGULAR ? a.regularWorst : a.ringWorst;
+    (kind == VGEO_PATCH_TREE ? a.tree : kind == VGEO_PATCH_RING ? a.ring : onBoundary(patches, f) ? a.boundary : a.regular)++;
+    float& worst = kind == VGEO_PATCH_REGULAR ? a.regularWorst : kind == VGEO_PATCH_RING ? a.ringWorst : a.treeWorst;
     for (int i = 0; i <= steps; i++)
       for (int j = 0; j <= steps; j++) {
-        glm::vec3 normal, p = evaluateFacePatch(patch, coarse.positions, float(i) / float(steps), float(j) / float(steps), &normal);
+        glm::vec3 normal, p = patches.evaluate(f, float(i) / float(steps), float(j) / float(steps), &normal);
         float distance;
         uint32_t v = grid.nearest(p, distance);
         worst = std::max(worst, distance / d);
-        if (std::isfinite(distance)) a.normalWorst = std::max(a.normalWorst, degrees(normal, fineNormals[v]));
+        const bool corner = (i == 0 || i == steps) && (j == 0 || j == steps);
+        if (std::isfinite(distance) && !(corner && kind == VGEO_PATCH_TREE)) a.normalWorst = std::max(a.normalWorst, degrees(normal, fineNormals[v]));
       }
   }
   return a;
 }
 
+// `path` subdivided `levels` times against `more` further levels: against that mesh's limit points
+// (`limit`), or its vertices as they are (the bar), with limit normals either way.
+Accuracy compareDeeper(const std::string& path, int levels, int more, int steps, bool limit) {
+  PolygonMesh coarse = cage(path, levels), fine = cage(path, levels + more), fineLimit = fine;
+  std::vector<glm::vec3> fineNormals;
+  EXPECT_TRUE(moveToLimit(fineLimit, fineNormals));
+  return compare(coarse, limit ? fineLimit.positions : fine.positions, fineNormals, steps);
+}
+
 TEST(Patch, PatchesAreTheLimitSurfaceAtDyadicParameters) {
   // Two more rounds: the vertex at (i/4, j/4) of every face, moved to the limit, is exactly a patch point.
-  PolygonMesh coarse = cage(test::asset("horned_cube.obj"), 2), fine = cage(test::asset("horned_cube.obj"), 4);
-  std::vector<glm::vec3> fineNormals;
-  ASSERT_TRUE(moveToLimit(fine, fineNormals));
-  Accuracy a = compare(coarse, fine.positions, fineNormals, 4);
-  EXPECT_GT(a.regular, coarse.faceCount() / 2) << "most faces of a subdivided cage are regular";
+  Accuracy a = compareDeeper(test::asset("horned_cube.obj"), 2, 2, 4, true);
+  EXPECT_GT(a.regular, 1000u) << "most faces of a subdivided cage are regular";
   EXPECT_GT(a.ring, 0u) << "faces at the cube's corners (valence 3) are rings";
-  EXPECT_EQ(a.none, 0u) << "a closed cage after two rounds has a patch on every face";
+  EXPECT_EQ(a.boundary + a.tree + a.none, 0u) << "a closed cage after two rounds has a B-spline or ring patch on every face";
   EXPECT_LT(a.regularWorst, 1e-6f);
   EXPECT_LT(a.ringWorst, 2e-6f);
   EXPECT_LT(a.normalWorst, 0.05f);  // float derivatives shrink towards an extraordinary vertex
 }
 
+TEST(Patch, BoundaryAndTreePatchesAreTheLimitSurfaceAtDyadicParameters) {
+  // Boundaries (regular, corners, an extraordinary boundary vertex) and faces with two extraordinary
+  // corners, against the limit points of two more rounds with subdivide.cpp's boundary rules.
+  const std::string dir = test::tempDir();
+  Accuracy box = compareDeeper(test::openBox(dir), 2, 2, 4, true), sheet = compareDeeper(test::lSheet(dir), 2, 2, 4, true);
+  Accuracy fan = compareDeeper(test::triangleFan(dir), 1, 2, 4, true), tetra = compareDeeper(test::tetrahedron(dir), 1, 2, 4, true);
+  EXPECT_GT(box.boundary, 10u);
+  EXPECT_GT(box.ring, 0u);
+  EXPECT_EQ(box.tree, 0u) << "a boundary of regular vertices needs no local subdivision";
+  EXPECT_GT(sheet.boundary, 10u) << "regular boundary faces and corners";
+  EXPECT_EQ(sheet.tree, 3u) << "the three faces at the extraordinary boundary vertex";
+  EXPECT_EQ(fan.tree, 15u) << "--subdiv 1 of a triangle mesh: every face has two extraordinary corners";
+  EXPECT_EQ(tetra.tree, 12u);
+  for (const Accuracy* a : {&box, &sheet, &fan, &tetra}) {
+    EXPECT_EQ(a->none, 0u) << "every face of a subdivided cage has a patch";
+    EXPECT_LT(a->regularWorst, 1e-6f);
+    EXPECT_LT(a->ringWorst, 2e-6f);
+    EXPECT_LT(a->treeWorst, 2e-6f);
+    EXPECT_LT(a->normalWorst, 0.1f);
+  }
+}
+
 TEST(Patch, PatchesMatchTheCageSubdividedSixLevelsDeeper) {
   // The accuracy bar: within 1e-4 of the diagonal (regular), 1e-3 near extraordinary vertices
   // (valence 3 and 6 here), normals within 1 degree, of the cage subdivided 6 more levels.
-  std::string path = hexagonalPrism(test::tempDir());
-  PolygonMesh coarse = cage(path, 2), deep = cage(path, 8), deepLimit = deep;
-  std::vector<glm::vec3> deepNormals;
-  ASSERT_TRUE(moveToLimit(deepLimit, deepNormals));
-  Accuracy a = compare(coarse, deep.positions, deepNormals, 8);
+  Accuracy a = compareDeeper(test::hexagonalPrism(test::tempDir()), 2, 6, 8, false);
   EXPECT_GT(a.regular, 0u);
   EXPECT_GT(a.ring, 40u);
-  EXPECT_EQ(a.none, 0u);
+  EXPECT_EQ(a.none + a.tree + a.boundary, 0u);
   EXPECT_LT(a.regularWorst, 1e-4f);
   EXPECT_LT(a.ringWorst, 1e-3f);
   EXPECT_LT(a.normalWorst, 1.0f);
   std::printf("six levels deeper: regular %.2e, ring %.2e of the diagonal, normals %.3f deg\n", a.regularWorst, a.ringWorst, a.normalWorst);
 }
 
-TEST(Patch, NeighbouringPatchesMeetWithTheSameNormal) {
-  PolygonMesh coarse = cage(test::asset("horned_cube.obj"), 2);
-  Patcher patcher(coarse);
-  const float d = diagonal(coarse.positions);
-  size_t shared = 0, ringEdges = 0;
+TEST(Patch, BoundaryAndTreePatchesMatchTheCageSubdividedSixLevelsDeeper) {
+  const std::string dir = test::tempDir();
+  for (const auto& [path, levels] : {std::pair{test::lSheet(dir), 2}, std::pair{test::triangleFan(dir), 1}}) {
+    Accuracy a = compareDeeper(path, levels, 6, 8, false);
+    EXPECT_GT(a.boundary + (levels == 1 ? 1u : 0u), 0u) << path << ": regular boundary faces (none at --subdiv 1 of the fan)";
+    EXPECT_GT(a.tree, 0u) << path;
+    EXPECT_EQ(a.none, 0u) << path;
+    EXPECT_LT(a.regularWorst, 1e-4f) << path;
+    EXPECT_LT(a.treeWorst, 1e-3f) << path;
+    EXPECT_LT(a.normalWorst, 1.0f) << path;
+    std::printf("%s six levels deeper: regular %.2e, tree %.2e of the diagonal, normals %.3f deg\n", path.c_str(), a.regularWorst, a.treeWorst, a.normalWorst);
+  }
+}
+
+struct Continuity {
+  size_t shared = 0, ringEdges = 0, treeEdges = 0, boundaryEdges = 0;
   float worst = 0.0f, worstNormal = 0.0f;
-  for (uint32_t f = 0; f < coarse.faceCount(); f++) {
-    FacePatch patch = patcher.patch(f);
+};
+
+// Both faces of every interior edge, evaluated at 17 points along it.
+Continuity continuity(const PolygonMesh& coarse) {
+  const MeshPatches patches = buildPatches(coarse, coarse.positions, 2);
+  const float d = diagonal(coarse.positions);
+  Continuity c;
+  for (uint32_t f = 0; f < coarse.faceCount(); f++)
     for (int k = 0; k < 4; k++) {
-      uint32_t n = patch.neighbours[k];
-      ASSERT_NE(n, UINT32_MAX);
-      FacePatch other = patcher.patch(n >> 2);
-      ASSERT_EQ(other.neighbours[n & 3], f << 2 | uint32_t(k)) << "neighbours name each other";
-      shared++;
-      if (patch.kind == VGEO_PATCH_RING || other.kind == VGEO_PATCH_RING) ringEdges++;
+      uint32_t n = patches.neighbours[f][size_t(k)];
+      if (n == UINT32_MAX) {
+        c.boundaryEdges++;
+        continue;
+      }
+      EXPECT_EQ(patches.neighbours[n >> 2][n & 3], f << 2 | uint32_t(k)) << "neighbours name each other";
+      c.shared++;
+      const uint32_t kinds[2] = {shaderio::patchKind(patches.info[f]), shaderio::patchKind(patches.info[n >> 2])};
+      if (kinds[0] == VGEO_PATCH_RING || kinds[1] == VGEO_PATCH_RING) c.ringEdges++;
+      if (kinds[0] == VGEO_PATCH_TREE || kinds[1] == VGEO_PATCH_TREE) c.treeEdges++;
       for (int s = 0; s <= 16; s++) {
         glm::vec2 a = onEdge(k, float(s) / 16.0f), b = onEdge(int(n & 3), 1.0f - float(s) / 16.0f);
         glm::vec3 na, nb;
-        glm::vec3 pa = evaluateFacePatch(patch, coarse.positions, a.x, a.y, &na), pb = evaluateFacePatch(other, coarse.positions, b.x, b.y, &nb);
-        worst = std::max(worst, glm::distance(pa, pb) / d);
-        worstNormal = std::max(worstNormal, degrees(na, nb));
+        glm::vec3 pa = patches.evaluate(f, a.x, a.y, &na), pb = patches.evaluate(n >> 2, b.x, b.y, &nb);
+        c.worst = std::max(c.worst, glm::distance(pa, pb) / d);
+        // Normals at the edge's ends are the leaf vertices' in the renderer (see compare()).
+        if ((s > 0 && s < 16) || (kinds[0] != VGEO_PATCH_TREE && kinds[1] != VGEO_PATCH_TREE)) c.worstNormal = std::max(c.worstNormal, degrees(na, nb));
       }
     }
+  return c;
+}
+
+TEST(Patch, NeighbouringPatchesMeetWithTheSameNormal) {
+  Continuity c = continuity(cage(test::asset("horned_cube.obj"), 2));
+  EXPECT_GT(c.shared, 1000u);
+  EXPECT_GT(c.ringEdges, 10u);
+  EXPECT_EQ(c.boundaryEdges, 0u);
+  EXPECT_LT(c.worst, 1e-6f);
+  EXPECT_LT(c.worstNormal, 0.05f);
+  // Boundary patches, and trees against each other and against B-splines and rings.
+  const std::string dir = test::tempDir();
+  for (const auto& [path, levels] : {std::pair{test::openBox(dir), 2}, std::pair{test::lSheet(dir), 2}, std::pair{test::triangleFan(dir), 1}, std::pair{test::tetrahedron(dir), 1}}) {
+    c = continuity(cage(path, levels));
+    EXPECT_GT(c.shared, 20u) << path;
+    EXPECT_LT(c.worst, 1e-6f) << path;
+    EXPECT_LT(c.worstNormal, 0.1f) << path;
+    if (path != test::openBox(dir)) {
+      EXPECT_GT(c.treeEdges, 5u) << path;
+    }
   }
-  EXPECT_GT(shared, 1000u);
-  EXPECT_GT(ringEdges, 10u);
-  EXPECT_LT(worst, 1e-6f);
-  EXPECT_LT(worstNormal, 0.05f);
 }
 
 TEST(Patch, ChordErrorsBoundTheLeafTriangles) {
-  PolygonMesh coarse = cage(test::asset("horned_cube.obj"), 2), limit = coarse;
-  std::vector<glm::vec3> normals;
-  ASSERT_TRUE(moveToLimit(limit, normals));
-  std::vector<PatchErrors> errors = patchChordErrors(limit, coarse.positions, 2);
-  ASSERT_EQ(errors.size(), limit.faceCount());
-  Patcher patcher(limit);
-  size_t positive = 0;
-  double worstRatio = 0.0;
-  for (uint32_t f = 0; f < limit.faceCount(); f++) {
-    FacePatch patch = patcher.patch(f);
-    std::vector<uint32_t> tris;
-    triangulateFace(limit.positions.data(), limit.face(f), 4, tris);
-    // Sampled more finely than the builder does: its estimate (5% slack) must hold within 10%.
-    double worst = 0.0;
-    for (int i = 0; i <= 16; i++)
-      for (int j = 0; j <= 16; j++) {
-        glm::dvec3 p(evaluateFacePatch(patch, coarse.positions, float(i) / 16.0f, float(j) / 16.0f));
-        auto x = [&](int k) { return glm::dvec3(limit.positions[tris[size_t(k)]]); };
-        worst = std::max(worst, std::min(pointTriangleDistance(p, x(0), x(1), x(2)), pointTriangleDistance(p, x(3), x(4), x(5))));
+  const std::string dir = test::tempDir();
+  for (const auto& [path, levels] : {std::pair{test::asset("horned_cube.obj"), 2}, std::pair{test::lSheet(dir), 2}, std::pair{test::triangleFan(dir), 1}}) {
+    PolygonMesh coarse = cage(path, levels), limit = coarse;
+    std::vector<glm::vec3> normals;
+    ASSERT_TRUE(moveToLimit(limit, normals));
+    const MeshPatches patches = buildPatches(coarse, coarse.positions, 2);
+    std::vector<PatchErrors> errors = patchChordErrors(limit, patches, 2);
+    ASSERT_EQ(errors.size(), limit.faceCount());
+    size_t positive = 0;
+    double worstRatio = 0.0;
+    for (uint32_t f = 0; f < limit.faceCount(); f++) {
+      std::vector<uint32_t> tris;
+      triangulateFace(limit.positions.data(), limit.face(f), 4, tris);
+      // Sampled more finely than the builder does: its estimate (12% slack) must hold within 10%.
+      double worst = 0.0;
+      for (int i = 0; i <= 16; i++)
+        for (int j = 0; j <= 16; j++) {
+          glm::dvec3 p(patches.evaluate(f, float(i) / 16.0f, float(j) / 16.0f));
+          auto x = [&](int k) { return glm::dvec3(limit.positions[tris[size_t(k)]]); };
+          worst = std::max(worst, std::min(pointTriangleDistance(p, x(0), x(1), x(2)), pointTriangleDistance(p, x(3), x(4), x(5))));
+        }
+      if (errors[f].face > 0.0f) positive++;
+      worstRatio = std::max(worstRatio, worst / std::max(double(errors[f].face), 1e-30));
+      for (int k = 0; k < 4; k++) {
+        EXPECT_LE(errors[f].edge[k], errors[f].face);
+        uint32_t n = patches.neighbours[f][size_t(k)];
+        if (n != UINT32_MAX) {
+          EXPECT_EQ(errors[f].edge[k], errors[n >> 2].edge[n & 3]) << "both faces of an edge carry one value";
+        }
       }
-    if (errors[f].face > 0.0f) positive++;
-    worstRatio = std::max(worstRatio, worst / std::max(double(errors[f].face), 1e-30));
-    for (int k = 0; k < 4; k++) {
-      EXPECT_LE(errors[f].edge[k], errors[f].face);
-      uint32_t n = patch.neighbours[k];
-      EXPECT_EQ(errors[f].edge[k], errors[n >> 2].edge[n & 3]) << "both faces of an edge carry one value";
     }
+    EXPECT_EQ(positive, limit.faceCount()) << path;
+    EXPECT_LT(worstRatio, 1.1) << path;
   }
-  EXPECT_EQ(positive, limit.faceCount());
-  EXPECT_LT(worstRatio, 1.1);
 }
 
 TEST(Patch, TheVgeoCarriesPatchesAndLeafErrors) {
   VgeoData data = test::build(test::asset("horned_cube.obj"), 2);
   ASSERT_EQ(data.patches.size(), data.cageFaces.size());
-  ASSERT_EQ(data.controlPoints.size(), data.positions.size());
+  ASSERT_EQ(data.controlPoints.size(), data.positions.size()) << "a closed cage after two rounds needs no phantom or tree points";
   float worst = 0.0f;
   size_t locked = 0;
   for (uint32_t f = 0; f < data.patches.size(); f++) {
@@ -243,7 +306,7 @@ TEST(Patch, TheVgeoCarriesPatchesAndLeafErrors) {
     if (c.producer == VGEO_NO_GROUP) {
       EXPECT_EQ(c.selfError, 0.0f);
     }
-  EXPECT_EQ(plain.controlPoints, plain.positions);
+  EXPECT_TRUE(plain.controlPoints.empty()) << "flat faces need no control points";
 }
 
 }  // namespace

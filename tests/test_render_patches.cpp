@@ -7,18 +7,13 @@
 #include "../renderer/gpu_renderer.h"
 #include "../renderer/image.h"
 #include "render_util.h"
+#include "cages.h"
 #include "test_util.h"
 
 namespace vgeo {
 namespace {
 
 constexpr uint32_t kW = 256, kH = 192;
-
-std::string cubeCage(const std::string& dir) {
-  return test::writeFile(dir, "cube.obj",
-                         "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
-                         "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n");
-}
 
 class RenderPatches : public ::testing::Test {
  protected:
@@ -136,7 +131,7 @@ TEST_F(RenderPatches, ShadingMatchesTheTriangles) {
 TEST_F(RenderPatches, SilhouetteWithinAPixelOfSixLevelsDeeper) {
   // A cube cage after one round (every face a ring around a valence-3 vertex), drawn close up with
   // patches, against the same cage after 7 rounds drawn as its leaf triangles (at limit positions).
-  std::string cage = cubeCage(test::tempDir());
+  std::string cage = test::cubeCage(test::tempDir());
   writeVgeo(test::build(cage, 1), *dir + "/cube1.vgeo");
   writeVgeo(test::build(cage, 7), *dir + "/cube7.vgeo");
   RenderScene coarse = loadRenderScene(*dir + "/cube1.vgeo"), deep = loadRenderScene(*dir + "/cube7.vgeo");
@@ -151,6 +146,33 @@ TEST_F(RenderPatches, SilhouetteWithinAPixelOfSixLevelsDeeper) {
     // Drawn as its leaf triangles instead, the same cage is visibly off: the test can fail.
     std::vector<uint8_t> flat = coverage(withPatches.renderFrame(settings(coarse, camera, 1.0f, false)));
     EXPECT_GT(farFrom(flat, b, 1, true) + farFrom(flat, b, 1, false), 20) << "view " << view;
+  }
+}
+
+TEST_F(RenderPatches, BoundaryAndTreePatchesWithinAPixelOfSixLevelsDeeper) {
+  // Open cages (boundary patches with phantom points; trees at an extraordinary boundary vertex) and a
+  // triangle cage after one round (every face a tree): close up with patches against the cage 6 rounds
+  // deeper. Background inside the deep silhouette would be a crack; coverage outside it a wrong surface.
+  const std::string tmp = test::tempDir();
+  for (const auto& [cage, levels] : {std::pair{test::lSheet(tmp), 1}, std::pair{test::triangleFan(tmp), 1}, std::pair{test::openBox(tmp), 1}}) {
+    writeVgeo(test::build(cage, levels), *dir + "/open_coarse.vgeo");
+    writeVgeo(test::build(cage, levels + 6), *dir + "/open_deep.vgeo");
+    RenderScene coarse = loadRenderScene(*dir + "/open_coarse.vgeo"), deep = loadRenderScene(*dir + "/open_deep.vgeo");
+    GpuRenderer withPatches(*vk, coarse, kW, kH), reference(*vk, deep, kW, kH);
+    int flatMisses = 0;
+    for (int view = 0; view < 3; view++) {
+      Camera camera = orbit(coarse, 0.4f + 2.1f * float(view), 0.5f + 0.3f * float(view), 0.9f);
+      FrameResult r = withPatches.renderFrame(settings(coarse, camera, 1.0f, true));
+      ASSERT_TRUE(r.complete);
+      EXPECT_GT(r.patchesDrawn, 0u) << cage << " view " << view;
+      std::vector<uint8_t> a = coverage(r), b = coverage(reference.renderFrame(settings(deep, camera, 0.0f, false)));
+      EXPECT_EQ(farFrom(a, b, 1, true), 0) << cage << " view " << view << ": covered pixels more than a pixel outside the deep surface";
+      EXPECT_EQ(farFrom(a, b, 1, false), 0) << cage << " view " << view << ": background more than a pixel inside it";
+      std::vector<uint8_t> flat = coverage(withPatches.renderFrame(settings(coarse, camera, 1.0f, false)));
+      flatMisses += farFrom(flat, b, 1, true) + farFrom(flat, b, 1, false);
+    }
+    std::printf("%s: flat leaves %d pixels off\n", cage.c_str(), flatMisses);
+    EXPECT_GT(flatMisses, 20) << cage << ": drawn as its leaf triangles the cage is visibly off (the test can fail)";
   }
 }
 

@@ -1,0 +1,232 @@
+// mesh_patches.cpp: every face's limit-surface patch in the form the .vgeo stores it (shaderio.h, Patch),
+// and the chord errors of the leaf triangles against it.
+// - Where patch.cpp has a rule (a B-spline patch, with phantom points beyond a boundary, or Stam's ring)
+//   the face's words are its control points; phantom points are appended to the control points.
+// - Anywhere else the face is subdivided locally, as in feature-adaptive subdivision (Niessner, Loop,
+//   Meyer & DeRose, "Feature-adaptive GPU rendering of Catmull-Clark subdivision surfaces", TOG 2012):
+//   the faces sharing a vertex with it (all that its four sub-faces and their 4 x 4 neighbourhoods depend
+//   on) are subdivided once with subdivide.cpp's rules; each sub-face that patch.cpp covers becomes a
+//   leaf of the face's quadtree, the others are split again, down to VGEO_MAX_PATCH_DEPTH levels, where
+//   the remaining quadrant (1/64 of the face, inside the finest tessellation step) is bilinear between its
+//   corners' limit points. Two extraordinary corners (--subdiv 1 of a triangle mesh) take one level, an
+//   extraordinary vertex on a boundary all six.
+#include <algorithm>
+#include <memory>
+
+#include "../common/parallel.h"
+#include "builder.h"
+
+namespace vgeo {
+namespace {
+
+// The faces sharing a vertex with `face`, as a mesh of their own whose face 0 is `face` (so its
+// sub-faces after one round are faces 0..3, sub-face k at corner k).
+PolygonMesh faceNeighbourhood(const PolygonMesh& mesh, const std::vector<glm::vec3>& positions, const QuadCorners& q, uint32_t face) {
+  std::vector<uint32_t> faces{face};
+  for (uint32_t k = 0; k < 4; k++) {
+    const uint32_t v = mesh.face(face)[k];
+    for (uint32_t i = q.offsets()[v]; i < q.offsets()[v + 1]; i++)
+      if (std::find(faces.begin(), faces.end(), q.corners()[i] / 4) == faces.end()) faces.push_back(q.corners()[i] / 4);
+  }
+  PolygonMesh out;
+  std::vector<uint32_t> vertexOf;  // local vertex -> mesh vertex
+  for (uint32_t f : faces) {
+    uint32_t local[4];
+    for (uint32_t k = 0; k < 4; k++) {
+      const uint32_t v = mesh.face(f)[k];
+      auto it = std::find(vertexOf.begin(), vertexOf.end(), v);
+      local[k] = uint32_t(it - vertexOf.begin());
+      if (it == vertexOf.end()) {
+        vertexOf.push_back(v);
+        out.positions.push_back(positions[v]);
+      }
+    }
+    out.addFace(local, 4);
+  }
+  return out;
+}
+
+// A face's quadtree: words relative to the patch's first word, point words indexing `points`.
+struct PatchTree {
+  std::vector<uint32_t> words;
+  std::vector<glm::vec3> points;
+
+  // Fills the four child words at `payload` with the sub-faces of face 0 of `local`, at depth + 1.
+  void split(const PolygonMesh& local, int depth, size_t payload) {
+    const PolygonMesh sub = subdivideCatmullClark(local);
+    const Patcher patcher(sub);
+    std::vector<uint32_t> pointOf(sub.positions.size(), UINT32_MAX);  // shared by the sub-faces' patches
+    PolygonMesh limit;
+    for (uint32_t child = 0; child < 4; child++) {
+      words[payload + child] = uint32_t(words.size());
+      const FacePatch patch = patcher.patch(child);
+      if (patch.kind != VGEO_PATCH_NONE) {
+        words.push_back(patch.kind | patch.corner << 2 | patch.valence << 8);
+        glm::vec3 resolved[VGEO_MAX_RING];
+        facePatchPoints(patch, sub.positions, resolved);
+        for (uint32_t i = 0; i < patch.pointCount; i++) {
+          const uint32_t v = patch.points[i];
+          if (v != UINT32_MAX && pointOf[v] != UINT32_MAX) {
+            words.push_back(pointOf[v]);
+            continue;
+          }
+          if (v != UINT32_MAX) pointOf[v] = uint32_t(points.size());
+          words.push_back(uint32_t(points.size()));
+          points.push_back(resolved[i]);
+        }
+      } else if (depth + 1 < VGEO_MAX_PATCH_DEPTH) {
+        words.push_back(VGEO_PATCH_TREE);
+        const size_t at = words.size();
+        words.resize(at + 4);
+        split(faceNeighbourhood(sub, sub.positions, patcher.corners(), child), depth + 1, at);
+      } else {
+        if (limit.faceCount() == 0) {
+          std::vector<glm::vec3> normals;
+          limit = sub;
+          moveToLimit(limit, normals);
+        }
+        words.push_back(VGEO_PATCH_NONE);
+        for (uint32_t k = 0; k < 4; k++) {
+          words.push_back(uint32_t(points.size()));
+          points.push_back(limit.positions[limit.face(child)[k]]);
+        }
+      }
+    }
+  }
+};
+
+double pointSegmentDistance(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b) {
+  glm::dvec3 ab = b - a;
+  double len2 = glm::dot(ab, ab);
+  double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+  return glm::length(p - (a + t * ab));
+}
+
+}  // namespace
+
+MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints, uint32_t threads) {
+  const size_t faceCount = mesh.faceCount();
+  MeshPatches out;
+  out.info.assign(faceCount, VGEO_PATCH_NONE);
+  out.first.assign(faceCount + 1, 0);
+  out.neighbours.assign(faceCount, {UINT32_MAX, UINT32_MAX, UINT32_MAX, UINT32_MAX});
+  out.points = controlPoints;
+  bool quads = controlPoints.size() == mesh.positions.size();
+  for (size_t f = 0; f < faceCount && quads; f++) quads = mesh.faceSize(f) == 4;
+  if (!quads) return out;
+  // Sizes first (words and extra points a face), trees built on the way; then every face writes its part.
+  const Patcher patcher(mesh);
+  std::vector<uint32_t> extraFirst(faceCount + 1, 0);
+  std::vector<std::unique_ptr<PatchTree>> trees(faceCount);
+  parallelFor(faceCount, int(threads), [&](size_t f) {
+    const FacePatch patch = patcher.patch(uint32_t(f));
+    for (int k = 0; k < 4; k++) out.neighbours[f][size_t(k)] = patch.neighbours[k];
+    if (patch.kind != VGEO_PATCH_NONE) {
+      out.info[f] = patch.kind | patch.corner << 2 | patch.valence << 8;
+      out.first[f + 1] = patch.pointCount;
+      extraFirst[f + 1] = patch.phantomCount;
+      return;
+    }
+    trees[f] = std::make_unique<PatchTree>();
+    trees[f]->words.resize(4);
+    trees[f]->split(faceNeighbourhood(mesh, controlPoints, patcher.corners(), uint32_t(f)), 0, 0);
+    out.info[f] = VGEO_PATCH_TREE;
+    out.first[f + 1] = uint32_t(trees[f]->words.size());
+    extraFirst[f + 1] = uint32_t(trees[f]->points.size());
+  });
+  for (size_t f = 0; f < faceCount; f++) {
+    out.first[f + 1] += out.first[f];
+    extraFirst[f + 1] += extraFirst[f];
+  }
+  out.words.resize(out.first[faceCount]);
+  out.points.resize(controlPoints.size() + extraFirst[faceCount]);
+  parallelFor(faceCount, int(threads), [&](size_t f) {
+    uint32_t* words = out.words.data() + out.first[f];
+    const uint32_t extra = uint32_t(controlPoints.size()) + extraFirst[f];
+    if (trees[f]) {
+      const PatchTree& tree = *trees[f];
+      std::copy(tree.words.begin(), tree.words.end(), words);
+      std::copy(tree.points.begin(), tree.points.end(), out.points.begin() + extra);
+      shaderio::forEachPatchPoint(out.info[f], words, tree.words.size(), [&](size_t i) { words[i] += extra; });
+      trees[f].reset();
+      return;
+    }
+    const FacePatch patch = patcher.patch(uint32_t(f));
+    glm::vec3 resolved[VGEO_MAX_RING];
+    facePatchPoints(patch, controlPoints, resolved);
+    uint32_t next = extra;
+    for (uint32_t i = 0; i < patch.pointCount; i++) {
+      if (patch.points[i] != UINT32_MAX) {
+        words[i] = patch.points[i];
+      } else {
+        out.points[next] = resolved[i];
+        words[i] = next++;
+      }
+    }
+  });
+  return out;
+}
+
+glm::vec3 MeshPatches::evaluate(uint32_t face, float s, float t, glm::vec3* normal) const {
+  glm::vec3 n;
+  glm::vec3 p = shaderio::evaluatePatchWords(
+      info[face], words.data() + first[face], [&](uint32_t i) { return points[i]; }, [](uint32_t) { return glm::vec3(0.0f); }, s, t, n);
+  if (normal) *normal = n;
+  return p;
+}
+
+std::vector<PatchErrors> patchChordErrors(const PolygonMesh& limitMesh, const MeshPatches& patches, uint32_t threads) {
+  const size_t faceCount = limitMesh.faceCount();
+  std::vector<PatchErrors> own(faceCount), merged(faceCount);
+  if (patches.info.size() != faceCount) return merged;
+  const std::vector<glm::vec3>& x = limitMesh.positions;
+  // Quarter parameters: the bulge of a bicubic between its corners peaks near the middle; 12% more
+  // covers what falls between the samples (tests/test_patch.cpp checks against 16ths). An edge is
+  // measured once, by the face of the lower index (or the only one, on a boundary).
+  constexpr float kSlack = 1.12f;
+  static const float kCorner[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  parallelFor(faceCount, int(threads), [&](size_t f) {
+    if (!patches.patched(f)) return;
+    own[f].patched = true;
+    const uint32_t* v = limitMesh.face(f);
+    PatchErrors& e = own[f];
+    for (int k = 0; k < 4; k++) {
+      const uint32_t n = patches.neighbours[f][size_t(k)];
+      if (n != UINT32_MAX && (n >> 2) < f) continue;
+      glm::dvec3 a(x[v[k]]), b(x[v[(k + 1) % 4]]);
+      double worst = 0.0;
+      for (int i = 1; i < 4; i++) {
+        float u = float(i) / 4.0f;
+        float s = kCorner[k][0] + u * (kCorner[(k + 1) % 4][0] - kCorner[k][0]), t = kCorner[k][1] + u * (kCorner[(k + 1) % 4][1] - kCorner[k][1]);
+        worst = std::max(worst, pointSegmentDistance(glm::dvec3(patches.evaluate(uint32_t(f), s, t)), a, b));
+      }
+      e.edge[k] = float(worst * kSlack);
+    }
+    std::vector<uint32_t> tris;
+    triangulateFace(x.data(), v, 4, tris);
+    double worst = 0.0;
+    for (int i = 1; i < 4; i++)
+      for (int j = 1; j < 4; j++) {
+        glm::dvec3 p(patches.evaluate(uint32_t(f), float(i) / 4.0f, float(j) / 4.0f));
+        double d = std::min(pointTriangleDistance(p, x[tris[0]], x[tris[1]], x[tris[2]]), pointTriangleDistance(p, x[tris[3]], x[tris[4]], x[tris[5]]));
+        worst = std::max(worst, d);
+      }
+    e.face = float(worst * kSlack);
+  });
+  // One value an edge, the measuring face's (0 next to a flat face: the edge stays straight there); a
+  // face's error covers its edges'.
+  parallelFor(faceCount, int(threads), [&](size_t f) {
+    if (!own[f].patched) return;
+    PatchErrors& out = merged[f];
+    out.patched = true;
+    out.face = own[f].face;
+    for (int k = 0; k < 4; k++) {
+      const uint32_t n = patches.neighbours[f][size_t(k)];
+      out.edge[k] = n == UINT32_MAX ? own[f].edge[k] : !own[n >> 2].patched ? 0.0f : (n >> 2) < f ? own[n >> 2].edge[n & 3] : own[f].edge[k];
+      out.face = std::max(out.face, out.edge[k]);
+    }
+  });
+  return merged;
+}
+
+}  // namespace vgeo
