@@ -109,7 +109,7 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
     if (options.progress)
       bo.progress = [&, m](double f, const char* stage) { options.progress((double(m) + f) / double(leaves.size()), stage); };
     Dag dag = buildDag(leaves[m], bo);
-    appendGeometry(data, dag, leaves[m], leafNormals[m], patches[m], patchErrors[m], closed[m]);
+    appendGeometry(data, dag, leaves[m], leafNormals[m], std::move(patches[m]), patchErrors[m], closed[m]);
     stats.clusters += dag.clusters.size();
     stats.leafClusters += dag.levelClusters[0];
     for (const auto& c : dag.clusters) stats.clusterTriangles += c.indices.size() / 3;
@@ -124,7 +124,6 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
     stats.relaxedGroups += dag.relaxedGroups;
     stats.stuckGroups += dag.stuckGroups;
     patchErrors[m] = {};
-    patches[m] = MeshPatches();
     leaves[m] = PolygonMesh();  // free as we go: peak memory is one mesh's build
   }
   stats.buildSeconds = secondsSince(buildStart);

@@ -40,7 +40,7 @@ glm::vec4 normalCone(const std::vector<uint32_t>& indices, const std::vector<glm
 }  // namespace
 
 void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh, const std::vector<glm::vec3>& leafNormals,
-                    const MeshPatches& patches, const std::vector<PatchErrors>& patchErrors, bool closed) {
+                    MeshPatches&& patches, const std::vector<PatchErrors>& patchErrors, bool closed) {
   Bvh bvh = buildBvh(dag.groups);
   const uint32_t vertexOffset = uint32_t(file.vertexCount()), clusterOffset = uint32_t(file.clusters.size()),
                  groupOffset = uint32_t(file.groups.size()), nodeOffset = uint32_t(file.nodes.size()),
@@ -69,7 +69,6 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
   file.clusterCones.reserve(file.clusterCones.size() + dag.clusters.size());
   file.cageFaces.reserve(file.cageFaces.size() + faces);
   file.patches.reserve(file.patches.size() + faces);
-  file.patchPoints.reserve(file.patchPoints.size() + patches.words.size());
   file.cageFaceVertices.reserve(file.cageFaceVertices.size() + 4 * faces);
 
   // Vertices, with the limit normals when given, else area-weighted normals of the leaf triangles.
@@ -95,6 +94,16 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
   // belongs to another level-0 group (which may be drawn coarser) or is flat.
   const uint32_t pointBase = uint32_t(file.controlPoints.size() / 3);
   for (const glm::vec3& p : patches.points) file.controlPoints.insert(file.controlPoints.end(), {p.x, p.y, p.z});
+  std::vector<glm::vec3>().swap(patches.points);
+  // The words keep the mesh's face order (a patch names its first word): moved, not copied, into an
+  // empty file, so the layout's peak memory holds them once.
+  const uint32_t wordBase = uint32_t(file.patchPoints.size());
+  if (file.patchPoints.empty()) {
+    file.patchPoints = std::move(patches.words);
+  } else {
+    file.patchPoints.insert(file.patchPoints.end(), patches.words.begin(), patches.words.end());
+    std::vector<uint32_t>().swap(patches.words);
+  }
   const bool patched = patches.info.size() == leafMesh.faceCount();
   std::vector<uint32_t> fileFace(leafMesh.faceCount(), UINT32_MAX), faceGroup(leafMesh.faceCount(), UINT32_MAX);
   uint32_t nextFace = cageOffset;
@@ -106,7 +115,6 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
   auto flat = [&](uint32_t f) { return !patched || !patches.patched(f) || f >= patchErrors.size(); };
   auto filePatch = [&](uint32_t f) {
     shaderio::Patch out{};
-    out.firstPoint = uint32_t(file.patchPoints.size());
     out.pointBase = pointBase;
     for (uint32_t& n : out.neighbours) n = VGEO_INVALID;
     if (flat(f)) {
@@ -126,7 +134,7 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
       if (flat(n >> 2) || faceGroup[n >> 2] != faceGroup[f]) locked |= 1u << k;
     }
     out.info = patches.info[f] | locked << 16;
-    file.patchPoints.insert(file.patchPoints.end(), patches.words.begin() + patches.first[f], patches.words.begin() + patches.first[f + 1]);
+    out.firstPoint = wordBase + patches.first[f];
     out.faceError = patchErrors[f].face;
     out.edgeError = glm::vec4(patchErrors[f].edge[0], patchErrors[f].edge[1], patchErrors[f].edge[2], patchErrors[f].edge[3]);
     return out;

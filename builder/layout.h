@@ -9,10 +9,10 @@ namespace vgeo {
 // Appends one geometry: the DAG of `leafMesh` (the mesh its leaves were built from, whose faces are the
 // level-N cage) with its BVH: its leaf vertices (with `leafNormals` when given, else face-weighted
 // normals), its clusters, groups and BVH, its cage faces and a patch per cage face: `patches`
-// (buildPatches of a subdivided cage, whose leaf vertices are limit points; their control points go to
-// the file) with the chord errors `patchErrors` (patchChordErrors), or flat ones where `patches` is empty.
+// (buildPatches of a subdivided cage, whose leaf vertices are limit points; their words and control
+// points move to the file) with the chord errors `patchErrors` (patchChordErrors), or flat ones where `patches` is empty.
 // `closed` records whether the repaired input had no boundary edge.
 void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh, const std::vector<glm::vec3>& leafNormals,
-                    const MeshPatches& patches, const std::vector<PatchErrors>& patchErrors, bool closed);
+                    MeshPatches&& patches, const std::vector<PatchErrors>& patchErrors, bool closed);
 
 }  // namespace vgeo

@@ -127,6 +127,34 @@ TEST(Format, ChecksumsAreRecomputedButReferencesStillChecked) {
   EXPECT_THROW(parseVgeo(bytes.data(), bytes.size(), "cycle.vgeo"), InputError);
 }
 
+TEST(Format, MalformedPatchWordsAreRejected) {
+  // Trees (a triangle cage after one round: every face is one) whose words lie: a child before its
+  // parent (a cycle), a point past the control points, an unknown ring valence.
+  VgeoData good = test::build(test::writeFile(test::tempDir(), "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"), 1);
+  const shaderio::Patch& tree = good.patches[0];
+  ASSERT_EQ(shaderio::patchKind(tree.info), VGEO_PATCH_TREE);
+  auto rejected = [](const VgeoData& data, const std::string& expected) {
+    std::vector<uint8_t> bytes = serializeVgeo(data);
+    try {
+      parseVgeo(bytes.data(), bytes.size(), "patch.vgeo");
+      ADD_FAILURE() << "accepted; expected: " << expected;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  };
+  VgeoData data = good;
+  data.patchPoints[tree.firstPoint + 1] = 0;  // quadrant 1's node is the root's own words
+  rejected(data, "has malformed words");
+  data = good;
+  const uint32_t child = tree.firstPoint + good.patchPoints[tree.firstPoint];  // quadrant 0's node
+  data.patchPoints[child + 1] = uint32_t(data.controlPoints.size());
+  rejected(data, "uses a control point out of range");
+  data = good;
+  data.patchPoints[child] = VGEO_PATCH_RING | 40u << 8;
+  rejected(data, "has malformed words");
+  EXPECT_NO_THROW(parseVgeo(serializeVgeo(good).data(), serializeVgeo(good).size(), "good.vgeo"));
+}
+
 TEST(Format, OutputIsTheSameForAnyThreadCount) {
   std::vector<uint8_t> one = serializeVgeo(test::build(test::cgalMesh("bunny00.off"), 0, 1));
   std::vector<uint8_t> two = serializeVgeo(test::build(test::cgalMesh("bunny00.off"), 0, 2));
