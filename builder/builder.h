@@ -104,6 +104,12 @@ class QuadCorners {
   std::vector<uint32_t> offsets_, corners_;
 };
 
+// The faces of a quad mesh touching any of `vertices` (first `firstFace`, when given), as a mesh of their
+// own with `positions` whose vertices 0 .. count - 1 are `vertices`: what one round of subdivision needs
+// to get those vertices' rings right (limit.cpp, mesh_patches.cpp). Small neighbourhoods: linear scans.
+PolygonMesh facesAround(const PolygonMesh& mesh, const std::vector<glm::vec3>& positions, const QuadCorners& q, const uint32_t* vertices,
+                        uint32_t count, uint32_t firstFace = UINT32_MAX);
+
 // ---- limit.cpp --------------------------------------------------------------------------------------
 // Moves every vertex of a quad mesh (a Catmull-Clark cage after >= 1 round) to its limit position and
 // sets `normals` to the limit normals (oriented like the faces). Returns false, changing nothing, when

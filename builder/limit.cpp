@@ -9,7 +9,8 @@
 // - boundary vertex (the boundary is a cubic B-spline, subdivide.cpp): limit = (a + 4 v + b) / 6 over its
 //   boundary neighbours, tangent b - a; across the boundary, at a regular boundary vertex (two faces), the
 //   B-spline patch's derivative ((d_a + 4 c + d_b) - (a + 4 v + b)) / 6 over the interior row (c, d_a, d_b);
-//   at other valences the mean interior neighbour minus v (an approximation);
+//   at other valences, where no closed-form mask is used, from the vertex's ring subdivided until it lies
+//   in the tangent plane (crossBoundaryTangent);
 // - corner (one face): stays, normal of its face's corner.
 #include <algorithm>
 #include <cmath>
@@ -17,6 +18,34 @@
 #include "builder.h"
 
 namespace vgeo {
+namespace {
+
+// A tangent across the boundary at boundary vertex v of three or more faces: its ring (the faces around
+// it) subdivided 16 times, rescaled by 2 about v after each round (subdivision is affine invariant, so
+// this only keeps the numbers in range), then the mean of its interior edge neighbours minus v. Each
+// round shrinks the ring's offset from the tangent plane against its extent in it by the ratio of the
+// subdivision matrix's eigenvalues (about 1/2), so after 16 the direction is exact to rounding.
+glm::dvec3 crossBoundaryTangent(const PolygonMesh& mesh, const QuadCorners& q, uint32_t v) {
+  const uint32_t center = 0;
+  PolygonMesh ring = facesAround(mesh, mesh.positions, q, &v, 1);
+  for (int round = 0; round < 16; round++) {
+    PolygonMesh sub = subdivideCatmullClark(ring);  // vertex points keep their index: v stays 0
+    ring = facesAround(sub, sub.positions, QuadCorners(sub), &center, 1);
+    const glm::vec3 origin = ring.positions[0];
+    for (glm::vec3& p : ring.positions) p = 2.0f * (p - origin);
+  }
+  // Edge neighbours of v: an interior one follows v in one face and precedes it in another.
+  std::vector<int> seen(ring.positions.size(), 0);
+  for (size_t f = 0; f < ring.faceCount(); f++)
+    for (uint32_t k = 0; k < 4; k++)
+      if (ring.face(f)[k] == center) seen[ring.face(f)[(k + 1) % 4]]++, seen[ring.face(f)[(k + 3) % 4]]++;
+  glm::dvec3 inner(0.0);
+  for (size_t i = 0; i < seen.size(); i++)
+    if (seen[i] == 2) inner += glm::dvec3(ring.positions[i]);
+  return inner;  // relative to v, which sits at the origin
+}
+
+}  // namespace
 
 bool moveToLimit(PolygonMesh& mesh, std::vector<glm::vec3>& normals) {
   const size_t vertexCount = mesh.positions.size(), faceCount = mesh.faceCount();
@@ -82,9 +111,7 @@ bool moveToLimit(PolygonMesh& mesh, std::vector<glm::vec3>& normals) {
         glm::dvec3 c(mesh.positions[q.at(ring[0], 3)]), da(mesh.positions[q.at(ring[0], 2)]), db(mesh.positions[q.at(ring[1], 2)]);
         t2 = (da + 4.0 * c + db) / 6.0 - curve;
       } else {
-        glm::dvec3 inner(0.0);
-        for (size_t j = 1; j < n; j++) inner += glm::dvec3(mesh.positions[q.at(ring[j], 1)]);
-        t2 = inner / double(n - 1) - p;
+        t2 = crossBoundaryTangent(mesh, q, v);
       }
     }  // corner: stays, normal of its face
     glm::dvec3 normal = glm::cross(t1, t2);

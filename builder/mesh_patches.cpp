@@ -19,39 +19,13 @@
 namespace vgeo {
 namespace {
 
-// The faces sharing a vertex with `face`, as a mesh of their own whose face 0 is `face` (so its
-// sub-faces after one round are faces 0..3, sub-face k at corner k).
-PolygonMesh faceNeighbourhood(const PolygonMesh& mesh, const std::vector<glm::vec3>& positions, const QuadCorners& q, uint32_t face) {
-  std::vector<uint32_t> faces{face};
-  for (uint32_t k = 0; k < 4; k++) {
-    const uint32_t v = mesh.face(face)[k];
-    for (uint32_t i = q.offsets()[v]; i < q.offsets()[v + 1]; i++)
-      if (std::find(faces.begin(), faces.end(), q.corners()[i] / 4) == faces.end()) faces.push_back(q.corners()[i] / 4);
-  }
-  PolygonMesh out;
-  std::vector<uint32_t> vertexOf;  // local vertex -> mesh vertex
-  for (uint32_t f : faces) {
-    uint32_t local[4];
-    for (uint32_t k = 0; k < 4; k++) {
-      const uint32_t v = mesh.face(f)[k];
-      auto it = std::find(vertexOf.begin(), vertexOf.end(), v);
-      local[k] = uint32_t(it - vertexOf.begin());
-      if (it == vertexOf.end()) {
-        vertexOf.push_back(v);
-        out.positions.push_back(positions[v]);
-      }
-    }
-    out.addFace(local, 4);
-  }
-  return out;
-}
-
 // A face's quadtree: words relative to the patch's first word, point words indexing `points`.
 struct PatchTree {
   std::vector<uint32_t> words;
   std::vector<glm::vec3> points;
 
-  // Fills the four child words at `payload` with the sub-faces of face 0 of `local`, at depth + 1.
+  // Fills the four child words at `payload` with the sub-faces of face 0 of `local` (the faces sharing a
+  // vertex with it: facesAround), at depth + 1; its sub-face at corner k is face k after one round.
   void split(const PolygonMesh& local, int depth, size_t payload) {
     const PolygonMesh sub = subdivideCatmullClark(local);
     const Patcher patcher(sub);
@@ -78,7 +52,7 @@ struct PatchTree {
         words.push_back(VGEO_PATCH_TREE);
         const size_t at = words.size();
         words.resize(at + 4);
-        split(faceNeighbourhood(sub, sub.positions, patcher.corners(), child), depth + 1, at);
+        split(facesAround(sub, sub.positions, patcher.corners(), sub.face(child), 4, child), depth + 1, at);
       } else {
         if (limit.faceCount() == 0) {
           std::vector<glm::vec3> normals;
@@ -129,7 +103,7 @@ MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& 
     }
     trees[f] = std::make_unique<PatchTree>();
     trees[f]->words.resize(4);
-    trees[f]->split(faceNeighbourhood(mesh, controlPoints, patcher.corners(), uint32_t(f)), 0, 0);
+    trees[f]->split(facesAround(mesh, controlPoints, patcher.corners(), mesh.face(f), 4, uint32_t(f)), 0, 0);
     out.info[f] = VGEO_PATCH_TREE;
     out.first[f + 1] = uint32_t(trees[f]->words.size());
     extraFirst[f + 1] = uint32_t(trees[f]->points.size());

@@ -59,9 +59,9 @@ TEST(Limit, PositionsAndNormalsDoNotChangeUnderSubdivision) {
       worstNormal = std::max(worstNormal, degrees(coarseNormals[v], fineNormals[v]));
     }
     EXPECT_LT(worstPosition, 1e-6f) << (open ? "open" : "closed");
-    // Exact masks everywhere on the closed cage; on the open one the cross-boundary tangent is exact only
-    // at regular boundary vertices (two faces), approximated elsewhere.
-    EXPECT_LT(worstNormal, open ? 12.0f : 0.05f) << (open ? "open" : "closed");
+    // Exact masks, and at boundary vertices of three or more faces the refined ring (before it, the mean
+    // interior neighbour stood in for the cross-boundary tangent: 9-12 degrees off here).
+    EXPECT_LT(worstNormal, 0.05f) << (open ? "open" : "closed");
     EXPECT_GE(valences.size(), open ? 5u : 3u);
   }
 }
