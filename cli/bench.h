@@ -11,6 +11,7 @@
 #include "../renderer/camera.h"
 #include "../renderer/scene.h"
 
+#include "vgeo_commit.h"  // generated at build time (cmake/commit.cmake)
 #ifndef VGEO_COMMIT
 #define VGEO_COMMIT "unknown"
 #endif
