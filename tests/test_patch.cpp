@@ -9,6 +9,7 @@
 #include <map>
 #include <unordered_map>
 
+#include "../renderer/scene.h"
 #include "cages.h"
 #include "test_util.h"
 
@@ -319,6 +320,32 @@ TEST(Patch, TheVgeoCarriesPatchesAndLeafErrors) {
       EXPECT_EQ(c.selfError, 0.0f);
     }
   EXPECT_TRUE(plain.controlPoints.empty()) << "flat faces need no control points";
+}
+
+TEST(Patch, ScenesOfSeveralFilesKeepEveryPatch) {
+  // A scene of two .vgeo files (a closed cage of B-splines and rings; an open triangle cage of trees
+  // with phantom and tree points): merged, every patch still passes through its face's leaf vertices,
+  // so its words still find their control points (Patch.pointBase).
+  const std::string dir = test::tempDir();
+  writeVgeo(test::build(test::asset("horned_cube.obj"), 2), dir + "/a.vgeo");
+  writeVgeo(test::build(test::triangleFan(dir), 1), dir + "/b.vgeo");
+  test::writeFile(dir, "scene.json", R"({"geometries": ["a.vgeo", "b.vgeo"], "instances": [{"geometry": 1}, {"geometry": 0}]})");
+  RenderScene scene = loadRenderScene(dir + "/scene.json");
+  const VgeoData& data = scene.data;
+  ASSERT_EQ(data.geometries.size(), 2u);
+  size_t trees = 0;
+  float worst = 0.0f;
+  for (uint32_t f = 0; f < data.patches.size(); f++) {
+    ASSERT_NE(shaderio::patchKind(data.patches[f].info), VGEO_PATCH_NONE);
+    trees += shaderio::patchKind(data.patches[f].info) == VGEO_PATCH_TREE;
+    for (int k = 0; k < 4; k++) {
+      glm::vec2 corner = onEdge(k, 0.0f);
+      uint32_t v = data.cageFaceVertices[data.cageFaces[f].firstVertex + uint32_t(k)];
+      worst = std::max(worst, glm::distance(data.evaluatePatch(f, corner.x, corner.y), data.position(v)));
+    }
+  }
+  EXPECT_EQ(trees, 15u);
+  EXPECT_LT(worst, 1e-5f);
 }
 
 }  // namespace
