@@ -110,6 +110,7 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
       bo.progress = [&, m](double f, const char* stage) { options.progress((double(m) + f) / double(leaves.size()), stage); };
     Dag dag = buildDag(leaves[m], bo);
     appendGeometry(data, dag, leaves[m], leafNormals[m], std::move(patches[m]), patchErrors[m], closed[m]);
+    patches[m] = MeshPatches();  // what the layout did not move into the file
     stats.clusters += dag.clusters.size();
     stats.leafClusters += dag.levelClusters[0];
     for (const auto& c : dag.clusters) stats.clusterTriangles += c.indices.size() / 3;

@@ -132,6 +132,7 @@ struct FacePatch {
   uint32_t phantomCount = 0;
   uint8_t phantoms[12][3];          // slot, a, b
   uint32_t neighbours[4] = {UINT32_MAX, UINT32_MAX, UINT32_MAX, UINT32_MAX};  // across edge k: face << 2 | its edge
+  uint32_t info() const { return kind | corner << 2 | valence << 8; }  // as shaderio.h's Patch.info
 };
 class Patcher {
  public:
@@ -149,10 +150,16 @@ class Patcher {
   QuadCorners corners_;
   bool quads_ = false;
 };
-// The patch's control points in `points` (pointCount of them), phantom points computed.
-void facePatchPoints(const FacePatch& patch, const std::vector<glm::vec3>& controlPoints, glm::vec3* points);
-// The patch at face parameters (s, t) (shaderio.h), with its unit normal; controlPoints are the mesh's.
-glm::vec3 evaluateFacePatch(const FacePatch& patch, const std::vector<glm::vec3>& controlPoints, float s, float t, glm::vec3* normal = nullptr);
+// The patch's control-point words (pointCount of them) into `words`: a mesh vertex v as vertexWord(v), a
+// phantom point (computed from `positions`) as the word appendPoint(position) returns for it.
+template <class VertexWord, class AppendPoint>
+void writePatchWords(const FacePatch& patch, const std::vector<glm::vec3>& positions, uint32_t* words, VertexWord vertexWord, AppendPoint appendPoint) {
+  glm::vec3 points[VGEO_MAX_RING];
+  for (uint32_t i = 0; i < patch.pointCount; i++)
+    if (patch.points[i] != UINT32_MAX) points[i] = positions[patch.points[i]];
+  for (uint32_t i = 0; i < patch.phantomCount; i++) points[patch.phantoms[i][0]] = 2.0f * points[patch.phantoms[i][1]] - points[patch.phantoms[i][2]];
+  for (uint32_t i = 0; i < patch.pointCount; i++) words[i] = patch.points[i] != UINT32_MAX ? vertexWord(patch.points[i]) : appendPoint(points[i]);
+}
 
 // ---- mesh_patches.cpp -------------------------------------------------------------------------------
 // Every face's patch as the .vgeo stores it (shaderio.h, Patch): Patcher's where it has one, else a tree

@@ -35,19 +35,15 @@ struct PatchTree {
       words[payload + child] = uint32_t(words.size());
       const FacePatch patch = patcher.patch(child);
       if (patch.kind != VGEO_PATCH_NONE) {
-        words.push_back(patch.kind | patch.corner << 2 | patch.valence << 8);
-        glm::vec3 resolved[VGEO_MAX_RING];
-        facePatchPoints(patch, sub.positions, resolved);
-        for (uint32_t i = 0; i < patch.pointCount; i++) {
-          const uint32_t v = patch.points[i];
-          if (v != UINT32_MAX && pointOf[v] != UINT32_MAX) {
-            words.push_back(pointOf[v]);
-            continue;
-          }
-          if (v != UINT32_MAX) pointOf[v] = uint32_t(points.size());
-          words.push_back(uint32_t(points.size()));
-          points.push_back(resolved[i]);
-        }
+        words.push_back(patch.info());
+        const size_t at = words.size();
+        words.resize(at + patch.pointCount);
+        auto append = [&](glm::vec3 p) {
+          points.push_back(p);
+          return uint32_t(points.size() - 1);
+        };
+        auto vertexWord = [&](uint32_t v) { return pointOf[v] != UINT32_MAX ? pointOf[v] : (pointOf[v] = append(sub.positions[v])); };
+        writePatchWords(patch, sub.positions, words.data() + at, vertexWord, append);
       } else if (depth + 1 < VGEO_MAX_PATCH_DEPTH) {
         words.push_back(VGEO_PATCH_TREE);
         const size_t at = words.size();
@@ -96,7 +92,7 @@ MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& 
     const FacePatch patch = patcher.patch(uint32_t(f));
     for (int k = 0; k < 4; k++) out.neighbours[f][size_t(k)] = patch.neighbours[k];
     if (patch.kind != VGEO_PATCH_NONE) {
-      out.info[f] = patch.kind | patch.corner << 2 | patch.valence << 8;
+      out.info[f] = patch.info();
       out.first[f + 1] = patch.pointCount;
       extraFirst[f + 1] = patch.phantomCount;
       return;
@@ -125,18 +121,11 @@ MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& 
       trees[f].reset();
       return;
     }
-    const FacePatch patch = patcher.patch(uint32_t(f));
-    glm::vec3 resolved[VGEO_MAX_RING];
-    facePatchPoints(patch, controlPoints, resolved);
     uint32_t next = extra;
-    for (uint32_t i = 0; i < patch.pointCount; i++) {
-      if (patch.points[i] != UINT32_MAX) {
-        words[i] = patch.points[i];
-      } else {
-        out.points[next] = resolved[i];
-        words[i] = next++;
-      }
-    }
+    writePatchWords(patcher.patch(uint32_t(f)), controlPoints, words, [](uint32_t v) { return v; }, [&](glm::vec3 p) {
+      out.points[next] = p;
+      return next++;
+    });
   });
   return out;
 }

@@ -145,18 +145,4 @@ FacePatch Patcher::patch(uint32_t face) const {
   return patch;
 }
 
-void facePatchPoints(const FacePatch& patch, const std::vector<glm::vec3>& controlPoints, glm::vec3* points) {
-  for (uint32_t i = 0; i < patch.pointCount; i++)
-    if (patch.points[i] != UINT32_MAX) points[i] = controlPoints[patch.points[i]];
-  for (uint32_t i = 0; i < patch.phantomCount; i++) points[patch.phantoms[i][0]] = 2.0f * points[patch.phantoms[i][1]] - points[patch.phantoms[i][2]];
-}
-
-glm::vec3 evaluateFacePatch(const FacePatch& patch, const std::vector<glm::vec3>& controlPoints, float s, float t, glm::vec3* normal) {
-  glm::vec3 points[VGEO_MAX_RING], n;
-  facePatchPoints(patch, controlPoints, points);
-  glm::vec3 p = shaderio::evaluatePatch(patch.kind, patch.corner, int(patch.valence), points, s, t, n);
-  if (normal) *normal = n;
-  return p;
-}
-
 }  // namespace vgeo

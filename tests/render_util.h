@@ -19,6 +19,16 @@ inline Camera orbit(const RenderScene& scene, float azimuth, float elevation, fl
   return c;
 }
 
+// A frame of `scene` from `camera` at `width` x `height` (culling from the same view), tau `tau`, with its
+// draw list read back.
+inline FrameSettings frameSettings(const RenderScene& scene, const Camera& camera, float tau, uint32_t width, uint32_t height) {
+  FrameSettings s;
+  s.drawView = s.cullView = makeView(camera, width, height, scene.bounds);
+  s.tau = tau;
+  s.readDrawList = true;
+  return s;
+}
+
 // 1 where a frame's pixel is not the clear colour.
 inline std::vector<uint8_t> coverage(const FrameResult& r) {
   std::vector<uint8_t> mask(r.rgba.size() / 4);

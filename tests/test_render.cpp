@@ -35,17 +35,10 @@ class Render : public ::testing::Test {
 
   static FrameSettings settingsFor(const RenderScene& scene, const Camera& camera, float tau, Traversal t = Traversal::Persistent,
                                    uint32_t width = kW, uint32_t height = kH) {
-    FrameSettings s;
-    s.drawView = s.cullView = makeView(camera, width, height, scene.bounds);
-    s.tau = tau;
+    FrameSettings s = test::frameSettings(scene, camera, tau, width, height);
     s.traversal = t;
-    s.readDrawList = true;
     return s;
   }
-  static Camera orbit(const RenderScene& scene, float azimuth, float elevation, float distanceInRadii) {
-    return test::orbit(scene, azimuth, elevation, distanceInRadii);
-  }
-  static std::vector<uint8_t> coverage(const FrameResult& r) { return test::coverage(r); }
 
   static VulkanContext* vk;
   static RenderScene *single, *grid, *armadillo;
@@ -60,8 +53,8 @@ TEST_F(Render, GpuDrawListEqualsCpuCutForAllTraversals) {
     GpuRenderer renderer(*vk, *scene, kW, kH);
     glm::vec3 c(scene->bounds);
     float r = scene->bounds.w;
-    std::vector<Camera> cameras = {defaultCamera(scene->bounds, scene->boxMin, scene->boxMax, 60.0f), orbit(*scene, 0.7f, 0.4f, 1.4f),
-                                   orbit(*scene, 2.5f, -0.3f, 6.0f)};
+    std::vector<Camera> cameras = {defaultCamera(scene->bounds, scene->boxMin, scene->boxMax, 60.0f), test::orbit(*scene, 0.7f, 0.4f, 1.4f),
+                                   test::orbit(*scene, 2.5f, -0.3f, 6.0f)};
     Camera inside;  // inside the scene, looking along it
     inside.eye = c + glm::vec3(0.1f, 0.05f, 0.2f) * r;
     inside.target = c + glm::vec3(1.0f, 0.0f, 0.3f) * r;
@@ -101,12 +94,12 @@ TEST_F(Render, NoCracksAtTau1And8) {
   for (const RenderScene* scene : {single, armadillo}) {
     GpuRenderer renderer(*vk, *scene, kW, kH);
     for (int view = 0; view < 6; view++) {
-      Camera camera = orbit(*scene, 1.1f * float(view), 0.9f * std::sin(float(view)), view % 2 ? 1.6f : 2.6f);
+      Camera camera = test::orbit(*scene, 1.1f * float(view), 0.9f * std::sin(float(view)), view % 2 ? 1.6f : 2.6f);
       FrameSettings leaves = settingsFor(*scene, camera, 0.0f);
       leaves.patches = false;
-      std::vector<uint8_t> full = coverage(renderer.renderFrame(leaves));
+      std::vector<uint8_t> full = test::coverage(renderer.renderFrame(leaves));
       for (float tau : {1.0f, 8.0f}) {
-        std::vector<uint8_t> lod = coverage(renderer.renderFrame(settingsFor(*scene, camera, tau)));
+        std::vector<uint8_t> lod = test::coverage(renderer.renderFrame(settingsFor(*scene, camera, tau)));
         EXPECT_EQ(test::leaks(full, lod, int(kW), int(kH), int(std::ceil(tau)) + 1), 0) << "view " << view << " tau " << tau;
       }
     }
@@ -118,7 +111,7 @@ TEST_F(Render, FidelityAtTau1AndTrianglesFallWithDistance) {
   // 512x384 with the armadillo filling a third of the height.
   const uint32_t w = 512, h = 384;
   GpuRenderer renderer(*vk, *armadillo, w, h);
-  Camera camera = orbit(*armadillo, 0.5f, 0.3f, 2.2f);
+  Camera camera = test::orbit(*armadillo, 0.5f, 0.3f, 2.2f);
   FrameResult full = renderer.renderFrame(settingsFor(*armadillo, camera, 0.0f, Traversal::Persistent, w, h));
   FrameResult lod = renderer.renderFrame(settingsFor(*armadillo, camera, 1.0f, Traversal::Persistent, w, h));
   size_t differ = 0;
@@ -132,14 +125,14 @@ TEST_F(Render, FidelityAtTau1AndTrianglesFallWithDistance) {
   EXPECT_LT(lod.counters.triangles, full.counters.triangles);
   uint32_t previous = UINT32_MAX;
   for (float distance : {1.5f, 3.0f, 6.0f, 12.0f, 24.0f}) {
-    FrameResult r = renderer.renderFrame(settingsFor(*armadillo, orbit(*armadillo, 0.5f, 0.3f, distance), 1.0f));
+    FrameResult r = renderer.renderFrame(settingsFor(*armadillo, test::orbit(*armadillo, 0.5f, 0.3f, distance), 1.0f));
     EXPECT_LT(r.counters.triangles, previous) << "at " << distance << " radii";
     previous = r.counters.triangles;
   }
 }
 
 TEST_F(Render, OverflowIsReportedAndTheNextFrameIsComplete) {
-  FrameSettings s = settingsFor(*grid, orbit(*grid, 0.3f, 0.5f, 1.2f), 1.0f);
+  FrameSettings s = settingsFor(*grid, test::orbit(*grid, 0.3f, 0.5f, 1.2f), 1.0f);
   for (bool tinyQueue : {true, false}) {
     GpuRenderer renderer(*vk, *grid, kW, kH);
     renderer.setCapacities(tinyQueue ? 4 : 1u << 16, tinyQueue ? 1u << 16 : 8, 1u << 20, 1u << 16);
@@ -162,13 +155,13 @@ TEST_F(Render, OverflowIsReportedAndTheNextFrameIsComplete) {
 
 TEST_F(Render, EveryDebugModeRenders) {
   GpuRenderer renderer(*vk, *grid, kW, kH);
-  FrameSettings s = settingsFor(*grid, orbit(*grid, 0.3f, 0.5f, 1.2f), 1.0f);
+  FrameSettings s = settingsFor(*grid, test::orbit(*grid, 0.3f, 0.5f, 1.2f), 1.0f);
   s.readDrawList = false;
   std::vector<std::vector<uint8_t>> images;
   for (uint32_t mode = VGEO_MODE_LIT; mode <= VGEO_MODE_PATCH; mode++) {
     s.mode = mode;
     FrameResult r = renderer.renderFrame(s);
-    std::vector<uint8_t> mask = coverage(r);
+    std::vector<uint8_t> mask = test::coverage(r);
     EXPECT_GT(std::count(mask.begin(), mask.end(), 1), 500) << "mode " << mode << " drew almost nothing";
     for (size_t k = 0; k < images.size(); k++) EXPECT_NE(images[k], r.rgba) << "mode " << mode << " looks like mode " << k;
     images.push_back(r.rgba);
@@ -177,7 +170,7 @@ TEST_F(Render, EveryDebugModeRenders) {
 
 TEST_F(Render, FrozenCutFollowsTheFreezeCamera) {
   GpuRenderer renderer(*vk, *grid, kW, kH);
-  Camera a = orbit(*grid, 0.3f, 0.5f, 1.2f), b = orbit(*grid, 2.0f, 0.2f, 3.0f);
+  Camera a = test::orbit(*grid, 0.3f, 0.5f, 1.2f), b = test::orbit(*grid, 2.0f, 0.2f, 3.0f);
   FrameSettings s = settingsFor(*grid, b, 1.0f);
   s.cullView = makeView(a, kW, kH, grid->bounds);
   s.mode = VGEO_MODE_FROZEN_DIFF;
@@ -202,11 +195,11 @@ TEST_F(Render, ConeCullingDropsOnlyClustersThatFaceAway) {
   ASSERT_TRUE(armadillo->data.instances[0].flags & VGEO_INSTANCE_CONE_CULL);
   GpuRenderer culled(*vk, *armadillo, kW, kH), plain(*vk, withoutCones, kW, kH);
   for (float distance : {1.2f, 1.4f}) {
-    Camera camera = orbit(*armadillo, 0.9f, 0.2f, distance);
+    Camera camera = test::orbit(*armadillo, 0.9f, 0.2f, distance);
     FrameResult a = culled.renderFrame(settingsFor(*armadillo, camera, 1.0f));
     FrameResult b = plain.renderFrame(settingsFor(withoutCones, camera, 1.0f));
     EXPECT_LT(a.counters.drawCount, b.counters.drawCount) << "at " << distance << " radii";
-    std::vector<uint8_t> ma = coverage(a), mb = coverage(b);
+    std::vector<uint8_t> ma = test::coverage(a), mb = test::coverage(b);
     size_t differ = 0;
     for (size_t i = 0; i < ma.size(); i++) differ += ma[i] != mb[i];
     EXPECT_EQ(differ, 0u) << "at " << distance << " radii";
@@ -237,7 +230,7 @@ TEST_F(Render, TriangleCullingKeepsThePicture) {
   for (const Case& k : cases) {
     GpuRenderer renderer(*vk, *k.scene, kW, kH);
     for (int view = 0; view < 4; view++) {
-      Camera camera = orbit(*k.scene, 0.8f + 1.3f * float(view), 0.5f * std::cos(float(view)), view == 3 ? 0.5f : 1.2f + float(view));
+      Camera camera = test::orbit(*k.scene, 0.8f + 1.3f * float(view), 0.5f * std::cos(float(view)), view == 3 ? 0.5f : 1.2f + float(view));
       for (uint32_t mode : {VGEO_MODE_LIT, VGEO_MODE_TRIANGLE}) {
         FrameSettings s = settingsFor(*k.scene, camera, 1.0f);
         s.mode = mode;
@@ -248,7 +241,7 @@ TEST_F(Render, TriangleCullingKeepsThePicture) {
         ASSERT_TRUE(culled.complete && all.complete);
         EXPECT_LT(culled.counters.trianglesDrawn, culled.counters.triangles) << "view " << view;
         size_t covered = 0;
-        for (uint8_t m : coverage(all)) covered += m;
+        for (uint8_t m : test::coverage(all)) covered += m;
         size_t differ = differingPixels(culled, all);
         if (k.backFaces) {
           // A wrong winding sign would lose the visible side: thousands of pixels.
@@ -265,7 +258,7 @@ TEST_F(Render, TriangleCullingKeepsThePicture) {
 }
 
 TEST_F(Render, TriangleListOverflowIsReportedAndTheNextFrameIsComplete) {
-  FrameSettings s = settingsFor(*grid, orbit(*grid, 0.3f, 0.5f, 1.2f), 1.0f);
+  FrameSettings s = settingsFor(*grid, test::orbit(*grid, 0.3f, 0.5f, 1.2f), 1.0f);
   GpuRenderer ample(*vk, *grid, kW, kH), tiny(*vk, *grid, kW, kH);
   tiny.setCapacities(1u << 16, 1u << 16, 16, 1u << 16);
   FrameResult want = ample.renderFrame(s), first = tiny.renderFrame(s);

@@ -36,17 +36,10 @@ class RenderPatches : public ::testing::Test {
   void TearDown() override { EXPECT_EQ(vk->validationMessages(), 0u) << "validation messages (see stderr)"; }
 
   static FrameSettings settings(const RenderScene& scene, const Camera& camera, float tau, bool patches) {
-    FrameSettings s;
-    s.drawView = s.cullView = makeView(camera, kW, kH, scene.bounds);
-    s.tau = tau;
+    FrameSettings s = test::frameSettings(scene, camera, tau, kW, kH);
     s.patches = patches;
-    s.readDrawList = true;
     return s;
   }
-  static Camera orbit(const RenderScene& scene, float azimuth, float elevation, float distanceInRadii) {
-    return test::orbit(scene, azimuth, elevation, distanceInRadii);
-  }
-  static std::vector<uint8_t> coverage(const FrameResult& r) { return test::coverage(r); }
   // Pixels covered in `a` with no pixel of `b` within `radius` (Chebyshev distance), inside a margin.
   static int farFrom(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, int radius, bool covered) {
     int count = 0;
@@ -77,15 +70,15 @@ TEST_F(RenderPatches, NoCracksCloseUpAndAtTheTransition) {
   GpuRenderer renderer(*vk, *horned, kW, kH), fine(*vk, *hornedFine, kW, kH);
   int closeViews = 0, transitionViews = 0;
   for (int view = 0; view < 8; view++) {
-    Camera camera = orbit(*horned, 0.8f * float(view), 0.7f * std::sin(1.3f * float(view)), view % 2 ? 0.75f : 1.3f);
-    std::vector<uint8_t> full = coverage(fine.renderFrame(settings(*hornedFine, camera, 0.0f, false)));
+    Camera camera = test::orbit(*horned, 0.8f * float(view), 0.7f * std::sin(1.3f * float(view)), view % 2 ? 0.75f : 1.3f);
+    std::vector<uint8_t> full = test::coverage(fine.renderFrame(settings(*hornedFine, camera, 0.0f, false)));
     for (float tau : {0.5f, 1.0f, 4.0f}) {
       FrameResult r = renderer.renderFrame(settings(*horned, camera, tau, true));
       ASSERT_TRUE(r.complete);
       const uint32_t listed = r.counters.drawCount, patched = r.counters.patchClusters;
       if (patched * 2 > listed) closeViews++;
       if (patched > 0 && patched < listed) transitionViews++;
-      EXPECT_EQ(test::leaks(full, coverage(r), int(kW), int(kH), int(std::ceil(tau)) + 1), 0)
+      EXPECT_EQ(test::leaks(full, test::coverage(r), int(kW), int(kH), int(std::ceil(tau)) + 1), 0)
           << "view " << view << " tau " << tau << ": " << patched << " of " << listed << " clusters as patches";
     }
   }
@@ -98,7 +91,7 @@ TEST_F(RenderPatches, ShadingMatchesTheTriangles) {
   // with the same normals at the corners, so the lit pictures differ little (a flipped winding or normal
   // would darken every patch).
   GpuRenderer renderer(*vk, *horned, kW, kH);
-  Camera camera = orbit(*horned, 0.9f, 0.4f, 0.75f);
+  Camera camera = test::orbit(*horned, 0.9f, 0.4f, 0.75f);
   FrameResult with = renderer.renderFrame(settings(*horned, camera, 1.0f, true));
   FrameResult without = renderer.renderFrame(settings(*horned, camera, 1.0f, false));
   ASSERT_GT(with.patchesDrawn, 100u);
@@ -137,14 +130,14 @@ TEST_F(RenderPatches, SilhouetteWithinAPixelOfSixLevelsDeeper) {
   RenderScene coarse = loadRenderScene(*dir + "/cube1.vgeo"), deep = loadRenderScene(*dir + "/cube7.vgeo");
   GpuRenderer withPatches(*vk, coarse, kW, kH), reference(*vk, deep, kW, kH);
   for (int view = 0; view < 4; view++) {
-    Camera camera = orbit(coarse, 0.5f + 1.7f * float(view), 0.35f * float(view % 3) - 0.3f, 1.35f);
+    Camera camera = test::orbit(coarse, 0.5f + 1.7f * float(view), 0.35f * float(view % 3) - 0.3f, 1.35f);
     FrameResult r = withPatches.renderFrame(settings(coarse, camera, 1.0f, true));
     ASSERT_GT(r.patchesDrawn, 0u) << "view " << view;
-    std::vector<uint8_t> a = coverage(r), b = coverage(reference.renderFrame(settings(deep, camera, 0.0f, false)));
+    std::vector<uint8_t> a = test::coverage(r), b = test::coverage(reference.renderFrame(settings(deep, camera, 0.0f, false)));
     EXPECT_EQ(farFrom(a, b, 1, true), 0) << "view " << view << ": covered pixels more than a pixel outside the deep silhouette";
     EXPECT_EQ(farFrom(a, b, 1, false), 0) << "view " << view << ": background more than a pixel inside it";
     // Drawn as its leaf triangles instead, the same cage is visibly off: the test can fail.
-    std::vector<uint8_t> flat = coverage(withPatches.renderFrame(settings(coarse, camera, 1.0f, false)));
+    std::vector<uint8_t> flat = test::coverage(withPatches.renderFrame(settings(coarse, camera, 1.0f, false)));
     EXPECT_GT(farFrom(flat, b, 1, true) + farFrom(flat, b, 1, false), 20) << "view " << view;
   }
 }
@@ -161,14 +154,14 @@ TEST_F(RenderPatches, BoundaryAndTreePatchesWithinAPixelOfSixLevelsDeeper) {
     GpuRenderer withPatches(*vk, coarse, kW, kH), reference(*vk, deep, kW, kH);
     int flatMisses = 0;
     for (int view = 0; view < 3; view++) {
-      Camera camera = orbit(coarse, 0.4f + 2.1f * float(view), 0.5f + 0.3f * float(view), 0.9f);
+      Camera camera = test::orbit(coarse, 0.4f + 2.1f * float(view), 0.5f + 0.3f * float(view), 0.9f);
       FrameResult r = withPatches.renderFrame(settings(coarse, camera, 1.0f, true));
       ASSERT_TRUE(r.complete);
       EXPECT_GT(r.patchesDrawn, 0u) << cage << " view " << view;
-      std::vector<uint8_t> a = coverage(r), b = coverage(reference.renderFrame(settings(deep, camera, 0.0f, false)));
+      std::vector<uint8_t> a = test::coverage(r), b = test::coverage(reference.renderFrame(settings(deep, camera, 0.0f, false)));
       EXPECT_EQ(farFrom(a, b, 1, true), 0) << cage << " view " << view << ": covered pixels more than a pixel outside the deep surface";
       EXPECT_EQ(farFrom(a, b, 1, false), 0) << cage << " view " << view << ": background more than a pixel inside it";
-      std::vector<uint8_t> flat = coverage(withPatches.renderFrame(settings(coarse, camera, 1.0f, false)));
+      std::vector<uint8_t> flat = test::coverage(withPatches.renderFrame(settings(coarse, camera, 1.0f, false)));
       flatMisses += farFrom(flat, b, 1, true) + farFrom(flat, b, 1, false);
     }
     std::printf("%s: flat leaves %d pixels off\n", cage.c_str(), flatMisses);
