@@ -1,8 +1,9 @@
 // bvh.cpp: the hierarchy the renderer walks to find the groups whose clusters may be in the cut.
 // One subtree per simplification level (groups of one level have similar errors and do not overlap, so
-// a subtree's max error is tight and its spheres are small), joined under one root, VGEO_BVH_WIDTH
-// children a node. Subtrees are built top-down: a set is cut at the median of its longest axis three
-// times into up to 8 children, which gives balanced nodes of nearby groups.
+// a subtree's max error is tight and its spheres are small), VGEO_BVH_WIDTH children a node, joined
+// under one root of up to VGEO_BVH_ROOT_WIDTH children (instance culling tests them all at once).
+// Subtrees are built top-down: a set is cut at the median of its longest axis three times into up to 8
+// children, which gives balanced nodes of nearby groups.
 #include <algorithm>
 #include <map>
 
@@ -15,11 +16,12 @@ struct Builder {
   const std::vector<BuildGroup>& groups;
   Bvh& bvh;
 
-  // Splits `items` (sorted in place) into up to 8 runs by three rounds of longest-axis median cuts.
+  // Splits `items` (sorted in place) into up to VGEO_BVH_WIDTH runs by rounds of longest-axis median cuts
+  // (three for 8; 16 children measured slower on an H100: see bench/README.md).
   template <class CenterOf>
-  std::vector<std::pair<size_t, size_t>> splitEight(std::vector<uint32_t>& items, size_t lo, size_t hi, CenterOf centerOf) {
+  std::vector<std::pair<size_t, size_t>> splitRuns(std::vector<uint32_t>& items, size_t lo, size_t hi, CenterOf centerOf) {
     std::vector<std::pair<size_t, size_t>> runs{{lo, hi}};
-    for (int round = 0; round < 3; round++) {
+    for (uint32_t width = 1; width < VGEO_BVH_WIDTH; width *= 2) {
       std::vector<std::pair<size_t, size_t>> nextRuns;
       for (auto [a, b] : runs) {
         if (b - a < 2) {
@@ -70,7 +72,7 @@ struct Builder {
       fill(node, spheres, errors);
       return;
     }
-    auto runs = splitEight(items, lo, hi, [&](uint32_t g) { return glm::vec3(groups[g].sphere); });
+    auto runs = splitRuns(items, lo, hi, [&](uint32_t g) { return glm::vec3(groups[g].sphere); });
     uint32_t first = uint32_t(bvh.nodes.size());
     bvh.nodes.resize(bvh.nodes.size() + runs.size());
     bvh.nodes[node].childOffset = first;
@@ -84,9 +86,9 @@ struct Builder {
   }
 
   // Joins `count` contiguous nodes starting at `first` under node 0, through inner nodes of up to 8
-  // children when there are more than 8.
+  // children when there are more than the root's width.
   void buildTop(uint32_t first, uint32_t count) {
-    while (count > VGEO_BVH_WIDTH) {
+    while (count > VGEO_BVH_ROOT_WIDTH) {
       uint32_t innerFirst = uint32_t(bvh.nodes.size()), innerCount = (count + VGEO_BVH_WIDTH - 1) / VGEO_BVH_WIDTH;
       bvh.nodes.resize(bvh.nodes.size() + innerCount);
       for (uint32_t i = 0; i < innerCount; i++)

@@ -246,6 +246,8 @@ VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name) {
   for (size_t i = 0; i < data.groups.size(); i++)
     if (!within(data.groups[i].clusterOffset, data.groups[i].clusterCount, data.clusters.size()))
       fail("group " + std::to_string(i) + " refers outside the cluster array");
+    else if (data.groups[i].clusterCount > VGEO_MAX_GROUP_CLUSTERS)
+      fail("group " + std::to_string(i) + " has more than " + std::to_string(VGEO_MAX_GROUP_CLUSTERS) + " clusters");
   // Nodes: children in range, and every node reached once from its geometry's root (no cycles).
   std::vector<uint8_t> reached(data.nodes.size(), 0);
   for (const auto& g : data.geometries) {
@@ -256,7 +258,7 @@ VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name) {
       if (reached[n]++) fail("BVH node " + std::to_string(n) + " is reached twice (the hierarchy is not a tree)");
       const auto& node = data.nodes[n];
       uint32_t children = node.childCountAndFlags & ~VGEO_NODE_LEAF_BIT;
-      if (children > VGEO_BVH_WIDTH) fail("BVH node " + std::to_string(n) + " has too many children");
+      if (children > (n == g.nodeOffset ? VGEO_BVH_ROOT_WIDTH : VGEO_BVH_WIDTH)) fail("BVH node " + std::to_string(n) + " has too many children");
       if (node.childCountAndFlags & VGEO_NODE_LEAF_BIT) {
         if (!within(node.childOffset, children, data.groups.size())) fail("BVH node " + std::to_string(n) + " refers to missing groups");
       } else {

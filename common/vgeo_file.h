@@ -18,9 +18,10 @@
 
 namespace vgeo {
 
-constexpr uint32_t kVgeoVersion = 5;  // 2: cluster normal cones; 3: leaves on the limit surface, control points, patches;
+constexpr uint32_t kVgeoVersion = 6;  // 2: cluster normal cones; 3: leaves on the limit surface, control points, patches;
                                       // 4: patches for every interior face (rings), chord errors, patch points;
-                                      // 5: boundary and tree patches, control points apart from vertices
+                                      // 5: boundary and tree patches, control points apart from vertices;
+                                      // 6: the BVH root has up to VGEO_BVH_ROOT_WIDTH children (the level roots)
 
 enum class Section : uint32_t {
   Geometries = 1,

@@ -1,6 +1,7 @@
 // gpu_renderer.cpp: the frame. Read renderFrame() top to bottom: it is the list of passes.
 //   1. reset counters            (transfer)
-//   2. cull_instances.comp       one thread an instance -> queue of (instance, BVH root)
+//   2. cull_instances.comp       1 or 8 lanes an instance -> queue of (instance, level subtree root), or
+//                                of (instance, BVH root) for the flat traversal
 //   3. traversal                 persistent: one dispatch of resident workgroups draining the queue
 //                                levels: per depth, prepare_level.comp then traverse_level.comp (indirect)
 //                                flat: prepare_flat.comp then traverse_flat.comp (one thread a cluster)
@@ -241,7 +242,8 @@ void GpuRenderer::recordInstanceCull(VkCommandBuffer cmd) {
   recordCounterReset(cmd);
   // 2. Instance culling.
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cull_);
-  vkCmdDispatch(cmd, (uint32_t(scene_.data.instances.size()) + 63) / 64, 1, 1);
+  const uint32_t instancesPerWorkgroup = 64 / cullInstanceLanes();
+  vkCmdDispatch(cmd, (uint32_t(scene_.data.instances.size()) + instancesPerWorkgroup - 1) / instancesPerWorkgroup, 1, 1);
   computeToCompute(cmd);
 }
 
@@ -261,8 +263,9 @@ void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& sett
   if (settings.traversal == Traversal::Persistent) {
     dispatch(persistent_, persistentWorkgroups_);
   } else if (settings.traversal == Traversal::Levels) {
-    // Root nodes, then one level of nodes per dispatch, then the groups: depth + 1 windows.
-    for (uint32_t level = 0; level <= scene_.maxBvhDepth; level++) {
+    // The roots' children (queued by instance culling), one level of nodes per dispatch, then the groups:
+    // depth windows.
+    for (uint32_t level = 0; level < scene_.maxBvhDepth; level++) {
       dispatch(prepareLevel_, 1);
       dispatchIndirect(level_);
     }
@@ -355,6 +358,8 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
   frame.iterationBudget = iterationBudget_;
   frame.maxClusters = scene_.maxClusters;
   frame.claimMode = claimMode_;
+  frame.queueRoots = settings.traversal == Traversal::Flat ? 1u : 0u;
+  frame.cullInstanceLanes = cullInstanceLanes();
   const bool cullTriangles = settings.draw && settings.triangleCull;
   frame.triangleCull = cullTriangles ? 1u : 0u;
   frame.triangleCapacity = triangleCapacity_;

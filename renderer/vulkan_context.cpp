@@ -102,11 +102,17 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
   vkGetPhysicalDeviceProperties(physical_, &properties_);
   vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
   VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+  VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+  driver.pNext = &subgroup;
   VkPhysicalDeviceProperties2 props2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
   props2.pNext = &driver;
   vkGetPhysicalDeviceProperties2(physical_, &props2);
   driverId_ = driver.driverID;
   driverName_ = std::string(driver.driverName) + " " + driver.driverInfo;
+  // The persistent traversal adds to shared counters once a subgroup (subgroupExclusiveAdd, elect, broadcast).
+  const VkSubgroupFeatureFlags neededSubgroupOps = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT;
+  if ((subgroup.supportedOperations & neededSubgroupOps) != neededSubgroupOps || !(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT))
+    throw std::runtime_error("vulkan: " + deviceName() + " lacks subgroup arithmetic and ballot in compute shaders");
 
   uint32_t families = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(physical_, &families, nullptr);

@@ -15,7 +15,7 @@ layout(set = 0, binding = 8, std430) readonly buffer GroupBuffer { Group groups[
 layout(set = 0, binding = 9, std430) readonly buffer NodeBuffer { BvhNode nodes[]; };
 layout(set = 0, binding = 10, std430) coherent buffer CounterBuffer { Counters counters; };
 // Traversal queue: item i is (instance, node or group | VGEO_ITEM_GROUP_BIT) in queue[2i], queue[2i+1];
-// an unwritten slot holds VGEO_INVALID in its first word. Consumers reset slots after reading, so the
+// an unwritten slot holds VGEO_INVALID in both words. Consumers reset slots after reading, so the
 // queue is clean for the next frame.
 layout(set = 0, binding = 11, std430) coherent buffer QueueBuffer { uint queue[]; };
 // Draw list: entry i is (instance, cluster) in drawList[2i], drawList[2i+1].

@@ -20,6 +20,12 @@ using glm::dot;
 #define VGEO_MAX_CLUSTER_TRIANGLES 128
 #define VGEO_MAX_CLUSTER_VERTICES 256
 #define VGEO_BVH_WIDTH 8
+// A group's cluster count is at most this (the persistent traversal numbers a workgroup's tests in 20 bits).
+#define VGEO_MAX_GROUP_CLUSTERS 256
+// The root's children are the simplification levels' subtrees (joined under inner nodes of 8 only past
+// this many levels). The root is never a queue item: instance culling tests its children, which saves
+// the traversal two dependent steps of its chain.
+#define VGEO_BVH_ROOT_WIDTH 64
 #define VGEO_NODE_LEAF_BIT 0x80000000u
 #define VGEO_NO_GROUP 0xffffffffu
 
@@ -197,6 +203,10 @@ uint patchWordCount(uint info) {
 #define VGEO_INVALID 0xffffffffu
 #define VGEO_ITEM_GROUP_BIT 0x80000000u  // queue item names a group, not a BVH node
 #define VGEO_TRAVERSAL_WORKGROUP 64
+// cull_instances.comp: lanes an instance (workgroups of 64) in scenes of up to VGEO_CULL_SPREAD_INSTANCES
+// instances; one lane an instance in larger ones.
+#define VGEO_CULL_INSTANCE_LANES 8
+#define VGEO_CULL_SPREAD_INSTANCES 4096
 
 // Per-frame constants (a uniform buffer). The cull camera selects the cut and culls; the draw camera
 // makes the picture. They differ only with --freeze-camera.
@@ -221,6 +231,10 @@ struct FrameData {
   float viewportHeight;
   uint patches;          // 1: leaf clusters whose chord error projects above tau are drawn as patches
   uint patchCapacity;    // entries in the patch list
+  uint queueRoots;       // 1 (flat traversal): instance culling queues (instance, root) for each visible
+                         // instance; 0: it tests the root's children and queues those
+  uint cullInstanceLanes; // cull_instances.comp: lanes an instance, 1 or VGEO_CULL_INSTANCE_LANES
+  uint framePad0, framePad1;
 };
 
 // GPU counters of one frame, and the indirect arguments built from them.
@@ -319,7 +333,7 @@ static_assert(sizeof(Instance) == 64, "Instance layout");
 static_assert(sizeof(CageFace) == 16, "CageFace layout");
 static_assert(sizeof(ClusterCone) == 32, "ClusterCone layout");
 static_assert(sizeof(Patch) == 48, "Patch layout");
-static_assert(sizeof(FrameData) == 64 + 96 + 32 + 64, "FrameData layout");
+static_assert(sizeof(FrameData) == 64 + 96 + 32 + 80, "FrameData layout");
 static_assert(sizeof(Counters) == 128, "Counters layout");
 }  // namespace shaderio
 #endif

@@ -44,26 +44,32 @@ uint reserveQueue(uint count) {
   return first;
 }
 
+// An item is published by two plain stores and taken once both words are seen (each slot is written once
+// a frame, and both words are VGEO_INVALID until then), so neither side needs a memory barrier: on an
+// H100 a barrier and an atomic exchange per child were a large part of each step of the traversal's
+// chain of dependent steps.
 void writeQueue(uint slot, uint instance, uint code) {
   if (slot >= frame.queueCapacity) return;
   queue[2 * slot + 1] = code;
-  memoryBarrierBuffer();
-  atomicExchange(queue[2 * slot], instance);  // publishes the item
+  queue[2 * slot] = instance;
+}
+
+bool slotWritten(uint slot) {
+  return queue[2 * slot] != VGEO_INVALID && queue[2 * slot + 1] != VGEO_INVALID;  // coherent loads
 }
 
 // Reads slot `slot` if it has been written; resets it for the next frame.
 bool takeQueue(uint slot, out uint instance, out uint code) {
-  instance = queue[2 * slot];  // coherent: a plain load sees the producer's atomic write
-  if (instance == VGEO_INVALID) return false;
-  memoryBarrierBuffer();
+  instance = queue[2 * slot];
   code = queue[2 * slot + 1];
+  if (instance == VGEO_INVALID || code == VGEO_INVALID) return false;
   queue[2 * slot + 1] = VGEO_INVALID;
   queue[2 * slot] = VGEO_INVALID;
   return true;
 }
 
-void appendDraw(uint instance, uint cluster) {
-  uint index = atomicAdd(counters.drawCount, 1u);
+// Writes draw-list entry `index` (reserved from counters.drawCount) unless the list is full.
+void writeDraw(uint index, uint instance, uint cluster) {
   if (index < frame.drawCapacity) {
     drawList[2 * index] = instance;
     drawList[2 * index + 1] = cluster;
@@ -73,24 +79,30 @@ void appendDraw(uint instance, uint cluster) {
   }
 }
 
-// The cut rule for one cluster of one instance, with frustum culling of its self sphere.
-void testCluster(uint instance, uint cluster) {
+// The cut rule for one cluster of one instance, with frustum culling of its self sphere: the draw-list
+// code of the cluster (with VGEO_DRAW_PATCHES_BIT when its patches are drawn), or VGEO_INVALID.
+uint cutCluster(uint instance, uint cluster) {
   Instance inst = instances[instance];
   Cluster c = clusters[cluster];
   gTested++;
-  if (!sphereInFrustum(worldSphere(inst, c.selfSphere))) return;
+  if (!sphereInFrustum(worldSphere(inst, c.selfSphere))) return VGEO_INVALID;
   float self = projectedErrorWorld(inst, c.selfSphere, c.selfError);
   float parent = projectedErrorWorld(inst, c.parentSphere, c.parentError);
-  if (!inCut(self, parent, frame.tau, c.producer == VGEO_NO_GROUP)) return;
+  if (!inCut(self, parent, frame.tau, c.producer == VGEO_NO_GROUP)) return VGEO_INVALID;
   // A leaf too coarse for tau: its patches are drawn (cull_triangles.comp lists them).
   uint patchBit = frame.patches != 0u && c.producer == VGEO_NO_GROUP && self > frame.tau ? VGEO_DRAW_PATCHES_BIT : 0u;
   // Closed, uniformly scaled: a cluster whose every triangle faces away cannot be seen.
   if ((inst.flags & VGEO_INSTANCE_CONE_CULL) != 0u) {
     ClusterCone cc = clusterCones[cluster];
     vec3 axis = normalize(vec3(dot(inst.row0.xyz, cc.cone.xyz), dot(inst.row1.xyz, cc.cone.xyz), dot(inst.row2.xyz, cc.cone.xyz)));
-    if (clusterFacesAway(vec4(axis, cc.cone.w), worldSphere(inst, cc.sphere), frame.cullEye.xyz)) return;
+    if (clusterFacesAway(vec4(axis, cc.cone.w), worldSphere(inst, cc.sphere), frame.cullEye.xyz)) return VGEO_INVALID;
   }
-  appendDraw(instance, cluster | patchBit);
+  return cluster | patchBit;
+}
+
+void testCluster(uint instance, uint cluster) {
+  uint draw = cutCluster(instance, cluster);
+  if (draw != VGEO_INVALID) writeDraw(atomicAdd(counters.drawCount, 1u), instance, draw);
 }
 
 // May anything below this (sphere, error) be drawn? Pruned only when clearly outside the frustum, or when
@@ -113,22 +125,27 @@ void processItem(uint instance, uint code) {
     }
     return;
   }
+  // The children that may hold drawn clusters, as a bit mask (a root has up to VGEO_BVH_ROOT_WIDTH = 64),
+  // queued with one reservation.
   BvhNode node = nodes[code];
   uint count = node.childCountAndFlags & ~VGEO_NODE_LEAF_BIT;
   bool leaf = (node.childCountAndFlags & VGEO_NODE_LEAF_BIT) != 0u;
-  uint keep[VGEO_BVH_WIDTH];
-  uint kept = 0u;
+  uvec2 keep = uvec2(0u);
   for (uint i = 0u; i < count; i++) {
     gLoops++;
     uint child = node.childOffset + i;
     bool may = leaf ? mayHoldDrawn(inst, groups[child].sphere, groups[child].error)
                     : mayHoldDrawn(inst, nodes[child].sphere, nodes[child].maxError);
-    if (may) keep[kept++] = leaf ? (child | VGEO_ITEM_GROUP_BIT) : child;
+    if (may) keep[i >> 5] |= 1u << (i & 31u);
   }
+  uint kept = bitCount(keep.x) + bitCount(keep.y);
   if (kept == 0u) return;
-  uint first = reserveQueue(kept);
-  for (uint i = 0u; i < kept; i++) {
-    gLoops++;
-    writeQueue(first + i, instance, keep[i]);
+  uint slot = reserveQueue(kept);
+  for (uint word = 0u; word < 2u; word++) {
+    for (uint bits = keep[word]; bits != 0u; bits &= bits - 1u) {
+      gLoops++;
+      uint child = node.childOffset + 32u * word + uint(findLSB(bits));
+      writeQueue(slot++, instance, leaf ? (child | VGEO_ITEM_GROUP_BIT) : child);
+    }
   }
 }

@@ -5,19 +5,25 @@
 // through shared memory; no lane ever spins on a flag another lane of its workgroup must set.
 //
 // Claiming (frame.claimMode):
-//   0  past the frontier (GPUs): one atomicAdd claims 64 slots, produced or not; each lane keeps its slot
-//      until a producer fills it. One atomic a batch scaled to 16k workgroups on an H100 (GPU-NOTES 9).
+//   0  past the frontier (GPUs): one atomicAdd claims a batch of slots, produced or not; each lane keeps
+//      its slot until a producer fills it. The batch follows the backlog: the items written and not yet
+//      claimed shared over the workgroups, from kMinBatch (a chain of single items, as in a close view of
+//      a few instances: spread over many workgroups) to 64 (100,000 instances: fewer claims).
 //   1  written items only (lavapipe): the lanes find the written prefix after the read position and
 //      lane 0 claims it by compare-and-swap; nobody waits on a slot, a workgroup holds nothing between
-//      iterations, so it can leave on
-//      the iteration budget (lavapipe ends loops silently after 65,535 iterations per invocation, all
-//      loops counted, GPU-NOTES 1: every loop of the traversal counts into gLoops).
+//      iterations, so it can leave on the iteration budget (lavapipe ends loops silently after 65,535
+//      iterations per invocation, all loops counted, GPU-NOTES 1: every loop here counts into gLoops).
 // Termination: itemsDone == queueWrite (read in that order) means nothing is in flight and nothing can
 // be produced any more; overflowed items count as done.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
+#extension GL_KHR_shader_subgroup_ballot : require
 #include "common.glsl"
 layout(local_size_x = VGEO_TRAVERSAL_WORKGROUP) in;
 #include "traverse_common.glsl"
+
+const uint kMinBatch = 4u;         // measured on an H100: 4 to 8 best for close views, 16 and more worse
+const uint kSerialBatch = 32u;     // batches this large are tested a lane an item (see takeItemSerial)
 
 shared uint sBase;     // first slot of the batch claimed this iteration
 shared uint sCount;    // slots claimed this iteration (0: none)
@@ -29,66 +35,149 @@ shared uint sRead, sReserved, sWritten, sClaiming;  // claim mode 1
 shared uint sDone;     // items this workgroup finished this iteration (added to itemsDone once)
 shared uint sQuiet;    // claim mode 0: nothing is in flight any more (checked by lane 0 for all)
 shared uint sPolls;    // claim mode 0: iterations in a row spent holding slots
-// Group items of many clusters are tested by the whole workgroup, not by their lane (a leaf-level
-// group holds up to ~32 clusters; one lane testing them in a row was the long pole of close views).
-// They become entries; cluster k of the iteration is cluster k - sEntryStart[e] of entry e.
-// (Spreading a node's children over the lanes too, in iterations with few items, lost items on
-// lavapipe; not pursued.)
-shared uint sEntries, sClusters;
-shared uint sEntryInstance[VGEO_TRAVERSAL_WORKGROUP], sEntryFirst[VGEO_TRAVERSAL_WORKGROUP];
-shared uint sEntryStart[VGEO_TRAVERSAL_WORKGROUP + 1];
 
-// Groups of more clusters than this are shared; smaller ones (the roots of far instances) are tested by
-// their lane. Measured on an H100: sharing every group made close views 30% faster and far views of
-// 100,000 instances 80% slower.
-const uint kSharedGroupClusters = 8u;
+// The work of an iteration is spread over all lanes, one test a lane, in two rounds (a chain of
+// dependent steps is what a close view of a few instances waits through; one lane testing a node's
+// children or a group's clusters in a row made every step several loads long):
+//   round 1: the taken items' entries: a node's children (nodes, or groups for a leaf node), a group
+//            item's clusters. Child nodes that may hold drawn clusters are kept and queued together (one
+//            reservation a workgroup); child groups that may become round-2 entries at once, so a group
+//            is never a queue item of its own (one step less).
+//   round 2: those groups' clusters, tested with the cut rule.
+// An entry is (instance, first child, kind), its tests numbered from sEntryStart[e]; test k belongs to the
+// last entry starting at or before k. Entries are added with one shared atomic that counts entries (high
+// bits) and tests (low bits) together, so entry order is start order.
+const uint kNodeChildren = 0u, kGroupChildren = 1u, kClusters = 2u;
+const uint kTestBits = 20u;  // tests a round < 2^20: VGEO_TRAVERSAL_WORKGROUP * VGEO_BVH_WIDTH * VGEO_MAX_GROUP_CLUSTERS
+const uint kRound2 = VGEO_TRAVERSAL_WORKGROUP;  // round 2's entries follow round 1's (at most one per item)
+const uint kMaxEntries = VGEO_TRAVERSAL_WORKGROUP + VGEO_TRAVERSAL_WORKGROUP * VGEO_BVH_WIDTH;
+shared uint sEntryCounts[2];  // per round: entries << kTestBits | tests
+shared uint sEntryInstance[kMaxEntries], sEntryFirst[kMaxEntries], sEntryStart[kMaxEntries], sEntryKind[kMaxEntries];
 
-void takeItem(uint instance, uint code) {
-  if ((code & VGEO_ITEM_GROUP_BIT) != 0u) {
-    Group g = groups[code & ~VGEO_ITEM_GROUP_BIT];
-    if (g.clusterCount > kSharedGroupClusters) {
-      gNodes++;
-      uint e = atomicAdd(sEntries, 1u);
-      sEntryInstance[e] = instance;
-      sEntryFirst[e] = g.clusterOffset;
-      sEntryStart[e + 1u] = g.clusterCount;  // a count until lane 0 sums them
-      return;
-    }
-  }
-  processItem(instance, code);
+// Adds `value` to a shared counter for the calling lanes of a subgroup with one atomic (lanes adding to
+// one shared address one by one serialize); `result` is the counter's value before this lane's part.
+#define SUBGROUP_ATOMIC_ADD(counter, value, result) { \
+  uint prefix_ = subgroupExclusiveAdd(value), total_ = subgroupAdd(value), base_ = 0u; \
+  if (subgroupElect() && total_ != 0u) base_ = atomicAdd(counter, total_); \
+  result = subgroupBroadcastFirst(base_) + prefix_; }
+
+// Child nodes to queue, kept in round 1 and written after one reservation.
+shared uint sKeepCount, sKeepFirst;
+shared uint sKeepInstance[VGEO_TRAVERSAL_WORKGROUP * VGEO_BVH_WIDTH], sKeepCode[VGEO_TRAVERSAL_WORKGROUP * VGEO_BVH_WIDTH];
+
+void keepItem(uint instance, uint code) {
+  uint k;
+  SUBGROUP_ATOMIC_ADD(sKeepCount, 1u, k);
+  sKeepInstance[k] = instance;
+  sKeepCode[k] = code;
 }
 
-// Every lane calls it after a barrier, and only when sEntries != 0 (barriers): the entries' clusters,
-// spread over the lanes.
-void testEntries(uint lane) {
-  if (lane == 0u) {
-    sEntryStart[0] = 0u;
-    for (uint e = 0u; e < sEntries; e++) {
-      gLoops++;
-      sEntryStart[e + 1u] += sEntryStart[e];
-    }
-    sClusters = sEntryStart[sEntries];
-  }
+// Every lane, after the barrier that follows the last keepItem.
+void queueKept(uint lane) {
+  if (lane == 0u) sKeepFirst = reserveQueue(sKeepCount);
   barrier();
-  for (uint k = lane; k < sClusters; k += VGEO_TRAVERSAL_WORKGROUP) {
+  for (uint k = lane; k < sKeepCount; k += VGEO_TRAVERSAL_WORKGROUP) {
     gLoops++;
-    uint lo = 0u, hi = sEntries - 1u;  // the last entry starting at or before k
+    writeQueue(sKeepFirst + k, sKeepInstance[k], sKeepCode[k]);
+  }
+}
+
+// lavapipe's loop count (see main): the most loop iterations any lane ran this iteration. Uniform.
+void noteLoops() {
+  if (frame.iterationBudget != 0u) atomicMax(sRound, gLoops);
+}
+
+void addEntry(uint round, uint instance, uint first, uint tests, uint kind) {
+  uint counts;
+  SUBGROUP_ATOMIC_ADD(sEntryCounts[round], (1u << kTestBits) | tests, counts);
+  uint e = (round == 0u ? 0u : kRound2) + (counts >> kTestBits);
+  sEntryInstance[e] = instance;
+  sEntryFirst[e] = first;
+  sEntryStart[e] = counts & ((1u << kTestBits) - 1u);
+  sEntryKind[e] = kind;
+}
+
+// A taken queue item becomes a round-1 entry.
+void takeItem(uint instance, uint code) {
+  gNodes++;
+  if ((code & VGEO_ITEM_GROUP_BIT) != 0u) {
+    Group g = groups[code & ~VGEO_ITEM_GROUP_BIT];
+    addEntry(0u, instance, g.clusterOffset, g.clusterCount, kClusters);
+  } else {
+    BvhNode node = nodes[code];
+    bool leaf = (node.childCountAndFlags & VGEO_NODE_LEAF_BIT) != 0u;
+    addEntry(0u, instance, node.childOffset, node.childCountAndFlags & ~VGEO_NODE_LEAF_BIT, leaf ? kGroupChildren : kNodeChildren);
+  }
+}
+
+// A child of an entry, whoever tests it. Returns the draw-list code of a cluster to draw, or VGEO_INVALID.
+uint testChild(uint instance, uint child, uint kind) {
+  if (kind == kClusters) {
+    return cutCluster(instance, child);
+  } else if (kind == kGroupChildren) {
+    Group g = groups[child];
+    if (mayHoldDrawn(instances[instance], g.sphere, g.error)) {
+      gNodes++;
+      addEntry(1u, instance, g.clusterOffset, g.clusterCount, kClusters);
+    }
+  } else if (mayHoldDrawn(instances[instance], nodes[child].sphere, nodes[child].maxError)) {
+    keepItem(instance, child);
+  }
+  return VGEO_INVALID;
+}
+
+// Appends (instance, draw) to the draw list for the calling lanes whose draw is not VGEO_INVALID, with one
+// atomic a subgroup (one a cluster, on one counter, was measured to cost up to 0.1 ms at 100,000 instances).
+void appendDraws(uint instance, uint draw) {
+  uint index;
+  SUBGROUP_ATOMIC_ADD(counters.drawCount, draw != VGEO_INVALID ? 1u : 0u, index);
+  if (draw != VGEO_INVALID) writeDraw(index, instance, draw);
+}
+
+// A taken item whose children its own lane tests, for large batches (100,000 instances): spreading them
+// costs more than it saves once every lane has an item (far views 3-5% slower on an H100).
+void takeItemSerial(uint instance, uint code) {
+  gNodes++;
+  if ((code & VGEO_ITEM_GROUP_BIT) != 0u) {
+    Group g = groups[code & ~VGEO_ITEM_GROUP_BIT];
+    addEntry(1u, instance, g.clusterOffset, g.clusterCount, kClusters);
+    return;
+  }
+  BvhNode node = nodes[code];
+  uint count = node.childCountAndFlags & ~VGEO_NODE_LEAF_BIT;
+  uint kind = (node.childCountAndFlags & VGEO_NODE_LEAF_BIT) != 0u ? kGroupChildren : kNodeChildren;
+  for (uint i = 0u; i < count; i++) {
+    gLoops++;
+    testChild(instance, node.childOffset + i, kind);  // node or group children: nothing to draw
+  }
+}
+
+// Every lane calls it after a barrier, with the round's entry count uniform and non-zero.
+void runRound(uint round, uint lane) {
+  const uint base = round == 0u ? 0u : kRound2;
+  const uint entries = sEntryCounts[round] >> kTestBits;
+  const uint tests = sEntryCounts[round] & ((1u << kTestBits) - 1u);
+  for (uint k = lane; k < tests; k += VGEO_TRAVERSAL_WORKGROUP) {
+    gLoops++;
+    uint lo = base, hi = base + entries - 1u;  // the last entry starting at or before k
     while (lo < hi) {
       gLoops++;
       uint mid = (lo + hi + 1u) / 2u;
       if (sEntryStart[mid] <= k) lo = mid;
       else hi = mid - 1u;
     }
-    testCluster(sEntryInstance[lo], sEntryFirst[lo] + k - sEntryStart[lo]);
+    uint instance = sEntryInstance[lo];
+    appendDraws(instance, testChild(instance, sEntryFirst[lo] + k - sEntryStart[lo], sEntryKind[lo]));
   }
-  atomicMax(sRound, gLoops);
+  noteLoops();
   barrier();
 }
 
+// Nothing in flight, nothing more can be produced.
 bool quiescent() {
-  uint done = atomicOr(counters.itemsDone, 0u);
+  uint done = counters.itemsDone;  // coherent loads, in this order
   memoryBarrierBuffer();
-  uint written = atomicOr(counters.queueWrite, 0u);
+  uint written = counters.queueWrite;
   return done == written;
 }
 
@@ -102,7 +191,9 @@ void main() {
     sRound = 0u;
     sClaiming = 0u;
     sDone = 0u;
-    sEntries = 0u;
+    sEntryCounts[0] = 0u;
+    sEntryCounts[1] = 0u;
+    sKeepCount = 0u;
     sPolls = 0u;
   }
   for (;;) {
@@ -111,17 +202,21 @@ void main() {
       sExit = 0u;
       sCount = 0u;
       // Held slots that will never be filled are let go once nothing is in flight; checked every 4th
-      // iteration only (two global atomics on the chain of dependent steps a traversal waits through).
+      // iteration only (global loads on the chain of dependent steps a traversal waits through).
       sPolls = sHolding != 0u ? sPolls + 1u : 0u;
       sQuiet = sHolding != 0u && (sPolls & 3u) == 0u && quiescent() ? 1u : 0u;
       if (sHolding == 0u) {
         if (frame.iterationBudget != 0u && sLoops >= frame.iterationBudget) {
           sExit = 2u;
         } else if (frame.claimMode == 0u) {
-          if (quiescent()) sExit = 1u;
-          else {
-            sBase = atomicAdd(counters.queueRead, VGEO_TRAVERSAL_WORKGROUP);
-            sCount = VGEO_TRAVERSAL_WORKGROUP;
+          uint read = counters.queueRead, written = counters.queueWrite;
+          if (quiescent()) {
+            sExit = 1u;
+          } else {
+            uint backlog = written > read ? written - read : 0u;
+            uint batch = clamp(backlog / gl_NumWorkGroups.x, kMinBatch, uint(VGEO_TRAVERSAL_WORKGROUP));
+            sBase = atomicAdd(counters.queueRead, batch);
+            sCount = batch;
           }
         } else {
           sRead = atomicOr(counters.queueRead, 0u);
@@ -137,7 +232,7 @@ void main() {
       // at once, is claimed, so no lane ever waits on a slot. (Waiting on reserved slots, the first
       // version, sometimes stalled on lavapipe until every worker ran out of iterations.)
       uint s = sRead + lane;
-      if (s >= sReserved || atomicOr(queue[2 * s], 0u) == VGEO_INVALID) atomicMin(sWritten, lane);
+      if (s >= sReserved || !slotWritten(s)) atomicMin(sWritten, lane);
       barrier();
       if (lane == 0u) {
         sClaiming = 0u;
@@ -158,8 +253,8 @@ void main() {
       break;  // uniform: sExit is shared
     }
     gLoops = 0u;
-    if (lane < sCount) slot = sBase + lane;
 
+    if (lane < sCount) slot = sBase + lane;
     uint instance, code;
     bool have = false;
     if (frame.claimMode == 1u) {
@@ -175,26 +270,36 @@ void main() {
       }
     }
     if (have) {
-      takeItem(instance, code);
-      atomicAdd(sDone, 1u);
+      if (sCount >= kSerialBatch) takeItemSerial(instance, code);
+      else takeItem(instance, code);
     }
+    uint taken = subgroupAdd(have ? 1u : 0u);
+    if (subgroupElect() && taken != 0u) atomicAdd(sDone, taken);
     if (lane == 0u) sHolding = 0u;
-    atomicMax(sRound, gLoops);
+    noteLoops();
     barrier();
-    // Shared groups count as done with the iteration's other items, below: they make no queue items, and
-    // this workgroup tests their clusters before it can claim or leave again.
-    if (sEntries != 0u) testEntries(lane);  // uniform: shared, read after the barrier
-    if (slot != VGEO_INVALID) atomicAdd(sHolding, 1u);
+    // The items count as done below, after both rounds: every child node they keep is reserved by then.
+    if (sEntryCounts[0] != 0u) runRound(0u, lane);  // uniform: shared, read after a barrier
+    if (sKeepCount != 0u) {
+      queueKept(lane);
+      noteLoops();
+      barrier();
+    }
+    if (sEntryCounts[1] != 0u) runRound(1u, lane);
+    uint holding = subgroupAdd(slot != VGEO_INVALID ? 1u : 0u);
+    if (subgroupElect() && holding != 0u) atomicAdd(sHolding, holding);
     // lavapipe counts a loop iteration for a whole SIMD vector of lanes whenever any of them iterates,
     // over every loop inside the outermost one: bound that by this iteration and the most inner
-    // iterations any lane ran, plus, as a margin, one count per barrier and vector of 8 lanes.
+    // iterations any lane ran, plus, as a margin, one count per barrier (up to 10) and vector of 8 lanes.
     if (lane == 0u) {
-      sLoops += 1u + sRound + 5u * (VGEO_TRAVERSAL_WORKGROUP / 8u);
+      sLoops += 1u + sRound + 10u * (VGEO_TRAVERSAL_WORKGROUP / 8u);
       sRound = 0u;
       // After the barrier: every child these items produced was reserved before they count as done.
       if (sDone != 0u) atomicAdd(counters.itemsDone, sDone);
       sDone = 0u;
-      sEntries = 0u;
+      sEntryCounts[0] = 0u;
+      sEntryCounts[1] = 0u;
+      sKeepCount = 0u;
     }
   }
   flushStats();

@@ -1,6 +1,7 @@
 // test_dag.cpp: the invariants of DESIGN.md on real meshes (CGAL's demo data, the shipped cage, a
 // multi-mesh glTF), through the same checker as `vgeo check`, plus the builder's promises on sizes.
 #include <fstream>
+#include <set>
 #include <nlohmann/json.hpp>
 
 #include "test_util.h"
@@ -91,6 +92,24 @@ TEST(DagBuild, LeafClustersHoldWholeCageFaces) {
     used.erase(std::unique(used.begin(), used.end()), used.end());
     EXPECT_EQ(used, corners);
   }
+}
+
+TEST(DagBuild, BvhRootHoldsOneSubtreePerLevel) {
+  // The traversal's chain starts at the root's children (instance culling tests them): they must be the
+  // simplification levels' subtrees, one each, even past 8 levels; every other node has at most 8.
+  VgeoData data = test::build(test::cgalMesh("bunny00.off"), 2);
+  const auto& g = data.geometries[0];
+  std::set<uint32_t> levels;
+  for (uint32_t i = g.groupOffset; i < g.groupOffset + g.groupCount; i++) levels.insert(data.groups[i].level);
+  ASSERT_GT(levels.size(), size_t(VGEO_BVH_WIDTH));
+  const shaderio::BvhNode& root = data.nodes[g.nodeOffset];
+  ASSERT_EQ(root.childCountAndFlags & VGEO_NODE_LEAF_BIT, 0u);
+  ASSERT_EQ(root.childCountAndFlags, uint32_t(levels.size()));
+  std::set<uint32_t> childLevels;
+  for (uint32_t k = 0; k < root.childCountAndFlags; k++) childLevels.insert(data.nodes[root.childOffset + k].level);
+  EXPECT_EQ(childLevels, levels);
+  for (uint32_t n = g.nodeOffset + 1; n < g.nodeOffset + g.nodeCount; n++)
+    EXPECT_LE(data.nodes[n].childCountAndFlags & ~VGEO_NODE_LEAF_BIT, uint32_t(VGEO_BVH_WIDTH)) << "node " << n;
 }
 
 TEST(DagBuild, StatsJsonHasEveryPromisedField) {

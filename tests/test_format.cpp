@@ -125,6 +125,18 @@ TEST(Format, ChecksumsAreRecomputedButReferencesStillChecked) {
   data.nodes[0].childCountAndFlags = 2;
   bytes = serializeVgeo(data);
   EXPECT_THROW(parseVgeo(bytes.data(), bytes.size(), "cycle.vgeo"), InputError);
+  // Below the root a node holds at most VGEO_BVH_WIDTH children (the traversal's per-node bit mask).
+  data = smallScene();
+  const uint32_t inner = data.nodes[0].childOffset;
+  ASSERT_LT(inner, data.nodes.size());
+  data.nodes[inner].childCountAndFlags = (data.nodes[inner].childCountAndFlags & VGEO_NODE_LEAF_BIT) | (VGEO_BVH_WIDTH + 1);
+  bytes = serializeVgeo(data);
+  try {
+    parseVgeo(bytes.data(), bytes.size(), "wide.vgeo");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("has too many children"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Format, MalformedPatchWordsAreRejected) {

@@ -86,6 +86,32 @@ TEST_F(Render, GpuDrawListEqualsCpuCutForAllTraversals) {
   }
 }
 
+TEST_F(Render, LargeSceneDrawListEqualsCpuCut) {
+  // Past VGEO_CULL_SPREAD_INSTANCES instances, instance culling takes one lane an instance (the grid above
+  // takes VGEO_CULL_INSTANCE_LANES): the same cut either way.
+  const uint32_t side = 65;
+  ASSERT_GT(side * side, uint32_t(VGEO_CULL_SPREAD_INSTANCES));
+  std::string dir = std::filesystem::temp_directory_path() / "vgeo_render_tests";
+  RenderScene large = loadRenderScene(dir + "/horned.vgeo", side);
+  GpuRenderer renderer(*vk, large, kW, kH);
+  glm::vec3 c(large.bounds);
+  Camera inside;
+  inside.eye = c + glm::vec3(0.1f, 0.05f, 0.2f) * large.bounds.w;
+  inside.target = c + glm::vec3(1.0f, 0.0f, 0.3f) * large.bounds.w;
+  for (const Camera& camera : {defaultCamera(large.bounds, large.boxMin, large.boxMax, 60.0f), inside})
+    for (Traversal t : {Traversal::Persistent, Traversal::Levels})
+      for (float tau : {1.0f, 4.0f}) {
+        SCOPED_TRACE(std::string(traversalName(t)) + " tau " + std::to_string(tau));
+        FrameSettings s = settingsFor(large, camera, tau, t);
+        s.readImage = false;
+        FrameResult result = renderer.renderFrame(s);
+        while (!result.complete) result = renderer.renderFrame(s);
+        std::string difference;
+        EXPECT_TRUE(compareCuts(selectSceneCut(large, s.cullView, tau), result.drawList, difference)) << difference;
+        EXPECT_GT(result.drawList.size(), 0u);
+      }
+}
+
 TEST_F(Render, NoCracksAtTau1And8) {
   // Background inside the silhouette of the full-detail render (tau 0: every leaf, as its triangles)
   // would be a crack. The picture may shrink by up to tau pixels at the silhouette (that much error is
