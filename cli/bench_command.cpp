@@ -86,6 +86,7 @@ void runBenchCut(const BenchArgs& a) {
       // The CPU reference last, after the GPU records (its seconds of host work let the GPU clock down).
       std::vector<std::string> modes = parseList<std::string>(a.traversals);
       std::stable_partition(modes.begin(), modes.end(), [](const std::string& m) { return m != "cpu"; });
+      bool sceneWarm = false;
       for (const std::string& mode : modes)
         for (const auto& [cameraName, camera] : cameraPath(scene, a.fov))
           for (float tau : parseList<float>(a.taus)) {
@@ -123,9 +124,12 @@ void runBenchCut(const BenchArgs& a) {
               while (!f.complete) f = renderer.renderFrame(s);
               // At least 3 more frames and 300 ms: a GPU that idled (during the CPU reference or the scene's
               // upload) measured up to 4x slow in its first frames back, and 100 ms of frames were not
-              // always enough to bring its clock back (H100).
+              // always enough to bring its clock back (H100). The first record of a scene follows the last
+              // scene's CPU reference (up to ~30 s of host work): 2 s there (300 ms left it 2x slow).
               auto warm = std::chrono::steady_clock::now();
-              for (int i = 0; i < 3 || std::chrono::steady_clock::now() - warm < std::chrono::milliseconds(300); i++) renderer.renderFrame(s);
+              const auto warmFor = std::chrono::milliseconds(sceneWarm ? 300 : 2000);
+              for (int i = 0; i < 3 || std::chrono::steady_clock::now() - warm < warmFor; i++) renderer.renderFrame(s);
+              sceneWarm = true;
               std::vector<double> ms, cullMs;
               for (uint32_t i = 0; i < a.frames; i++) {
                 f = renderer.renderFrame(s);
