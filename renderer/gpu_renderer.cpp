@@ -1,7 +1,7 @@
 // gpu_renderer.cpp: the frame. Read renderFrame() top to bottom: it is the list of passes.
 //   1. reset counters            (transfer)
-//   2. cull_instances.comp       1 or 8 lanes an instance -> queue of (instance, level subtree root), or
-//                                of (instance, BVH root) for the flat traversal
+//   2. cull_instances.comp       1 or 8 lanes an instance (8 on GPUs up to 4,096 instances) -> queue of
+//                                (instance, level subtree root), or of (instance, BVH root) for flat
 //   3. traversal                 persistent: one dispatch of resident workgroups draining the queue
 //                                levels: per depth, prepare_level.comp then traverse_level.comp (indirect)
 //                                flat: prepare_flat.comp then traverse_flat.comp (one thread a cluster)
@@ -237,12 +237,12 @@ void GpuRenderer::recordCounterReset(VkCommandBuffer cmd) {
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
 }
 
-void GpuRenderer::recordInstanceCull(VkCommandBuffer cmd) {
+void GpuRenderer::recordInstanceCull(VkCommandBuffer cmd, const FrameSettings& settings) {
   // 1. Reset the counters.
   recordCounterReset(cmd);
   // 2. Instance culling.
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cull_);
-  const uint32_t instancesPerWorkgroup = 64 / cullInstanceLanes();
+  const uint32_t instancesPerWorkgroup = 64 / cullInstanceLanes(settings);
   vkCmdDispatch(cmd, (uint32_t(scene_.data.instances.size()) + instancesPerWorkgroup - 1) / instancesPerWorkgroup, 1, 1);
   computeToCompute(cmd);
 }
@@ -359,7 +359,7 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
   frame.maxClusters = scene_.maxClusters;
   frame.claimMode = claimMode_;
   frame.queueRoots = settings.traversal == Traversal::Flat ? 1u : 0u;
-  frame.cullInstanceLanes = cullInstanceLanes();
+  frame.cullInstanceLanes = cullInstanceLanes(settings);
   const bool cullTriangles = settings.draw && settings.triangleCull;
   frame.triangleCull = cullTriangles ? 1u : 0u;
   frame.triangleCapacity = triangleCapacity_;
@@ -388,7 +388,7 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
       vk_.submitAndWait(cmd);
       return msSince(stageStart);
     };
-    result.instanceCullMs = timed([&](VkCommandBuffer cmd) { recordInstanceCull(cmd); });
+    result.instanceCullMs = timed([&](VkCommandBuffer cmd) { recordInstanceCull(cmd, settings); });
     result.traversalMs = timed([&](VkCommandBuffer cmd) { recordTraversal(cmd, settings); });
     if (cullTriangles) result.triangleCullMs = timed([&](VkCommandBuffer cmd) { recordTriangleCull(cmd); });
     result.drawMs = timed([&](VkCommandBuffer cmd) { recordDraw(cmd, settings); });
@@ -398,7 +398,7 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
     VkCommandBuffer cmd = vk_.beginCommands();
     vkCmdResetQueryPool(cmd, queries_, 0, kTimestamps);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0);
-    recordInstanceCull(cmd);
+    recordInstanceCull(cmd, settings);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1);
     recordTraversal(cmd, settings);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 2);

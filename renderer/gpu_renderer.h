@@ -26,6 +26,8 @@ struct FrameSettings {
   bool draw = true;          // false: selection only (cut benchmarks); no image
   bool triangleCull = true;  // cull_triangles.comp before the draw (no change to the picture)
   bool patches = true;       // leaves too coarse for tau drawn as tessellated patches (needs triangleCull)
+  uint32_t cullLanes = 0;    // lanes instance culling gives an instance: 0 the renderer's choice, else 1 or
+                             // VGEO_CULL_INSTANCE_LANES (tests run both)
 };
 
 struct FrameResult {
@@ -68,11 +70,15 @@ class GpuRenderer {
   void createQueueAndDrawList();
   void writeDescriptors();
   void recordCounterReset(VkCommandBuffer cmd);
-  void recordInstanceCull(VkCommandBuffer cmd);
+  void recordInstanceCull(VkCommandBuffer cmd, const FrameSettings& settings);
   // Lanes that cull one instance: 8 test a root's ~20 children side by side (a shorter chain in front of
   // the traversal of a small scene); in large scenes one, as the reservations of 8x more workgroups on one
-  // counter cost more than that (H100: 100,000 instances 0.09 -> 0.19 ms).
-  uint32_t cullInstanceLanes() const { return scene_.data.instances.size() <= VGEO_CULL_SPREAD_INSTANCES ? VGEO_CULL_INSTANCE_LANES : 1; }
+  // counter cost more than that (H100: 100,000 instances 0.09 -> 0.19 ms); on lavapipe one (a CPU's SIMD
+  // lanes gain nothing from the spread: the default scene's culling took 1.2 instead of 0.3 ms).
+  uint32_t cullInstanceLanes(const FrameSettings& settings) const {
+    if (settings.cullLanes != 0) return settings.cullLanes == 1 ? 1 : VGEO_CULL_INSTANCE_LANES;
+    return !vk_.isLavapipe() && scene_.data.instances.size() <= VGEO_CULL_SPREAD_INSTANCES ? VGEO_CULL_INSTANCE_LANES : 1;
+  }
   void recordTraversal(VkCommandBuffer cmd, const FrameSettings& settings);
   void recordTriangleCull(VkCommandBuffer cmd);
   void recordDraw(VkCommandBuffer cmd, const FrameSettings& settings);

@@ -66,9 +66,12 @@ TEST_F(Render, GpuDrawListEqualsCpuCutForAllTraversals) {
     for (Traversal t : {Traversal::Persistent, Traversal::Levels, Traversal::Flat})
       for (size_t k = 0; k < cameras.size(); k++)
         for (float tau : {0.5f, 1.0f, 4.0f, 16.0f}) {
+          // Instance culling with one lane and with VGEO_CULL_INSTANCE_LANES lanes an instance, alternately.
+          const uint32_t lanes = (k + uint32_t(tau)) % 2 == 0 ? 1u : uint32_t(VGEO_CULL_INSTANCE_LANES);
           SCOPED_TRACE(std::string(traversalName(t)) + " camera " + std::to_string(k) + " tau " + std::to_string(tau) +
-                       (scene == grid ? " grid" : " single"));
+                       (scene == grid ? " grid" : " single") + " culling lanes " + std::to_string(lanes));
           FrameSettings s = settingsFor(*scene, cameras[k], tau, t);
+          s.cullLanes = lanes;
           s.readImage = false;
           FrameResult result;
           ASSERT_NO_THROW(result = renderer.renderFrame(s));
@@ -87,8 +90,8 @@ TEST_F(Render, GpuDrawListEqualsCpuCutForAllTraversals) {
 }
 
 TEST_F(Render, LargeSceneDrawListEqualsCpuCut) {
-  // Past VGEO_CULL_SPREAD_INSTANCES instances, instance culling takes one lane an instance (the grid above
-  // takes VGEO_CULL_INSTANCE_LANES): the same cut either way.
+  // Past VGEO_CULL_SPREAD_INSTANCES instances the renderer culls with one lane an instance, and on lavapipe
+  // always; both lane counts give the same cut in a scene of many instances too.
   const uint32_t side = 65;
   ASSERT_GT(side * side, uint32_t(VGEO_CULL_SPREAD_INSTANCES));
   std::string dir = std::filesystem::temp_directory_path() / "vgeo_render_tests";
@@ -101,8 +104,10 @@ TEST_F(Render, LargeSceneDrawListEqualsCpuCut) {
   for (const Camera& camera : {defaultCamera(large.bounds, large.boxMin, large.boxMax, 60.0f), inside})
     for (Traversal t : {Traversal::Persistent, Traversal::Levels})
       for (float tau : {1.0f, 4.0f}) {
-        SCOPED_TRACE(std::string(traversalName(t)) + " tau " + std::to_string(tau));
+        const uint32_t lanes = t == Traversal::Persistent ? uint32_t(VGEO_CULL_INSTANCE_LANES) : 1u;
+        SCOPED_TRACE(std::string(traversalName(t)) + " tau " + std::to_string(tau) + " culling lanes " + std::to_string(lanes));
         FrameSettings s = settingsFor(large, camera, tau, t);
+        s.cullLanes = lanes;
         s.readImage = false;
         FrameResult result = renderer.renderFrame(s);
         while (!result.complete) result = renderer.renderFrame(s);
