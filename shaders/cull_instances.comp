@@ -42,12 +42,10 @@ void main() {
         if (part == 0u) gNodes++;
         for (uint i = part; i < count; i += lanes) {
           uint child = root.childOffset + i;
-          bool may = leaf ? mayHoldDrawn(inst, groups[child].sphere, groups[child].error)
-                          : mayHoldDrawn(inst, nodes[child].sphere, nodes[child].maxError);
-          if (may) {
+          if (childMayHoldDrawn(inst, child, leaf)) {
             uint k = atomicAdd(sKept, 1u);
             sKeptInstance[k] = instance;
-            sKeptCode[k] = leaf ? (child | VGEO_ITEM_GROUP_BIT) : child;
+            sKeptCode[k] = childItem(child, leaf);
           }
         }
       }

@@ -114,6 +114,13 @@ bool mayHoldDrawn(Instance inst, vec4 sphere, float maxError) {
   return projectedErrorWorld(inst, sphere, maxError) * kPruneSlack > frame.tau;
 }
 
+// Child `child` of a node, a group when the node is a leaf: may it hold drawn clusters, and its queue item.
+bool childMayHoldDrawn(Instance inst, uint child, bool leaf) {
+  return leaf ? mayHoldDrawn(inst, groups[child].sphere, groups[child].error)
+              : mayHoldDrawn(inst, nodes[child].sphere, nodes[child].maxError);
+}
+uint childItem(uint child, bool leaf) { return leaf ? (child | VGEO_ITEM_GROUP_BIT) : child; }
+
 void processItem(uint instance, uint code) {
   gNodes++;
   Instance inst = instances[instance];
@@ -133,10 +140,7 @@ void processItem(uint instance, uint code) {
   uvec2 keep = uvec2(0u);
   for (uint i = 0u; i < count; i++) {
     gLoops++;
-    uint child = node.childOffset + i;
-    bool may = leaf ? mayHoldDrawn(inst, groups[child].sphere, groups[child].error)
-                    : mayHoldDrawn(inst, nodes[child].sphere, nodes[child].maxError);
-    if (may) keep[i >> 5] |= 1u << (i & 31u);
+    if (childMayHoldDrawn(inst, node.childOffset + i, leaf)) keep[i >> 5] |= 1u << (i & 31u);
   }
   uint kept = bitCount(keep.x) + bitCount(keep.y);
   if (kept == 0u) return;
@@ -145,7 +149,7 @@ void processItem(uint instance, uint code) {
     for (uint bits = keep[word]; bits != 0u; bits &= bits - 1u) {
       gLoops++;
       uint child = node.childOffset + 32u * word + uint(findLSB(bits));
-      writeQueue(slot++, instance, leaf ? (child | VGEO_ITEM_GROUP_BIT) : child);
+      writeQueue(slot++, instance, childItem(child, leaf));
     }
   }
 }

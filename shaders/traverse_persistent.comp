@@ -120,7 +120,7 @@ uint testChild(uint instance, uint child, uint kind) {
       gNodes++;
       addEntry(1u, instance, g.clusterOffset, g.clusterCount, kClusters);
     }
-  } else if (mayHoldDrawn(instances[instance], nodes[child].sphere, nodes[child].maxError)) {
+  } else if (childMayHoldDrawn(instances[instance], child, false)) {
     keepItem(instance, child);
   }
   return VGEO_INVALID;
@@ -173,12 +173,16 @@ void runRound(uint round, uint lane) {
   barrier();
 }
 
-// Nothing in flight, nothing more can be produced.
-bool quiescent() {
+// Nothing in flight, nothing more can be produced. `written`: the items reserved so far.
+bool quiescent(out uint written) {
   uint done = counters.itemsDone;  // coherent loads, in this order
   memoryBarrierBuffer();
-  uint written = counters.queueWrite;
+  written = counters.queueWrite;
   return done == written;
+}
+bool quiescent() {
+  uint written;
+  return quiescent(written);
 }
 
 void main() {
@@ -209,10 +213,11 @@ void main() {
         if (frame.iterationBudget != 0u && sLoops >= frame.iterationBudget) {
           sExit = 2u;
         } else if (frame.claimMode == 0u) {
-          uint read = counters.queueRead, written = counters.queueWrite;
-          if (quiescent()) {
+          uint written;
+          if (quiescent(written)) {
             sExit = 1u;
           } else {
+            uint read = counters.queueRead;
             uint backlog = written > read ? written - read : 0u;
             uint batch = clamp(backlog / gl_NumWorkGroups.x, kMinBatch, uint(VGEO_TRAVERSAL_WORKGROUP));
             sBase = atomicAdd(counters.queueRead, batch);
