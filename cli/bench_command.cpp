@@ -68,7 +68,7 @@ namespace {
 struct BenchArgs {
   std::string input, output, sizes = "1,10,100,1000,10000,100000", layouts = "grid,scatter", taus = "1,4",
                              traversals = "persistent,levels,flat,cpu", size = "1920x1080", device;
-  uint32_t frames = 5, cpuMaxInstances = 1000, flatMaxInstances = 10000;
+  uint32_t frames = 5, cpuMaxInstances = 1000, flatMaxInstances = 10000, workgroups = 0;
   float fov = 60.0f;
 };
 
@@ -83,6 +83,7 @@ void runBenchCut(const BenchArgs& a) {
     for (uint32_t count : parseList<uint32_t>(a.sizes)) {
       RenderScene scene = makeBenchScene(base, count, layout == "scatter", 7);
       GpuRenderer renderer(vk, scene, width, height);
+      if (a.workgroups) renderer.setPersistentWorkgroups(a.workgroups);
       // The CPU reference last, after the GPU records (its seconds of host work let the GPU clock down).
       std::vector<std::string> modes = parseList<std::string>(a.traversals);
       std::stable_partition(modes.begin(), modes.end(), [](const std::string& m) { return m != "cpu"; });
@@ -179,6 +180,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
   cut->add_option("--size", a->size, "Viewport WxH")->capture_default_str();
   cut->add_option("--cpu-max-instances", a->cpuMaxInstances, "Largest scene the CPU reference runs on")->capture_default_str();
   cut->add_option("--flat-max-instances", a->flatMaxInstances, "Largest scene the flat traversal runs on")->capture_default_str();
+  cut->add_option("--workgroups", a->workgroups, "Persistent traversal workgroups (default: the renderer's)");
   cut->add_option("--device", a->device, "Use the first Vulkan device whose name contains this");
   cut->callback([a, &exitCode] {
     runBenchCut(*a);

@@ -28,6 +28,9 @@ constexpr uint32_t kSceneBindings = 15;  // bindings 1..9: geometries .. BVH nod
 // leave on their own well before, holding nothing, and enough of them are dispatched to carry on.
 constexpr uint32_t kLavapipeIterationBudget = 50000;
 constexpr uint32_t kLavapipeWorkgroups = 128;
+// Up to this many instances the persistent traversal runs two workgroups an SM, four above (measured at
+// 10,000 and 100,000 instances; the switch sits between them).
+constexpr size_t kFewWorkgroupsInstances = 32768;
 // Frame start, then the end of instance culling, traversal, triangle culling and the draw.
 constexpr uint32_t kTimestamps = 5;
 
@@ -100,11 +103,14 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
     iterationBudget_ = kLavapipeIterationBudget;
     persistentWorkgroups_ = kLavapipeWorkgroups;
   } else {
-    // Four workgroups an SM where NVIDIA tells the SM count. Measured on an H100 (132 SMs), armadillo
-    // --subdiv 2 at 1920x1080: 10k instances 0.24 ms with 4,224 workgroups (all the device holds),
-    // 0.09 ms with 528, 0.08 with 264; 100k instances 0.29 / 0.11 / 0.15 ms. Claiming past the frontier
-    // makes every extra workgroup a poller of empty slots; four an SM keeps the SMs busy without that.
-    persistentWorkgroups_ = 512;
+    // Four workgroups an SM where NVIDIA tells the SM count, two in scenes of up to
+    // kFewWorkgroupsInstances instances. Measured on an H100 (132 SMs), armadillo --subdiv 2 at 1920x1080:
+    // 10k instances 0.24 ms with 4,224 workgroups (all the device holds), 0.09 ms with 528, 0.08 with 264;
+    // 100k instances 0.29 / 0.11 / 0.15 ms. Claiming past the frontier makes every extra workgroup a
+    // poller of empty slots. The cut benchmark over every camera (bench/README.md): 264 against 528
+    // workgroups 6% faster at 10,000 instances, 3% at 1,000, even at 100; 66 and 132 slower everywhere.
+    const uint32_t perSm = scene_.data.instances.size() <= kFewWorkgroupsInstances ? 2u : 4u;
+    persistentWorkgroups_ = 128 * perSm;
     uint32_t count = 0;
     vkEnumerateDeviceExtensionProperties(vk_.physicalDevice(), nullptr, &count, nullptr);
     std::vector<VkExtensionProperties> extensions(count);
@@ -115,7 +121,7 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
         VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
         props.pNext = &sm;
         vkGetPhysicalDeviceProperties2(vk_.physicalDevice(), &props);
-        persistentWorkgroups_ = std::max(1u, sm.shaderSMCount * 4u);
+        persistentWorkgroups_ = std::max(1u, sm.shaderSMCount * perSm);
       }
   }
   createTargets();
