@@ -2,6 +2,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -40,6 +41,12 @@ std::vector<std::pair<std::string, Camera>> cameraPath(const RenderScene& scene,
 
 // Median of v (the upper one of an even count); 0 for none.
 double median(std::vector<double> v);
+
+// A summary of one frame's persistent-traversal worker profile (FrameResult::workerProfile of `workgroups`
+// workgroups): iterations, polls, the span from the first start to the last exit, when the first item
+// was taken and the last finished, and median claim / take / rounds times of the iterations that took
+// items, in device-clock ticks (worker_profile.cpp).
+nlohmann::ordered_json summarizeWorkerProfile(const std::vector<uint32_t>& words, uint32_t workgroups);
 
 void addBenchFrameCommand(CLI::App& bench, int& exitCode);
 void addBenchBuildCommand(CLI::App& bench, int& exitCode);

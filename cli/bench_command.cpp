@@ -69,6 +69,7 @@ struct BenchArgs {
   std::string input, output, sizes = "1,10,100,1000,10000,100000", layouts = "grid,scatter", taus = "1,4",
                              traversals = "persistent,levels,flat,cpu", size = "1920x1080", device;
   uint32_t frames = 5, cpuMaxInstances = 1000, flatMaxInstances = 10000, workgroups = 0;
+  bool profileWorkers = false;
   float fov = 60.0f;
 };
 
@@ -147,7 +148,15 @@ void runBenchCut(const BenchArgs& a) {
               r["triangles"] = c.triangles;
               r["instances_visible"] = c.visibleInstances;
               r["queue_high_water"] = c.queueHighWater;
-              if (s.traversal == Traversal::Persistent) r["workgroups"] = renderer.persistentWorkgroups();
+              if (s.traversal == Traversal::Persistent) {
+                r["workgroups"] = renderer.persistentWorkgroups();
+                // One more frame, profiled (not timed: the stamps cost time of their own).
+                if (a.profileWorkers && renderer.canProfileWorkers()) {
+                  FrameSettings p = s;
+                  p.profileWorkers = true;
+                  r["worker_profile"] = summarizeWorkerProfile(renderer.renderFrame(p).workerProfile, renderer.persistentWorkgroups());
+                }
+              }
             }
             r["device"] = mode == "cpu" ? std::string("host CPU") : vk.deviceName();
             r["driver"] = mode == "cpu" ? std::string("") : vk.driverName();
@@ -181,6 +190,8 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
   cut->add_option("--cpu-max-instances", a->cpuMaxInstances, "Largest scene the CPU reference runs on")->capture_default_str();
   cut->add_option("--flat-max-instances", a->flatMaxInstances, "Largest scene the flat traversal runs on")->capture_default_str();
   cut->add_option("--workgroups", a->workgroups, "Persistent traversal workgroups (default: the renderer's)");
+  cut->add_flag("--profile-workers", a->profileWorkers,
+                "Persistent records: one more frame with the workers' iterations timed in the shader (needs VK_KHR_shader_clock)");
   cut->add_option("--device", a->device, "Use the first Vulkan device whose name contains this");
   cut->callback([a, &exitCode] {
     runBenchCut(*a);

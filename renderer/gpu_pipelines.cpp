@@ -18,6 +18,7 @@
 #include "shaders/traverse_flat_comp.h"
 #include "shaders/traverse_level_comp.h"
 #include "shaders/traverse_persistent_comp.h"
+#include "shaders/traverse_persistent_comp_profile.h"
 
 namespace vgeo {
 void GpuRenderer::createTargets() {
@@ -151,6 +152,7 @@ void GpuRenderer::createPipelines() {
   };
   cull_ = compute(cull_instances_comp, sizeof(cull_instances_comp));
   persistent_ = compute(traverse_persistent_comp, sizeof(traverse_persistent_comp));
+  if (vk_.deviceClock()) persistentProfile_ = compute(traverse_persistent_comp_profile, sizeof(traverse_persistent_comp_profile));
   level_ = compute(traverse_level_comp, sizeof(traverse_level_comp));
   prepareLevel_ = compute(prepare_level_comp, sizeof(prepare_level_comp));
   flat_ = compute(traverse_flat_comp, sizeof(traverse_flat_comp));

@@ -95,6 +95,7 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
   }
   frameData_ = vk_.createBuffer(sizeof(shaderio::FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
   counters_ = vk_.createBuffer(sizeof(shaderio::Counters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+  workerProfile_ = vk_.createBuffer(16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
   countersReadback_ = vk_.createBuffer(sizeof(shaderio::Counters), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
   imageReadback_ = vk_.createBuffer(VkDeviceSize(width_) * height_ * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
 
@@ -159,7 +160,7 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
 GpuRenderer::~GpuRenderer() {
   VkDevice dev = vk_.device();
   vkDeviceWaitIdle(dev);
-  for (VkPipeline p : {cull_, persistent_, level_, prepareLevel_, flat_, prepareFlat_, resetFlat_, finalize_, cullTriangles_, finalizeTriangles_,
+  for (VkPipeline p : {cull_, persistent_, persistentProfile_, level_, prepareLevel_, flat_, prepareFlat_, resetFlat_, finalize_, cullTriangles_, finalizeTriangles_,
                        draw_, drawOverdraw_, drawPatches_, drawPatchesOverdraw_})
     vkDestroyPipeline(dev, p, nullptr);
   vkDestroyPipelineLayout(dev, layout_, nullptr);
@@ -175,7 +176,8 @@ GpuRenderer::~GpuRenderer() {
   vkDestroyImage(dev, depth_, nullptr);
   vkFreeMemory(dev, colorMemory_, nullptr);
   vkFreeMemory(dev, depthMemory_, nullptr);
-  for (Buffer* b : {&frameData_, &counters_, &countersReadback_, &queue_, &drawList_, &drawListReadback_, &imageReadback_, &triangleList_, &patchList_})
+  for (Buffer* b : {&frameData_, &counters_, &countersReadback_, &queue_, &drawList_, &drawListReadback_, &imageReadback_, &triangleList_, &patchList_,
+                    &workerProfile_})
     vk_.destroyBuffer(*b);
   for (Buffer& b : sceneBuffers_) vk_.destroyBuffer(b);
 }
@@ -221,6 +223,7 @@ void GpuRenderer::writeDescriptors() {
   buffers.push_back(&triangleList_);
   for (uint32_t i = 10; i < kSceneBindings; i++) buffers.push_back(&sceneBuffers_[i]);
   buffers.push_back(&patchList_);
+  buffers.push_back(&workerProfile_);
   VkDescriptorBufferInfo infos[kRendererBindings];
   VkWriteDescriptorSet writes[kRendererBindings];
   for (uint32_t i = 0; i < kRendererBindings; i++) {
@@ -267,7 +270,7 @@ void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& sett
     computeToCompute(cmd);
   };
   if (settings.traversal == Traversal::Persistent) {
-    dispatch(persistent_, persistentWorkgroups_);
+    dispatch(settings.profileWorkers && persistentProfile_ ? persistentProfile_ : persistent_, persistentWorkgroups_);
   } else if (settings.traversal == Traversal::Levels) {
     // The roots' children (queued by instance culling), one level of nodes per dispatch, then the groups:
     // depth windows.
@@ -375,6 +378,17 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
   frame.patches = patches ? 1u : 0u;
   frame.patchCapacity = patchCapacity_;
   std::memcpy(frameData_.mapped, &frame, sizeof(frame));
+  const bool profile = settings.profileWorkers && persistentProfile_ && settings.traversal == Traversal::Persistent;
+  if (profile) {
+    const VkDeviceSize bytes = VkDeviceSize(persistentWorkgroups_) * VGEO_PROFILE_WORKER_WORDS * 4;
+    if (workerProfile_.size < bytes) {
+      vkDeviceWaitIdle(vk_.device());
+      vk_.destroyBuffer(workerProfile_);
+      workerProfile_ = vk_.createBuffer(bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+      writeDescriptors();
+    }
+    std::memset(workerProfile_.mapped, 0, bytes);
+  }
   if (settings.readDrawList && drawListReadback_.size != drawList_.size) {
     vk_.destroyBuffer(drawListReadback_);
     drawListReadback_ = vk_.createBuffer(drawList_.size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
@@ -446,6 +460,10 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
     const uint32_t* p = static_cast<const uint32_t*>(drawListReadback_.mapped);
     result.drawList.resize(n);
     for (uint32_t i = 0; i < n; i++) result.drawList[i] = {p[2 * i], p[2 * i + 1] & ~VGEO_DRAW_PATCHES_BIT};
+  }
+  if (profile) {
+    const uint32_t* p = static_cast<const uint32_t*>(workerProfile_.mapped);
+    result.workerProfile.assign(p, p + size_t(persistentWorkgroups_) * VGEO_PROFILE_WORKER_WORDS);
   }
   bool drained = c.itemsDone == c.queueWrite;
   result.complete = c.queueOverflow == 0 && c.drawOverflow == 0 && c.triangleOverflow == 0 && c.patchOverflow == 0 && drained;

@@ -28,6 +28,8 @@ struct FrameSettings {
   bool patches = true;       // leaves too coarse for tau drawn as tessellated patches (needs triangleCull)
   uint32_t cullLanes = 0;    // lanes instance culling gives an instance: 0 the renderer's choice, else 1 or
                              // VGEO_CULL_INSTANCE_LANES (tests run both)
+  bool profileWorkers = false;  // persistent traversal on a device with a shader device clock: record the
+                                // workers' iterations in FrameResult::workerProfile (benchmarks)
 };
 
 struct FrameResult {
@@ -39,6 +41,7 @@ struct FrameResult {
   std::vector<uint8_t> rgba;       // when readImage: width x height x 4
   double instanceCullMs = 0.0, traversalMs = 0.0, triangleCullMs = 0.0, drawMs = 0.0, frameMs = 0.0;
   std::string timing;              // "gpu-timestamps" or "host-per-submission"
+  std::vector<uint32_t> workerProfile;  // when profiled: VGEO_PROFILE_WORKER_WORDS words a workgroup (shaderio.h)
   bool complete = true;            // no overflow and the traversal drained its queue
 };
 
@@ -60,6 +63,7 @@ class GpuRenderer {
   // Sets the capacities (tests use tiny ones to provoke overflow).
   void setCapacities(uint32_t queueItems, uint32_t drawEntries, uint32_t triangles, uint32_t patches);
   uint32_t persistentWorkgroups() const { return persistentWorkgroups_; }
+  bool canProfileWorkers() const { return persistentProfile_ != VK_NULL_HANDLE; }
   // Overrides the persistent traversal's workgroup count (benchmarks; the default is what the device
   // runs at once).
   void setPersistentWorkgroups(uint32_t count) { persistentWorkgroups_ = std::max(count, 1u); }
@@ -93,7 +97,8 @@ class GpuRenderer {
   uint32_t queueCapacity_ = 1u << 20, drawCapacity_ = 1u << 20, triangleCapacity_ = 1u << 22, patchCapacity_ = 1u << 18;
   uint32_t persistentWorkgroups_ = 0, iterationBudget_ = 0, claimMode_ = 0;
 
-  Buffer frameData_, counters_, countersReadback_, queue_, drawList_, drawListReadback_, imageReadback_, triangleList_, patchList_;
+  Buffer frameData_, counters_, countersReadback_, queue_, drawList_, drawListReadback_, imageReadback_, triangleList_, patchList_,
+      workerProfile_;  // host-visible; a placeholder until a frame is profiled
   std::vector<Buffer> sceneBuffers_;  // bindings 1..9, then 13, then 15..19
   VkImage color_ = VK_NULL_HANDLE, depth_ = VK_NULL_HANDLE;
   VkDeviceMemory colorMemory_ = VK_NULL_HANDLE, depthMemory_ = VK_NULL_HANDLE;
@@ -104,7 +109,7 @@ class GpuRenderer {
   VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
-  VkPipeline cull_ = VK_NULL_HANDLE, persistent_ = VK_NULL_HANDLE, level_ = VK_NULL_HANDLE, prepareLevel_ = VK_NULL_HANDLE,
+  VkPipeline cull_ = VK_NULL_HANDLE, persistent_ = VK_NULL_HANDLE, persistentProfile_ = VK_NULL_HANDLE, level_ = VK_NULL_HANDLE, prepareLevel_ = VK_NULL_HANDLE,
              flat_ = VK_NULL_HANDLE, prepareFlat_ = VK_NULL_HANDLE, resetFlat_ = VK_NULL_HANDLE, finalize_ = VK_NULL_HANDLE, draw_ = VK_NULL_HANDLE,
              cullTriangles_ = VK_NULL_HANDLE, finalizeTriangles_ = VK_NULL_HANDLE,
              drawOverdraw_ = VK_NULL_HANDLE, drawPatches_ = VK_NULL_HANDLE, drawPatchesOverdraw_ = VK_NULL_HANDLE;
@@ -115,7 +120,7 @@ class GpuRenderer {
 const char* traversalName(Traversal t);
 
 // Binding count of the one descriptor set (common.glsl): 0 frame data, 1..9, 13 and 15..19 the scene,
-// 10 counters, 11 queue, 12 draw list, 14 triangle list, 20 patch list.
-constexpr uint32_t kRendererBindings = 21;
+// 10 counters, 11 queue, 12 draw list, 14 triangle list, 20 patch list, 21 worker profile.
+constexpr uint32_t kRendererBindings = 22;
 
 }  // namespace vgeo

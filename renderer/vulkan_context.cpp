@@ -142,7 +142,28 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
   enabled.pipelineStatisticsQuery = supported.pipelineStatisticsQuery;
   tessellation_ = supported.tessellationShader;
   pipelineStatistics_ = supported.pipelineStatisticsQuery;
+  // The device clock, where there is one, for the persistent traversal's worker profile (bench only).
+  uint32_t extensionCount = 0;
+  vkEnumerateDeviceExtensionProperties(physical_, nullptr, &extensionCount, nullptr);
+  std::vector<VkExtensionProperties> deviceExtensions(extensionCount);
+  vkEnumerateDeviceExtensionProperties(physical_, nullptr, &extensionCount, deviceExtensions.data());
+  VkPhysicalDeviceShaderClockFeaturesKHR clock{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_CLOCK_FEATURES_KHR};
+  for (const auto& e : deviceExtensions)
+    if (std::strcmp(e.extensionName, VK_KHR_SHADER_CLOCK_EXTENSION_NAME) == 0) {
+      VkPhysicalDeviceFeatures2 features2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+      features2.pNext = &clock;
+      vkGetPhysicalDeviceFeatures2(physical_, &features2);
+      deviceClock_ = clock.shaderDeviceClock == VK_TRUE;
+    }
+  const char* clockExtension = VK_KHR_SHADER_CLOCK_EXTENSION_NAME;
   VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+  if (deviceClock_) {
+    clock.shaderSubgroupClock = VK_FALSE;
+    clock.pNext = nullptr;
+    deviceInfo.pNext = &clock;
+    deviceInfo.enabledExtensionCount = 1;
+    deviceInfo.ppEnabledExtensionNames = &clockExtension;
+  }
   deviceInfo.queueCreateInfoCount = 1;
   deviceInfo.pQueueCreateInfos = &queueInfo;
   deviceInfo.pEnabledFeatures = &enabled;

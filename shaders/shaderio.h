@@ -203,6 +203,17 @@ uint patchWordCount(uint info) {
 #define VGEO_INVALID 0xffffffffu
 #define VGEO_ITEM_GROUP_BIT 0x80000000u  // queue item names a group, not a BVH node
 #define VGEO_TRAVERSAL_WORKGROUP 64
+// Worker profile (traverse_persistent.comp built with VGEO_PROFILE, binding 21; vgeo bench cut
+// --profile-workers): per workgroup VGEO_PROFILE_WORKER_WORDS words. Header: [0] working iterations
+// recorded, [1] iterations, [2] iterations without an item, [3] their summed clock ticks, [4,5] begin,
+// [6,7] exit (64-bit device clock, low word first). Then up to VGEO_PROFILE_ITERATIONS records of the
+// iterations that took items, VGEO_PROFILE_ITERATION_WORDS each: [0,1] start, [2,3] claimed (after the
+// claim), [4,5] taken (the items read and their entries made), [6,7] end (after both rounds), [8] items,
+// [9] round-1 tests, [10] round-2 tests, [11] slots claimed that iteration.
+#define VGEO_PROFILE_ITERATIONS 48
+#define VGEO_PROFILE_ITERATION_WORDS 12
+#define VGEO_PROFILE_HEADER_WORDS 8
+#define VGEO_PROFILE_WORKER_WORDS (VGEO_PROFILE_HEADER_WORDS + VGEO_PROFILE_ITERATIONS * VGEO_PROFILE_ITERATION_WORDS)
 // cull_instances.comp: lanes an instance (workgroups of 64) in scenes of up to VGEO_CULL_SPREAD_INSTANCES
 // instances; one lane an instance in larger ones.
 #define VGEO_CULL_INSTANCE_LANES 8

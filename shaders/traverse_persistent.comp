@@ -18,6 +18,9 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_ballot : require
+#ifdef VGEO_PROFILE
+#extension GL_EXT_shader_realtime_clock : require
+#endif
 #include "common.glsl"
 layout(local_size_x = VGEO_TRAVERSAL_WORKGROUP) in;
 #include "traverse_common.glsl"
@@ -173,6 +176,49 @@ void runRound(uint round, uint lane) {
   barrier();
 }
 
+#ifdef VGEO_PROFILE
+// Worker profile (layout in shaderio.h): lane 0 stamps each iteration with the device clock and records
+// the iterations that took items; the others are only counted.
+layout(set = 0, binding = 21, std430) buffer ProfileBuffer { uint profile[]; };
+uvec2 pStart, pClaimed, pTaken, pBegin;
+uint pIterations = 0u, pRecorded = 0u, pPolls = 0u, pPollTicks = 0u;
+#define PROFILE_STAMP(t) if (gl_LocalInvocationIndex == 0u) t = clockRealtime2x32EXT()
+void profileIteration(uint items, uint tests1, uint tests2, uint claimed) {  // lane 0, end of an iteration
+  uvec2 end = clockRealtime2x32EXT();
+  pIterations++;
+  if (items == 0u) {
+    pPolls++;
+    pPollTicks += end.x - pStart.x;
+  } else if (pRecorded < VGEO_PROFILE_ITERATIONS) {
+    uint at = gl_WorkGroupID.x * VGEO_PROFILE_WORKER_WORDS + VGEO_PROFILE_HEADER_WORDS + pRecorded * VGEO_PROFILE_ITERATION_WORDS;
+    uvec2 stamps[4] = uvec2[4](pStart, pClaimed, pTaken, end);
+    for (uint i = 0u; i < 4u; i++) {
+      profile[at + 2u * i] = stamps[i].x;
+      profile[at + 2u * i + 1u] = stamps[i].y;
+    }
+    profile[at + 8u] = items;
+    profile[at + 9u] = tests1;
+    profile[at + 10u] = tests2;
+    profile[at + 11u] = claimed;
+    pRecorded++;
+  }
+}
+void profileExit() {  // lane 0
+  uvec2 exitTime = clockRealtime2x32EXT();
+  uint at = gl_WorkGroupID.x * VGEO_PROFILE_WORKER_WORDS;
+  profile[at] = pRecorded;
+  profile[at + 1u] = pIterations;
+  profile[at + 2u] = pPolls;
+  profile[at + 3u] = pPollTicks;
+  profile[at + 4u] = pBegin.x;
+  profile[at + 5u] = pBegin.y;
+  profile[at + 6u] = exitTime.x;
+  profile[at + 7u] = exitTime.y;
+}
+#else
+#define PROFILE_STAMP(t)
+#endif
+
 // Nothing in flight, nothing more can be produced. `written`: the items reserved so far.
 bool quiescent(out uint written) {
   uint done = counters.itemsDone;  // coherent loads, in this order
@@ -189,6 +235,7 @@ void main() {
   beginStats();
   const uint lane = gl_LocalInvocationIndex;
   uint slot = VGEO_INVALID;  // the slot this lane holds (claim mode 0)
+  PROFILE_STAMP(pBegin);
   if (lane == 0u) {
     sHolding = 0u;
     sLoops = 0u;
@@ -202,6 +249,7 @@ void main() {
   }
   for (;;) {
     barrier();
+    PROFILE_STAMP(pStart);
     if (lane == 0u) {
       sExit = 0u;
       sCount = 0u;
@@ -250,8 +298,12 @@ void main() {
       }
       barrier();
     }
+    PROFILE_STAMP(pClaimed);
     if (sExit != 0u) {
       if (lane == 0u) {
+#ifdef VGEO_PROFILE
+        profileExit();
+#endif
         atomicAdd(counters.workgroupsExited, 1u);
         if (sExit == 2u) atomicAdd(counters.budgetExits, 1u);
       }
@@ -283,6 +335,7 @@ void main() {
     if (lane == 0u) sHolding = 0u;
     noteLoops();
     barrier();
+    PROFILE_STAMP(pTaken);
     // The items count as done below, after both rounds: every child node they keep is reserved by then.
     if (sEntryCounts[0] != 0u) runRound(0u, lane);  // uniform: shared, read after a barrier
     if (sKeepCount != 0u) {
@@ -299,6 +352,10 @@ void main() {
     if (lane == 0u) {
       sLoops += 1u + sRound + 10u * (VGEO_TRAVERSAL_WORKGROUP / 8u);
       sRound = 0u;
+#ifdef VGEO_PROFILE
+      const uint testMask = (1u << kTestBits) - 1u;
+      profileIteration(sDone, sEntryCounts[0] & testMask, sEntryCounts[1] & testMask, sCount);
+#endif
       // After the barrier: every child these items produced was reserved before they count as done.
       if (sDone != 0u) atomicAdd(counters.itemsDone, sDone);
       sDone = 0u;

@@ -89,6 +89,45 @@ TEST_F(Render, GpuDrawListEqualsCpuCutForAllTraversals) {
   }
 }
 
+TEST_F(Render, WorkerProfileAccountsForEveryItem) {
+  // The profiled persistent traversal (a pipeline of its own) lists the same cut, and its records hold
+  // every queue item once, in stamps that follow each other (begin <= start <= claimed <= taken <= end <=
+  // exit), so that the benchmark's summary of them can be trusted.
+  GpuRenderer renderer(*vk, *grid, kW, kH);
+  if (!renderer.canProfileWorkers()) GTEST_SKIP() << "no shader device clock on " << vk->deviceName();
+  const uint32_t workgroups = renderer.persistentWorkgroups();
+  for (float tau : {1.0f, 4.0f}) {
+    FrameSettings s = settingsFor(*grid, test::orbit(*grid, 0.7f, 0.4f, 1.4f), tau, Traversal::Persistent);
+    s.readImage = false;
+    s.profileWorkers = true;
+    FrameResult result = renderer.renderFrame(s);
+    ASSERT_TRUE(result.complete);
+    std::string difference;
+    EXPECT_TRUE(compareCuts(selectSceneCut(*grid, s.cullView, tau), result.drawList, difference)) << difference;
+    ASSERT_EQ(result.workerProfile.size(), size_t(workgroups) * VGEO_PROFILE_WORKER_WORDS);
+    auto at = [&](size_t w) { return uint64_t(result.workerProfile[w]) | uint64_t(result.workerProfile[w + 1]) << 32; };
+    uint64_t items = 0;
+    for (uint32_t g = 0; g < workgroups; g++) {
+      const size_t base = size_t(g) * VGEO_PROFILE_WORKER_WORDS;
+      const uint32_t recorded = result.workerProfile[base], iterations = result.workerProfile[base + 1], polls = result.workerProfile[base + 2];
+      ASSERT_EQ(recorded, iterations - polls) << "workgroup " << g << " took items in more iterations than it recorded";
+      uint64_t last = at(base + 4);
+      for (uint32_t i = 0; i < recorded; i++) {
+        const size_t r = base + VGEO_PROFILE_HEADER_WORDS + size_t(i) * VGEO_PROFILE_ITERATION_WORDS;
+        for (size_t stamp = r; stamp < r + 8; stamp += 2) {
+          EXPECT_LE(last, at(stamp)) << "workgroup " << g << " iteration " << i;
+          last = at(stamp);
+        }
+        EXPECT_GT(result.workerProfile[r + 8], 0u);
+        items += result.workerProfile[r + 8];
+      }
+      EXPECT_LE(last, at(base + 6)) << "workgroup " << g << " exit";
+    }
+    EXPECT_EQ(items, result.counters.itemsDone) << "tau " << tau;
+    EXPECT_GT(items, 0u);
+  }
+}
+
 TEST_F(Render, LargeSceneDrawListEqualsCpuCut) {
   // Past VGEO_CULL_SPREAD_INSTANCES instances the renderer culls with one lane an instance, and on lavapipe
   // always; both lane counts give the same cut in a scene of many instances too.
