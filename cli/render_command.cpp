@@ -83,10 +83,13 @@ int runRender(const RenderArgs& a) {
   FrameResult result;
   uint32_t queueOverflows = 0, drawOverflows = 0, triangleOverflows = 0, patchOverflows = 0, frames = 0;
   for (uint32_t f = 0; f < std::max(a.frames, 1u) || !result.complete; f++) {
-    if (f >= a.frames + 4) throw std::runtime_error("frames keep overflowing after growing the buffers 4 times");
+    if (f >= a.frames + 12) throw std::runtime_error("frames keep overflowing after growing the buffers and the workers 12 times");
     result = renderer.renderFrame(settings);
     frames++;
-    if (!result.complete) {
+    if (result.workersRanOut) {
+      std::fprintf(stderr, "frame %u: the traversal's workers ran out of their iteration budget; %u workers next\n", frames,
+                   renderer.persistentWorkgroups());
+    } else if (!result.complete) {
       queueOverflows += result.counters.queueOverflow;
       drawOverflows += result.counters.drawOverflow;
       triangleOverflows += result.counters.triangleOverflow;

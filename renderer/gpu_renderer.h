@@ -43,6 +43,8 @@ struct FrameResult {
   std::string timing;              // "gpu-timestamps" or "host-per-submission"
   std::vector<uint32_t> workerProfile;  // when profiled: VGEO_PROFILE_WORKER_WORDS words a workgroup (shaderio.h)
   bool complete = true;            // no overflow and the traversal drained its queue
+  bool workersRanOut = false;      // not drained: every persistent worker left on its iteration budget
+                                   // (lavapipe); the next frame runs twice as many
 };
 
 class GpuRenderer {
@@ -67,6 +69,10 @@ class GpuRenderer {
   // Overrides the persistent traversal's workgroup count (benchmarks; the default is what the device
   // runs at once).
   void setPersistentWorkgroups(uint32_t count) { persistentWorkgroups_ = std::max(count, 1u); }
+  // Loop iterations after which a persistent worker leaves (lavapipe only; tests make it tiny).
+  void setIterationBudget(uint32_t iterations) {
+    if (iterationBudget_ != 0) iterationBudget_ = std::max(iterations, 1u);
+  }
 
  private:
   void createTargets();

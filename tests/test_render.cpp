@@ -128,6 +128,28 @@ TEST_F(Render, WorkerProfileAccountsForEveryItem) {
   }
 }
 
+TEST_F(Render, WorkersThatRunOutOfBudgetAreDoubled) {
+  // lavapipe's workers leave after an iteration budget (GPU-NOTES 1). When all of them left before the
+  // queue drained, the frame is reported incomplete (no exception), and the next frames run twice as
+  // many workers on a fresh queue until one drains it: the same cut as the CPU's.
+  if (!vk->isLavapipe()) GTEST_SKIP() << "the iteration budget applies on lavapipe only";
+  GpuRenderer renderer(*vk, *grid, kW, kH);
+  renderer.setPersistentWorkgroups(1);
+  renderer.setIterationBudget(1);  // one iteration a worker (up to 64 items)
+  FrameSettings s = settingsFor(*grid, test::orbit(*grid, 0.7f, 0.4f, 1.4f), 1.0f, Traversal::Persistent);
+  s.readImage = false;
+  FrameResult first = renderer.renderFrame(s);
+  EXPECT_TRUE(first.workersRanOut);
+  EXPECT_FALSE(first.complete);
+  EXPECT_EQ(renderer.persistentWorkgroups(), 2u);
+  FrameResult next = first;
+  for (int i = 0; i < 16 && !next.complete; i++) next = renderer.renderFrame(s);
+  ASSERT_TRUE(next.complete);
+  EXPECT_GE(renderer.persistentWorkgroups(), 2u);
+  std::string difference;
+  EXPECT_TRUE(compareCuts(selectSceneCut(*grid, s.cullView, 1.0f), next.drawList, difference)) << difference;
+}
+
 TEST_F(Render, LargeSceneDrawListEqualsCpuCut) {
   // Past VGEO_CULL_SPREAD_INSTANCES instances the renderer culls with one lane an instance, and on lavapipe
   // always; both lane counts give the same cut in a scene of many instances too.
