@@ -44,7 +44,10 @@ nlohmann::ordered_json summarizeWorkerProfile(const std::vector<uint32_t>& words
   j["workgroups"] = workgroups;
   j["iterations"] = iterations;
   j["iterations_with_items"] = working;
-  j["iterations_recorded"] = recorded;  // fewer than iterations_with_items: a worker's first VGEO_PROFILE_ITERATIONS only
+  j["iterations_recorded"] = recorded;
+  // A worker records its first VGEO_PROFILE_ITERATIONS iterations with items only (lavapipe's few workers
+  // run hundreds): then the times of the last item and the tail are of the recorded ones.
+  j["truncated"] = recorded < working;
   j["polls"] = polls;
   if (begin == UINT64_MAX) return j;
   j["span_ticks"] = exit - begin;  // first worker's start to last worker's exit
