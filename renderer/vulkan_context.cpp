@@ -157,9 +157,7 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
     }
   const char* clockExtension = VK_KHR_SHADER_CLOCK_EXTENSION_NAME;
   VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
-  if (deviceClock_) {
-    clock.shaderSubgroupClock = VK_FALSE;
-    clock.pNext = nullptr;
+  if (deviceClock_) {  // `clock` holds the supported features: enabled as they are
     deviceInfo.pNext = &clock;
     deviceInfo.enabledExtensionCount = 1;
     deviceInfo.ppEnabledExtensionNames = &clockExtension;
