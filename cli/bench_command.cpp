@@ -68,7 +68,7 @@ namespace {
 struct BenchArgs {
   std::string input, output, sizes = "1,10,100,1000,10000,100000", layouts = "grid,scatter", taus = "1,4",
                              traversals = "persistent,levels,flat,cpu", size = "1920x1080", device;
-  uint32_t frames = 5, cpuMaxInstances = 1000, flatMaxInstances = 10000, workgroups = 0;
+  uint32_t frames = 5, cpuMaxInstances = 1000, flatMaxInstances = 10000, workgroups = 0, sweepBudget = kDefaultSweepBudget;
   bool profileWorkers = false;
   float fov = 60.0f;
 };
@@ -95,6 +95,7 @@ void runBenchCut(const BenchArgs& a) {
             FrameSettings s;
             s.drawView = s.cullView = makeView(camera, width, height, scene.bounds);
             s.tau = tau;
+            s.sweepBudget = a.sweepBudget;
             // On a GPU every frame also draws (not timed: the traversal has its own timestamps): selection
             // alone left an H100 idle most of the time, its clock dropped within ~100 ms, and the same
             // traversal then measured 2-4x slower. lavapipe has no clocks to keep up: selection only.
@@ -150,6 +151,8 @@ void runBenchCut(const BenchArgs& a) {
               r["queue_high_water"] = c.queueHighWater;
               if (s.traversal == Traversal::Persistent) {
                 r["workgroups"] = renderer.persistentWorkgroups();
+                r["sweep_budget"] = a.sweepBudget;
+                r["swept_tests"] = c.sweptTests;
                 // One more frame, profiled (not timed: the stamps cost time of their own).
                 if (a.profileWorkers && renderer.canProfileWorkers()) {
                   FrameSettings p = s;
@@ -190,6 +193,8 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
   cut->add_option("--cpu-max-instances", a->cpuMaxInstances, "Largest scene the CPU reference runs on")->capture_default_str();
   cut->add_option("--flat-max-instances", a->flatMaxInstances, "Largest scene the flat traversal runs on")->capture_default_str();
   cut->add_option("--workgroups", a->workgroups, "Persistent traversal workgroups (default: the renderer's)");
+  cut->add_option("--sweep-budget", a->sweepBudget, "Persistent traversal: cluster tests a frame may sweep instead of walking (0: none)")
+      ->capture_default_str();
   cut->add_flag("--profile-workers", a->profileWorkers,
                 "Persistent records: one more frame with the workers' iterations timed in the shader (needs VK_KHR_shader_clock)");
   cut->add_option("--device", a->device, "Use the first Vulkan device whose name contains this");

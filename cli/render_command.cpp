@@ -40,7 +40,8 @@ bool parseCamera(const std::string& text, Camera& camera) {
 struct RenderArgs {
   std::string input, output, stats, camera, freezeCamera, mode = "lit", traversal = "persistent", size = "1280x720", device;
   float fov = 60.0f, tau = 1.0f;
-  uint32_t grid = 1, frames = 2, queueCapacity = 0, drawCapacity = 0, triangleCapacity = 0, workgroups = 0;
+  uint32_t grid = 1, frames = 2, queueCapacity = 0, drawCapacity = 0, triangleCapacity = 0, workgroups = 0, cullLanes = 0;
+  uint32_t sweepBudget = kDefaultSweepBudget;
   bool compareCpu = false, validate = false, noTriangleCull = false, noPatches = false;
 };
 
@@ -73,6 +74,8 @@ int runRender(const RenderArgs& a) {
   settings.cullView = makeView(cullCamera, width, height, scene.bounds);
   settings.tau = a.tau;
   settings.mode = kModes.at(a.mode);
+  settings.sweepBudget = a.sweepBudget;
+  settings.cullLanes = a.cullLanes;
   settings.traversal = traversal;
   settings.readDrawList = a.compareCpu;
   settings.triangleCull = !a.noTriangleCull;
@@ -142,6 +145,7 @@ int runRender(const RenderArgs& a) {
   j["patch_overflows"] = patchOverflows;
   j["queue_high_water"] = c.queueHighWater;
   j["persistent_workgroups"] = renderer.persistentWorkgroups();
+  j["swept_tests"] = c.sweptTests;
   j["instance_cull_ms"] = result.instanceCullMs;
   j["traversal_ms"] = result.traversalMs;
   j["triangle_cull_ms"] = result.triangleCullMs;
@@ -206,6 +210,10 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_flag("--no-patches", a->noPatches,
                 "Draw leaf clusters as their triangles even where their chord error projects above tau (default: tessellated limit-surface patches)");
   cmd->add_option("--workgroups", a->workgroups, "Persistent traversal workgroups (default: as many as the device runs at once)");
+  cmd->add_option("--sweep-budget", a->sweepBudget, "Persistent traversal: cluster tests a frame may sweep instead of walking (0: none)")
+      ->capture_default_str();
+  cmd->add_option("--cull-lanes", a->cullLanes, "Lanes instance culling gives an instance, 1 or 8 (default: the renderer's; sweeps need 8)")
+      ->check(CLI::IsMember({1u, 8u}));
   cmd->callback([a, &exitCode] {
     try {
       exitCode = runRender(*a);

@@ -15,6 +15,9 @@ nlohmann::ordered_json summarizeWorkerProfile(const std::vector<uint32_t>& words
   uint64_t begin = UINT64_MAX, exit = 0, firstStart = UINT64_MAX, lastEnd = 0, iterations = 0, polls = 0, pollTicks = 0,
            working = 0, recorded = 0, items = 0, tests = 0, busy = 0;
   std::vector<double> claim, take, rounds, whole;
+  std::vector<uint64_t> begins;
+  struct Taken { uint64_t start, end; uint32_t items; };
+  std::vector<Taken> takenItems;
   for (uint32_t g = 0; g < workgroups; g++) {
     const size_t base = size_t(g) * VGEO_PROFILE_WORKER_WORDS;
     if (base + VGEO_PROFILE_WORKER_WORDS > words.size()) break;
@@ -25,6 +28,7 @@ nlohmann::ordered_json summarizeWorkerProfile(const std::vector<uint32_t>& words
     working += words[base + 1] - words[base + 2];
     recorded += n;
     begin = std::min(begin, at(base + 4));
+    begins.push_back(at(base + 4));
     exit = std::max(exit, at(base + 6));
     for (uint32_t i = 0; i < n; i++) {
       const size_t r = base + VGEO_PROFILE_HEADER_WORDS + size_t(i) * VGEO_PROFILE_ITERATION_WORDS;
@@ -37,6 +41,7 @@ nlohmann::ordered_json summarizeWorkerProfile(const std::vector<uint32_t>& words
       whole.push_back(double(end - start));
       busy += end - start;
       items += words[r + 8];
+      takenItems.push_back({start, end, words[r + 8]});
       tests += uint64_t(words[r + 9]) + words[r + 10];
     }
   }
@@ -63,6 +68,14 @@ nlohmann::ordered_json summarizeWorkerProfile(const std::vector<uint32_t>& words
     j["tests_per_iteration"] = double(tests) / double(recorded);
     // Share of the workers' time spent in iterations that took items.
     j["busy_share"] = double(busy) / (double(workgroups) * double(exit - begin));
+    // The frame as a timeline of 1,000-tick (1 us on NVIDIA) steps from the first worker's start: workers
+    // started, and items taken by iterations that started, in each step.
+    const size_t steps = size_t((exit - begin) / 1000 + 1);
+    std::vector<uint64_t> started(steps), itemsAt(steps);
+    for (uint64_t b : begins) started[std::min<size_t>((b - begin) / 1000, steps - 1)]++;
+    for (const Taken& t : takenItems) itemsAt[std::min<size_t>((t.start - begin) / 1000, steps - 1)] += t.items;
+    j["workers_started_per_1000_ticks"] = started;
+    j["items_taken_per_1000_ticks"] = itemsAt;
   }
   if (polls != 0) j["poll_ticks_mean"] = double(pollTicks) / double(polls);
   return j;

@@ -23,7 +23,8 @@
 namespace vgeo {
 namespace {
 
-constexpr uint32_t kSceneBindings = 15;  // bindings 1..9: geometries .. BVH nodes; 13: cluster cones; 15..19: patches
+constexpr uint32_t kSceneBindings = 16;  // bindings 1..9: geometries .. BVH nodes; 13: cluster cones; 15..19: patches;
+                                         // 22: level subtrees' cluster runs
 // lavapipe ends every loop after 65,535 iterations per invocation (GPU-NOTES 1): persistent workers
 // leave on their own well before, holding nothing, and enough of them are dispatched to carry on.
 constexpr uint32_t kLavapipeIterationBudget = 50000;
@@ -91,7 +92,12 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
       {d.cageFaceVertices.data(), d.cageFaceVertices.size() * sizeof(uint32_t)},
       {d.patches.data(), d.patches.size() * sizeof(shaderio::Patch)},
       {d.patchPoints.data(), d.patchPoints.size() * sizeof(uint32_t)},
+      {scene.levelClusterRuns.data(), scene.levelClusterRuns.size() * sizeof(glm::uvec2)},
   };
+  // Sweep runs carry their length above the instance index (shaderio.h, VGEO_ITEM_RUN_BIT).
+  if (d.instances.size() >= (size_t(1) << VGEO_RUN_INSTANCE_BITS))
+    throw std::runtime_error("scene too large: " + std::to_string(d.instances.size()) + " instances (at most " +
+                             std::to_string((1u << VGEO_RUN_INSTANCE_BITS) - 1) + ")");
   for (const auto& s : sections) {
     if (s.bytes > range)
       throw std::runtime_error("scene too large for this device: a buffer of " + std::to_string(s.bytes >> 20) +
@@ -227,9 +233,10 @@ void GpuRenderer::writeDescriptors() {
   buffers.push_back(&drawList_);
   buffers.push_back(&sceneBuffers_[9]);
   buffers.push_back(&triangleList_);
-  for (uint32_t i = 10; i < kSceneBindings; i++) buffers.push_back(&sceneBuffers_[i]);
+  for (uint32_t i = 10; i < 15; i++) buffers.push_back(&sceneBuffers_[i]);
   buffers.push_back(&patchList_);
   buffers.push_back(&workerProfile_);
+  buffers.push_back(&sceneBuffers_[15]);
   VkDescriptorBufferInfo infos[kRendererBindings];
   VkWriteDescriptorSet writes[kRendererBindings];
   for (uint32_t i = 0; i < kRendererBindings; i++) {
@@ -375,6 +382,7 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
   frame.claimMode = claimMode_;
   frame.queueRoots = settings.traversal == Traversal::Flat ? 1u : 0u;
   frame.cullInstanceLanes = cullInstanceLanes(settings);
+  frame.sweepBudget = settings.traversal == Traversal::Persistent ? settings.sweepBudget : 0u;
   const bool cullTriangles = settings.draw && settings.triangleCull;
   frame.triangleCull = cullTriangles ? 1u : 0u;
   frame.triangleCapacity = triangleCapacity_;

@@ -15,6 +15,9 @@ namespace vgeo {
 
 enum class Traversal { Persistent, Levels, Flat };
 
+// FrameSettings::sweepBudget unless set (bench/README.md, "Sweeps").
+constexpr uint32_t kDefaultSweepBudget = 1u << 18;
+
 struct FrameSettings {
   View drawView;             // the picture
   View cullView;             // selection and culling (== drawView unless the cut is frozen)
@@ -28,6 +31,10 @@ struct FrameSettings {
   bool patches = true;       // leaves too coarse for tau drawn as tessellated patches (needs triangleCull)
   uint32_t cullLanes = 0;    // lanes instance culling gives an instance: 0 the renderer's choice, else 1 or
                              // VGEO_CULL_INSTANCE_LANES (tests run both)
+  // Persistent traversal: cluster tests a frame may spend sweeping whole simplification levels of an
+  // instance (a run of clusters tested at once, one step) instead of walking their subtrees (a chain of
+  // dependent steps); claimed level by level in instance culling until spent. 0: never sweep.
+  uint32_t sweepBudget = kDefaultSweepBudget;
   bool profileWorkers = false;  // persistent traversal on a device with a shader device clock: record the
                                 // workers' iterations in FrameResult::workerProfile (benchmarks)
 };
@@ -105,7 +112,7 @@ class GpuRenderer {
 
   Buffer frameData_, counters_, countersReadback_, queue_, drawList_, drawListReadback_, imageReadback_, triangleList_, patchList_,
       workerProfile_;  // host-visible; a placeholder until a frame is profiled
-  std::vector<Buffer> sceneBuffers_;  // bindings 1..9, then 13, then 15..19
+  std::vector<Buffer> sceneBuffers_;  // bindings 1..9, then 13, then 15..19, then 22
   VkImage color_ = VK_NULL_HANDLE, depth_ = VK_NULL_HANDLE;
   VkDeviceMemory colorMemory_ = VK_NULL_HANDLE, depthMemory_ = VK_NULL_HANDLE;
   VkImageView colorView_ = VK_NULL_HANDLE, depthView_ = VK_NULL_HANDLE;
@@ -127,6 +134,6 @@ const char* traversalName(Traversal t);
 
 // Binding count of the one descriptor set (common.glsl): 0 frame data, 1..9, 13 and 15..19 the scene,
 // 10 counters, 11 queue, 12 draw list, 14 triangle list, 20 patch list, 21 worker profile.
-constexpr uint32_t kRendererBindings = 22;
+constexpr uint32_t kRendererBindings = 23;
 
 }  // namespace vgeo

@@ -185,6 +185,32 @@ void finishScene(RenderScene& scene) {
     scene.maxBvhDepth = std::max(scene.maxBvhDepth, scene.bvhDepth[g]);
     scene.maxClusters = std::max(scene.maxClusters, d.geometries[g].clusterCount);
   }
+  // Level subtrees' cluster runs (the layout stores groups in BVH leaf order and clusters in group order,
+  // so each is one run; checked here, not assumed).
+  scene.levelClusterRuns.assign(d.nodes.size(), glm::uvec2(0));
+  for (const auto& geometry : d.geometries) {
+    const auto& root = d.nodes[geometry.nodeOffset];
+    if (root.childCountAndFlags & VGEO_NODE_LEAF_BIT) continue;
+    for (uint32_t i = 0; i < (root.childCountAndFlags & ~VGEO_NODE_LEAF_BIT); i++) {
+      uint32_t first = UINT32_MAX, end = 0;
+      uint64_t count = 0;
+      std::function<void(uint32_t)> visit = [&](uint32_t n) {
+        const auto& node = d.nodes[n];
+        for (uint32_t c = 0; c < (node.childCountAndFlags & ~VGEO_NODE_LEAF_BIT); c++) {
+          if (!(node.childCountAndFlags & VGEO_NODE_LEAF_BIT)) {
+            visit(node.childOffset + c);
+            continue;
+          }
+          const auto& group = d.groups[node.childOffset + c];
+          first = std::min(first, group.clusterOffset);
+          end = std::max(end, group.clusterOffset + group.clusterCount);
+          count += group.clusterCount;
+        }
+      };
+      visit(root.childOffset + i);
+      if (count != 0 && end - first == count) scene.levelClusterRuns[root.childOffset + i] = glm::uvec2(first, uint32_t(count));
+    }
+  }
   // Bounds: centred on the AABB of the instances' spheres, with the radius that encloses them all.
   std::vector<uint64_t> leafTriangles(d.geometries.size(), 0);
   for (size_t g = 0; g < d.geometries.size(); g++)

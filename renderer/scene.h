@@ -17,6 +17,10 @@ struct RenderScene {
   glm::vec4 bounds{0.0f};         // world-space sphere around every instance
   glm::vec3 boxMin{0.0f}, boxMax{0.0f};  // world-space box around every instance's sphere
   uint64_t virtualTriangles = 0;  // leaf triangles summed over instances
+  // Per BVH node: for a simplification level's subtree root (a child of a geometry's root), the run of
+  // clusters below it as (first cluster, count), what a sweep tests instead of walking the subtree;
+  // (0, 0) for other nodes and for a subtree whose clusters are not one run.
+  std::vector<glm::uvec2> levelClusterRuns;
 };
 
 // Loads a .vgeo, or a scene file (JSON, see README: geometries by path, instances with transforms),

@@ -202,6 +202,13 @@ uint patchWordCount(uint info) {
 
 #define VGEO_INVALID 0xffffffffu
 #define VGEO_ITEM_GROUP_BIT 0x80000000u  // queue item names a group, not a BVH node
+// Sweep run (persistent traversal): the item's code is VGEO_ITEM_RUN_BIT | first cluster, and its instance
+// word carries (run length - 1) << VGEO_RUN_INSTANCE_BITS above the instance index: up to VGEO_SWEEP_RUN
+// clusters of one simplification level, tested without walking its subtree. Instances are 64 bytes, so a
+// storage buffer (maxStorageBufferRange <= 2^32) holds fewer than 2^26 of them.
+#define VGEO_ITEM_RUN_BIT 0x40000000u
+#define VGEO_RUN_INSTANCE_BITS 26u
+#define VGEO_SWEEP_RUN 64u
 #define VGEO_TRAVERSAL_WORKGROUP 64
 // Worker profile (traverse_persistent.comp built with VGEO_PROFILE, binding 21; vgeo bench cut
 // --profile-workers): per workgroup VGEO_PROFILE_WORKER_WORDS words. Header: [0] working iterations
@@ -245,7 +252,8 @@ struct FrameData {
   uint queueRoots;       // 1 (flat traversal): instance culling queues (instance, root) for each visible
                          // instance; 0: it tests the root's children and queues those
   uint cullInstanceLanes; // cull_instances.comp: lanes an instance, 1 or VGEO_CULL_INSTANCE_LANES
-  uint framePad0, framePad1;
+  uint sweepBudget;      // persistent traversal: cluster tests a frame may spend sweeping levels (0: none)
+  uint framePad1;
 };
 
 // GPU counters of one frame, and the indirect arguments built from them.
@@ -273,6 +281,11 @@ struct Counters {
   uint patchOverflow;    // patches that did not fit the patch list
   uint patchClusters;    // draw-list entries drawn as patches
   uint patchDraw[4];     // VkDrawIndirectCommand of the patch draw (one vertex a patch)
+  uint sweepTests;       // cluster tests claimed for sweeps (may pass frame.sweepBudget: then not swept)
+  uint sweptTests;       // of those, swept
+  uint nodesPending;     // node items queued and not yet finished: only they produce items, so at 0 the
+                         // queue is final (persistent traversal termination)
+  uint counterPad1;
 };
 
 // Triangle list entry: draw-list entry << 7 | triangle within its cluster. Patch list entry: draw-list
@@ -345,7 +358,7 @@ static_assert(sizeof(CageFace) == 16, "CageFace layout");
 static_assert(sizeof(ClusterCone) == 32, "ClusterCone layout");
 static_assert(sizeof(Patch) == 48, "Patch layout");
 static_assert(sizeof(FrameData) == 64 + 96 + 32 + 80, "FrameData layout");
-static_assert(sizeof(Counters) == 128, "Counters layout");
+static_assert(sizeof(Counters) == 144, "Counters layout");
 }  // namespace shaderio
 #endif
 

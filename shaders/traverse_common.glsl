@@ -48,11 +48,16 @@ uint reserveQueue(uint count) {
 // a frame, and both words are VGEO_INVALID until then), so neither side needs a memory barrier: on an
 // H100 a barrier and an atomic exchange per child were a large part of each step of the traversal's
 // chain of dependent steps.
-void writeQueue(uint slot, uint instance, uint code) {
-  if (slot >= frame.queueCapacity) return;
+// Returns whether the slot exists (false: the item was dropped as overflow).
+bool writeQueue(uint slot, uint instance, uint code) {
+  if (slot >= frame.queueCapacity) return false;
   queue[2 * slot + 1] = code;
   queue[2 * slot] = instance;
+  return true;
 }
+
+// Queue slots [first, first + count) that exist (the rest were dropped as overflow).
+uint slotsKept(uint first, uint count) { return first >= frame.queueCapacity ? 0u : min(count, frame.queueCapacity - first); }
 
 bool slotWritten(uint slot) {
   return queue[2 * slot] != VGEO_INVALID && queue[2 * slot + 1] != VGEO_INVALID;  // coherent loads
@@ -145,6 +150,7 @@ void processItem(uint instance, uint code) {
   uint kept = bitCount(keep.x) + bitCount(keep.y);
   if (kept == 0u) return;
   uint slot = reserveQueue(kept);
+  if (!leaf) atomicAdd(counters.nodesPending, slotsKept(slot, kept));
   for (uint word = 0u; word < 2u; word++) {
     for (uint bits = keep[word]; bits != 0u; bits &= bits - 1u) {
       gLoops++;

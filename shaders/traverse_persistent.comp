@@ -6,15 +6,21 @@
 //
 // Claiming (frame.claimMode):
 //   0  past the frontier (GPUs): one atomicAdd claims a batch of slots, produced or not; each lane keeps
-//      its slot until a producer fills it. The batch follows the backlog: the items written and not yet
-//      claimed shared over the workgroups, from kMinBatch (a chain of single items, as in a close view of
-//      a few instances: spread over many workgroups) to 64 (100,000 instances: fewer claims).
+//      its slot until a producer fills it. The batch follows the backlog (the items written and not yet
+//      claimed, read beside the previous iteration's slots, shared over the workgroups), from kMinBatch
+//      (a chain of single items, as in a close view of a few instances: spread over many workgroups) to
+//      64 (100,000 instances: fewer claims).
 //   1  written items only (lavapipe): the lanes find the written prefix after the read position and
 //      lane 0 claims it by compare-and-swap; nobody waits on a slot, a workgroup holds nothing between
 //      iterations, so it can leave on the iteration budget (lavapipe ends loops silently after 65,535
 //      iterations per invocation, all loops counted, GPU-NOTES 1: every loop here counts into gLoops).
-// Termination: itemsDone == queueWrite (read in that order) means nothing is in flight and nothing can
-// be produced any more; overflowed items count as done.
+// Termination: only node items produce items, and counters.nodesPending counts those queued and not yet
+// finished (a producer adds its children before it takes itself off, on the same counter). At 0 nothing
+// more will be written: every slot below the last reservation is then visible (instance culling's, before
+// this dispatch) or was a node item, taken already. So a worker that sees 0 lets go of the slots it holds
+// unfilled and leaves: they lie past the end, and every item before them is claimed. One load, read beside
+// the slots (the itemsDone == queueWrite test it replaces took two in a row, every 4th poll: ~8 us after
+// the last item on an H100).
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_ballot : require
@@ -36,8 +42,11 @@ shared uint sLoops;    // loop iterations so far, as lavapipe counts them (see b
 shared uint sRound;    // the most inner-loop iterations any lane ran this iteration
 shared uint sRead, sReserved, sWritten, sClaiming;  // claim mode 1
 shared uint sDone;     // items this workgroup finished this iteration (added to itemsDone once)
-shared uint sQuiet;    // claim mode 0: nothing is in flight any more (checked by lane 0 for all)
-shared uint sPolls;    // claim mode 0: iterations in a row spent holding slots
+shared uint sDoneNodes;  // of those, node items (taken off counters.nodesPending once)
+shared uint sFinal;    // claim mode 0: no node item was pending at this iteration's take
+shared uint sLetGo;    // claim mode 0: a slot was let go as past the end (then the worker leaves)
+shared uint sBatch;    // claim mode 0: slots the next claim takes
+const uint kWatchLane = VGEO_TRAVERSAL_WORKGROUP - 1u;  // reads the counters while lanes from 0 take slots
 
 // The work of an iteration is spread over all lanes, one test a lane, in two rounds (a chain of
 // dependent steps is what a close view of a few instances waits through; one lane testing a node's
@@ -77,7 +86,11 @@ void keepItem(uint instance, uint code) {
 
 // Every lane, after the barrier that follows the last keepItem.
 void queueKept(uint lane) {
-  if (lane == 0u) sKeepFirst = reserveQueue(sKeepCount);
+  if (lane == 0u) {
+    sKeepFirst = reserveQueue(sKeepCount);
+    // Before this workgroup takes its own items off (the end of the iteration, the same lane and counter).
+    atomicAdd(counters.nodesPending, slotsKept(sKeepFirst, sKeepCount));
+  }
   barrier();
   for (uint k = lane; k < sKeepCount; k += VGEO_TRAVERSAL_WORKGROUP) {
     gLoops++;
@@ -100,17 +113,26 @@ void addEntry(uint round, uint instance, uint first, uint tests, uint kind) {
   sEntryKind[e] = kind;
 }
 
-// A taken queue item becomes a round-1 entry.
-void takeItem(uint instance, uint code) {
+// A sweep run (cull_instances.comp) is a round-1 or round-2 entry of its clusters, tested with the cut rule.
+bool addRun(uint round, uint instance, uint code) {
+  if ((code & (VGEO_ITEM_GROUP_BIT | VGEO_ITEM_RUN_BIT)) != VGEO_ITEM_RUN_BIT) return false;
+  addEntry(round, instance & ((1u << VGEO_RUN_INSTANCE_BITS) - 1u), code & ~VGEO_ITEM_RUN_BIT, (instance >> VGEO_RUN_INSTANCE_BITS) + 1u, kClusters);
+  return true;
+}
+
+// A taken queue item becomes a round-1 entry. Returns whether it is a node item.
+bool takeItem(uint instance, uint code) {
+  if (addRun(0u, instance, code)) return false;
   gNodes++;
   if ((code & VGEO_ITEM_GROUP_BIT) != 0u) {
     Group g = groups[code & ~VGEO_ITEM_GROUP_BIT];
     addEntry(0u, instance, g.clusterOffset, g.clusterCount, kClusters);
-  } else {
-    BvhNode node = nodes[code];
-    bool leaf = (node.childCountAndFlags & VGEO_NODE_LEAF_BIT) != 0u;
-    addEntry(0u, instance, node.childOffset, node.childCountAndFlags & ~VGEO_NODE_LEAF_BIT, leaf ? kGroupChildren : kNodeChildren);
+    return false;
   }
+  BvhNode node = nodes[code];
+  bool leaf = (node.childCountAndFlags & VGEO_NODE_LEAF_BIT) != 0u;
+  addEntry(0u, instance, node.childOffset, node.childCountAndFlags & ~VGEO_NODE_LEAF_BIT, leaf ? kGroupChildren : kNodeChildren);
+  return true;
 }
 
 // A child of an entry, whoever tests it. Returns the draw-list code of a cluster to draw, or VGEO_INVALID.
@@ -129,22 +151,15 @@ uint testChild(uint instance, uint child, uint kind) {
   return VGEO_INVALID;
 }
 
-// Appends (instance, draw) to the draw list for the calling lanes whose draw is not VGEO_INVALID, with one
-// atomic a subgroup (one a cluster, on one counter, was measured to cost up to 0.1 ms at 100,000 instances).
-void appendDraws(uint instance, uint draw) {
-  uint index;
-  SUBGROUP_ATOMIC_ADD(counters.drawCount, draw != VGEO_INVALID ? 1u : 0u, index);
-  if (draw != VGEO_INVALID) writeDraw(index, instance, draw);
-}
-
 // A taken item whose children its own lane tests, for large batches (100,000 instances): spreading them
 // costs more than it saves once every lane has an item (far views 3-5% slower on an H100).
-void takeItemSerial(uint instance, uint code) {
+bool takeItemSerial(uint instance, uint code) {
+  if (addRun(1u, instance, code)) return false;
   gNodes++;
   if ((code & VGEO_ITEM_GROUP_BIT) != 0u) {
     Group g = groups[code & ~VGEO_ITEM_GROUP_BIT];
     addEntry(1u, instance, g.clusterOffset, g.clusterCount, kClusters);
-    return;
+    return false;
   }
   BvhNode node = nodes[code];
   uint count = node.childCountAndFlags & ~VGEO_NODE_LEAF_BIT;
@@ -153,24 +168,43 @@ void takeItemSerial(uint instance, uint code) {
     gLoops++;
     testChild(instance, node.childOffset + i, kind);  // node or group children: nothing to draw
   }
+  return true;
 }
 
-// Every lane calls it after a barrier, with the round's entry count uniform and non-zero.
+// Every lane calls it after a barrier, with the round's entry count uniform and non-zero. A lane runs
+// kLaneTests tests before it appends what they drew, with one draw-list atomic a subgroup: an atomic
+// after every test put its round trip between each test and the next (a worker of a close view ran 4
+// tests a lane in ~7 us on an H100).
+const uint kLaneTests = 4u;
 void runRound(uint round, uint lane) {
   const uint base = round == 0u ? 0u : kRound2;
   const uint entries = sEntryCounts[round] >> kTestBits;
   const uint tests = sEntryCounts[round] & ((1u << kTestBits) - 1u);
-  for (uint k = lane; k < tests; k += VGEO_TRAVERSAL_WORKGROUP) {
+  for (uint first = lane; first < tests; first += kLaneTests * VGEO_TRAVERSAL_WORKGROUP) {
     gLoops++;
-    uint lo = base, hi = base + entries - 1u;  // the last entry starting at or before k
-    while (lo < hi) {
+    uint drawInstance[kLaneTests], draw[kLaneTests], drawn = 0u;
+    for (uint t = 0u; t < kLaneTests; t++) {
       gLoops++;
-      uint mid = (lo + hi + 1u) / 2u;
-      if (sEntryStart[mid] <= k) lo = mid;
-      else hi = mid - 1u;
+      uint k = first + t * VGEO_TRAVERSAL_WORKGROUP;
+      draw[t] = VGEO_INVALID;
+      if (k >= tests) continue;
+      uint lo = base, hi = base + entries - 1u;  // the last entry starting at or before k
+      while (lo < hi) {
+        gLoops++;
+        uint mid = (lo + hi + 1u) / 2u;
+        if (sEntryStart[mid] <= k) lo = mid;
+        else hi = mid - 1u;
+      }
+      drawInstance[t] = sEntryInstance[lo];
+      draw[t] = testChild(drawInstance[t], sEntryFirst[lo] + k - sEntryStart[lo], sEntryKind[lo]);
+      if (draw[t] != VGEO_INVALID) drawn++;
     }
-    uint instance = sEntryInstance[lo];
-    appendDraws(instance, testChild(instance, sEntryFirst[lo] + k - sEntryStart[lo], sEntryKind[lo]));
+    uint index;
+    SUBGROUP_ATOMIC_ADD(counters.drawCount, drawn, index);
+    for (uint t = 0u; t < kLaneTests; t++) {
+      gLoops++;
+      if (draw[t] != VGEO_INVALID) writeDraw(index++, drawInstance[t], draw[t]);
+    }
   }
   noteLoops();
   barrier();
@@ -219,18 +253,6 @@ void profileExit() {  // lane 0
 #define PROFILE_STAMP(t)
 #endif
 
-// Nothing in flight, nothing more can be produced. `written`: the items reserved so far.
-bool quiescent(out uint written) {
-  uint done = counters.itemsDone;  // coherent loads, in this order
-  memoryBarrierBuffer();
-  written = counters.queueWrite;
-  return done == written;
-}
-bool quiescent() {
-  uint written;
-  return quiescent(written);
-}
-
 void main() {
   beginStats();
   const uint lane = gl_LocalInvocationIndex;
@@ -242,10 +264,17 @@ void main() {
     sRound = 0u;
     sClaiming = 0u;
     sDone = 0u;
+    sDoneNodes = 0u;
     sEntryCounts[0] = 0u;
     sEntryCounts[1] = 0u;
     sKeepCount = 0u;
-    sPolls = 0u;
+    sFinal = 0u;
+    sLetGo = 0u;
+    if (frame.claimMode == 0u) {
+      uint written = counters.queueWrite;  // instance culling's items: all there is when it is 0
+      sBatch = clamp(written / gl_NumWorkGroups.x, kMinBatch, uint(VGEO_TRAVERSAL_WORKGROUP));
+      sLetGo = written == 0u ? 1u : 0u;
+    }
   }
   for (;;) {
     barrier();
@@ -253,24 +282,14 @@ void main() {
     if (lane == 0u) {
       sExit = 0u;
       sCount = 0u;
-      // Held slots that will never be filled are let go once nothing is in flight; checked every 4th
-      // iteration only (global loads on the chain of dependent steps a traversal waits through).
-      sPolls = sHolding != 0u ? sPolls + 1u : 0u;
-      sQuiet = sHolding != 0u && (sPolls & 3u) == 0u && quiescent() ? 1u : 0u;
-      if (sHolding == 0u) {
+      if (sLetGo != 0u) {
+        sExit = 1u;  // past the end: every item is claimed (see Termination)
+      } else if (sHolding == 0u) {
         if (frame.iterationBudget != 0u && sLoops >= frame.iterationBudget) {
           sExit = 2u;
         } else if (frame.claimMode == 0u) {
-          uint written;
-          if (quiescent(written)) {
-            sExit = 1u;
-          } else {
-            uint read = counters.queueRead;
-            uint backlog = written > read ? written - read : 0u;
-            uint batch = clamp(backlog / gl_NumWorkGroups.x, kMinBatch, uint(VGEO_TRAVERSAL_WORKGROUP));
-            sBase = atomicAdd(counters.queueRead, batch);
-            sCount = batch;
-          }
+          sBase = atomicAdd(counters.queueRead, sBatch);  // one atomic on the chain of steps, nothing before it
+          sCount = sBatch;
         } else {
           sRead = atomicOr(counters.queueRead, 0u);
           sReserved = min(atomicOr(counters.queueWrite, 0u), frame.queueCapacity);
@@ -292,8 +311,8 @@ void main() {
         if (sWritten > 0u && atomicCompSwap(counters.queueRead, sRead, sRead + sWritten) == sRead) {
           sBase = sRead;
           sCount = sWritten;
-        } else if (sRead >= sReserved && quiescent()) {
-          sExit = 1u;
+        } else if (sRead >= sReserved && atomicOr(counters.nodesPending, 0u) == 0u) {
+          sExit = 1u;  // all claimed, and nothing more will be written (see Termination)
         }
       }
       barrier();
@@ -318,23 +337,31 @@ void main() {
       // Claimed slots are written (above).
       have = slot != VGEO_INVALID && takeQueue(slot, instance, code);
       slot = VGEO_INVALID;
-    } else if (slot != VGEO_INVALID) {
-      if (slot < frame.queueCapacity && takeQueue(slot, instance, code)) {
+    } else {
+      if (lane == kWatchLane) {
+        // Beside the lanes' slot reads (a lane of another subgroup than the first slots' on NVIDIA).
+        uint pending = counters.nodesPending, written = counters.queueWrite, read = counters.queueRead;
+        sFinal = pending == 0u ? 1u : 0u;
+        sBatch = clamp((written > read ? written - read : 0u) / gl_NumWorkGroups.x, kMinBatch, uint(VGEO_TRAVERSAL_WORKGROUP));
+      }
+      if (slot != VGEO_INVALID && slot < frame.queueCapacity && takeQueue(slot, instance, code)) {
         have = true;
         slot = VGEO_INVALID;
-      } else if (sQuiet != 0u) {
-        slot = VGEO_INVALID;  // will never be filled
       }
     }
-    if (have) {
-      if (sCount >= kSerialBatch) takeItemSerial(instance, code);
-      else takeItem(instance, code);
-    }
-    uint taken = subgroupAdd(have ? 1u : 0u);
+    bool node = false;
+    if (have) node = sCount >= kSerialBatch ? takeItemSerial(instance, code) : takeItem(instance, code);
+    uint taken = subgroupAdd(have ? 1u : 0u), takenNodes = subgroupAdd(node ? 1u : 0u);
     if (subgroupElect() && taken != 0u) atomicAdd(sDone, taken);
+    if (subgroupElect() && takenNodes != 0u) atomicAdd(sDoneNodes, takenNodes);
     if (lane == 0u) sHolding = 0u;
     noteLoops();
     barrier();
+    // No node item pending when the slots were read: a slot still unfilled never will be.
+    if (sFinal != 0u && slot != VGEO_INVALID) {
+      slot = VGEO_INVALID;
+      sLetGo = 1u;
+    }
     PROFILE_STAMP(pTaken);
     // The items count as done below, after both rounds: every child node they keep is reserved by then.
     if (sEntryCounts[0] != 0u) runRound(0u, lane);  // uniform: shared, read after a barrier
@@ -356,9 +383,12 @@ void main() {
       const uint testMask = (1u << kTestBits) - 1u;
       profileIteration(sDone, sEntryCounts[0] & testMask, sEntryCounts[1] & testMask, sCount);
 #endif
-      // After the barrier: every child these items produced was reserved before they count as done.
+      // After the barrier: every child these items produced was reserved (and added to nodesPending)
+      // before they are taken off.
+      if (sDoneNodes != 0u) atomicAdd(counters.nodesPending, 0u - sDoneNodes);
       if (sDone != 0u) atomicAdd(counters.itemsDone, sDone);
       sDone = 0u;
+      sDoneNodes = 0u;
       sEntryCounts[0] = 0u;
       sEntryCounts[1] = 0u;
       sKeepCount = 0u;

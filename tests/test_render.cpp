@@ -89,6 +89,42 @@ TEST_F(Render, GpuDrawListEqualsCpuCutForAllTraversals) {
   }
 }
 
+TEST_F(Render, SweptLevelsGiveTheSameCutWhateverTheBudget) {
+  // Sweeps (persistent traversal, spread instance culling): a whole simplification level of an instance
+  // tested as runs of clusters instead of walked. No budget, one that covers every candidate, and one that
+  // covers some of the culling workgroups' claims but not all: the same cut each time.
+  GpuRenderer renderer(*vk, *grid, kW, kH);
+  const float r = grid->bounds.w;
+  Camera inside;
+  inside.eye = glm::vec3(grid->bounds) + glm::vec3(0.1f, 0.05f, 0.2f) * r;
+  inside.target = glm::vec3(grid->bounds) + glm::vec3(1.0f, 0.0f, 0.3f) * r;
+  for (const Camera& camera : {defaultCamera(grid->bounds, grid->boxMin, grid->boxMax, 60.0f), test::orbit(*grid, 0.7f, 0.4f, 1.4f), inside})
+    for (float tau : {1.0f, 4.0f}) {
+      FrameSettings s = settingsFor(*grid, camera, tau);
+      s.cullLanes = VGEO_CULL_INSTANCE_LANES;
+      s.readImage = false;
+      const SceneCut reference = selectSceneCut(*grid, s.cullView, tau);
+      auto run = [&](uint32_t budget) {
+        SCOPED_TRACE("sweep budget " + std::to_string(budget) + " tau " + std::to_string(tau));
+        s.sweepBudget = budget;
+        FrameResult result = renderer.renderFrame(s);
+        EXPECT_TRUE(result.complete);
+        std::string difference;
+        EXPECT_TRUE(compareCuts(reference, result.drawList, difference)) << difference;
+        return result.counters;
+      };
+      EXPECT_EQ(run(0).sweptTests, 0u);
+      const shaderio::Counters all = run(UINT32_MAX);
+      ASSERT_GT(all.sweepTests, 0u) << "no level to sweep";
+      EXPECT_EQ(all.sweptTests, all.sweepTests);
+      // Two culling workgroups of 8 instances each claim their candidates: one budget test short of them
+      // all, at least one claim fails; the first claim that fits is swept.
+      const shaderio::Counters some = run(all.sweepTests - 1);
+      EXPECT_LT(some.sweptTests, all.sweepTests);
+      EXPECT_EQ(some.sweepTests, all.sweepTests);
+    }
+}
+
 TEST_F(Render, WorkerProfileAccountsForEveryItem) {
   // The profiled persistent traversal (a pipeline of its own) lists the same cut, and its records hold
   // every queue item once, in stamps that follow each other (begin <= start <= claimed <= taken <= end <=
