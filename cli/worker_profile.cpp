@@ -16,7 +16,7 @@ nlohmann::ordered_json summarizeWorkerProfile(const std::vector<uint32_t>& words
            working = 0, recorded = 0, items = 0, tests = 0, busy = 0;
   std::vector<double> claim, take, rounds, whole;
   std::vector<uint64_t> begins;
-  struct Taken { uint64_t start, end; uint32_t items; };
+  struct Taken { uint64_t start; uint32_t items; };
   std::vector<Taken> takenItems;
   for (uint32_t g = 0; g < workgroups; g++) {
     const size_t base = size_t(g) * VGEO_PROFILE_WORKER_WORDS;
@@ -41,7 +41,7 @@ nlohmann::ordered_json summarizeWorkerProfile(const std::vector<uint32_t>& words
       whole.push_back(double(end - start));
       busy += end - start;
       items += words[r + 8];
-      takenItems.push_back({start, end, words[r + 8]});
+      takenItems.push_back({start, words[r + 8]});
       tests += uint64_t(words[r + 9]) + words[r + 10];
     }
   }

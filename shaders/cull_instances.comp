@@ -50,7 +50,8 @@ void main() {
       if (frame.queueRoots != 0u) {
         if (part == 0u) writeQueue(reserveQueue(1u), instance, g.nodeOffset);
       } else if (lanes == 1u) {
-        processItem(instance, g.nodeOffset);
+        uint queuedNodes = processItem(instance, g.nodeOffset);
+        if (queuedNodes != 0u) atomicAdd(sPending, queuedNodes);
       } else {
         BvhNode root = nodes[g.nodeOffset];
         uint count = root.childCountAndFlags & ~VGEO_NODE_LEAF_BIT;

@@ -126,7 +126,9 @@ bool childMayHoldDrawn(Instance inst, uint child, bool leaf) {
 }
 uint childItem(uint child, bool leaf) { return leaf ? (child | VGEO_ITEM_GROUP_BIT) : child; }
 
-void processItem(uint instance, uint code) {
+// Returns the node items it queued (for counters.nodesPending: instance culling adds them up once a
+// workgroup; the levels traversal does not need them).
+uint processItem(uint instance, uint code) {
   gNodes++;
   Instance inst = instances[instance];
   if ((code & VGEO_ITEM_GROUP_BIT) != 0u) {
@@ -135,7 +137,7 @@ void processItem(uint instance, uint code) {
       gLoops++;
       testCluster(instance, g.clusterOffset + i);
     }
-    return;
+    return 0u;
   }
   // The children that may hold drawn clusters, as a bit mask (a root has up to VGEO_BVH_ROOT_WIDTH = 64),
   // queued with one reservation.
@@ -148,9 +150,9 @@ void processItem(uint instance, uint code) {
     if (childMayHoldDrawn(inst, node.childOffset + i, leaf)) keep[i >> 5] |= 1u << (i & 31u);
   }
   uint kept = bitCount(keep.x) + bitCount(keep.y);
-  if (kept == 0u) return;
+  if (kept == 0u) return 0u;
   uint slot = reserveQueue(kept);
-  if (!leaf) atomicAdd(counters.nodesPending, slotsKept(slot, kept));
+  uint queuedNodes = leaf ? 0u : slotsKept(slot, kept);
   for (uint word = 0u; word < 2u; word++) {
     for (uint bits = keep[word]; bits != 0u; bits &= bits - 1u) {
       gLoops++;
@@ -158,4 +160,5 @@ void processItem(uint instance, uint code) {
       writeQueue(slot++, instance, childItem(child, leaf));
     }
   }
+  return queuedNodes;
 }

@@ -113,22 +113,24 @@ void addEntry(uint round, uint instance, uint first, uint tests, uint kind) {
   sEntryKind[e] = kind;
 }
 
-// A sweep run (cull_instances.comp) is a round-1 or round-2 entry of its clusters, tested with the cut rule.
-bool addRun(uint round, uint instance, uint code) {
-  if ((code & (VGEO_ITEM_GROUP_BIT | VGEO_ITEM_RUN_BIT)) != VGEO_ITEM_RUN_BIT) return false;
-  addEntry(round, instance & ((1u << VGEO_RUN_INSTANCE_BITS) - 1u), code & ~VGEO_ITEM_RUN_BIT, (instance >> VGEO_RUN_INSTANCE_BITS) + 1u, kClusters);
+// A run or group item becomes an entry of `round` of its clusters, tested with the cut rule: a sweep run
+// (cull_instances.comp) as it is, a group from its record. False for a node item.
+bool addClusterItem(uint round, uint instance, uint code) {
+  if ((code & (VGEO_ITEM_GROUP_BIT | VGEO_ITEM_RUN_BIT)) == VGEO_ITEM_RUN_BIT) {
+    addEntry(round, instance & ((1u << VGEO_RUN_INSTANCE_BITS) - 1u), code & ~VGEO_ITEM_RUN_BIT, (instance >> VGEO_RUN_INSTANCE_BITS) + 1u, kClusters);
+    return true;
+  }
+  if ((code & VGEO_ITEM_GROUP_BIT) == 0u) return false;
+  gNodes++;
+  Group g = groups[code & ~VGEO_ITEM_GROUP_BIT];
+  addEntry(round, instance, g.clusterOffset, g.clusterCount, kClusters);
   return true;
 }
 
 // A taken queue item becomes a round-1 entry. Returns whether it is a node item.
 bool takeItem(uint instance, uint code) {
-  if (addRun(0u, instance, code)) return false;
+  if (addClusterItem(0u, instance, code)) return false;
   gNodes++;
-  if ((code & VGEO_ITEM_GROUP_BIT) != 0u) {
-    Group g = groups[code & ~VGEO_ITEM_GROUP_BIT];
-    addEntry(0u, instance, g.clusterOffset, g.clusterCount, kClusters);
-    return false;
-  }
   BvhNode node = nodes[code];
   bool leaf = (node.childCountAndFlags & VGEO_NODE_LEAF_BIT) != 0u;
   addEntry(0u, instance, node.childOffset, node.childCountAndFlags & ~VGEO_NODE_LEAF_BIT, leaf ? kGroupChildren : kNodeChildren);
@@ -154,13 +156,8 @@ uint testChild(uint instance, uint child, uint kind) {
 // A taken item whose children its own lane tests, for large batches (100,000 instances): spreading them
 // costs more than it saves once every lane has an item (far views 3-5% slower on an H100).
 bool takeItemSerial(uint instance, uint code) {
-  if (addRun(1u, instance, code)) return false;
+  if (addClusterItem(1u, instance, code)) return false;
   gNodes++;
-  if ((code & VGEO_ITEM_GROUP_BIT) != 0u) {
-    Group g = groups[code & ~VGEO_ITEM_GROUP_BIT];
-    addEntry(1u, instance, g.clusterOffset, g.clusterCount, kClusters);
-    return false;
-  }
   BvhNode node = nodes[code];
   uint count = node.childCountAndFlags & ~VGEO_NODE_LEAF_BIT;
   uint kind = (node.childCountAndFlags & VGEO_NODE_LEAF_BIT) != 0u ? kGroupChildren : kNodeChildren;
