@@ -4,6 +4,7 @@
 #include "gpu_renderer.h"
 
 #include "shaders/cull_instances_comp.h"
+#include "shaders/cull_instances_comp_cull_serial.h"
 #include "shaders/cull_triangles_comp.h"
 #include "shaders/draw_frag.h"
 #include "shaders/draw_vert.h"
@@ -151,6 +152,7 @@ void GpuRenderer::createPipelines() {
     return pipeline;
   };
   cull_ = compute(cull_instances_comp, sizeof(cull_instances_comp));
+  cullSerial_ = compute(cull_instances_comp_cull_serial, sizeof(cull_instances_comp_cull_serial));
   persistent_ = compute(traverse_persistent_comp, sizeof(traverse_persistent_comp));
   if (vk_.deviceClock()) persistentProfile_ = compute(traverse_persistent_comp_profile, sizeof(traverse_persistent_comp_profile));
   level_ = compute(traverse_level_comp, sizeof(traverse_level_comp));

@@ -172,7 +172,7 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
 GpuRenderer::~GpuRenderer() {
   VkDevice dev = vk_.device();
   vkDeviceWaitIdle(dev);
-  for (VkPipeline p : {cull_, persistent_, persistentProfile_, level_, prepareLevel_, flat_, prepareFlat_, resetFlat_, finalize_, cullTriangles_, finalizeTriangles_,
+  for (VkPipeline p : {cull_, cullSerial_, persistent_, persistentProfile_, level_, prepareLevel_, flat_, prepareFlat_, resetFlat_, finalize_, cullTriangles_, finalizeTriangles_,
                        draw_, drawOverdraw_, drawPatches_, drawPatchesOverdraw_})
     vkDestroyPipeline(dev, p, nullptr);
   vkDestroyPipelineLayout(dev, layout_, nullptr);
@@ -263,8 +263,8 @@ void GpuRenderer::recordInstanceCull(VkCommandBuffer cmd, const FrameSettings& s
   // 1. Reset the counters.
   recordCounterReset(cmd);
   // 2. Instance culling.
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cull_);
-  const uint32_t instancesPerWorkgroup = 64 / cullInstanceLanes(settings);
+  const uint32_t lanes = cullInstanceLanes(settings), instancesPerWorkgroup = 64 / lanes;
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, lanes == 1 ? cullSerial_ : cull_);
   vkCmdDispatch(cmd, (uint32_t(scene_.data.instances.size()) + instancesPerWorkgroup - 1) / instancesPerWorkgroup, 1, 1);
   computeToCompute(cmd);
 }
@@ -381,7 +381,6 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
   frame.maxClusters = scene_.maxClusters;
   frame.claimMode = claimMode_;
   frame.queueRoots = settings.traversal == Traversal::Flat ? 1u : 0u;
-  frame.cullInstanceLanes = cullInstanceLanes(settings);
   frame.sweepBudget = settings.traversal == Traversal::Persistent ? settings.sweepBudget : 0u;
   const bool cullTriangles = settings.draw && settings.triangleCull;
   frame.triangleCull = cullTriangles ? 1u : 0u;
