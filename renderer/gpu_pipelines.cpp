@@ -141,10 +141,10 @@ void GpuRenderer::createPipelines() {
   layoutInfo.pSetLayouts = &setLayout_;
   vkCheck(vkCreatePipelineLayout(dev, &layoutInfo, nullptr, &layout_), "vkCreatePipelineLayout");
 
-  auto compute = [&](const uint32_t* code, size_t bytes) {
+  auto compute = [&](const uint32_t* code, size_t bytes, const VkSpecializationInfo* specialization = nullptr) {
     VkShaderModule module = vk_.createShaderModule(code, bytes);
     VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-    info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, module, "main", nullptr};
+    info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, module, "main", specialization};
     info.layout = layout_;
     VkPipeline pipeline;
     vkCheck(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline), "vkCreateComputePipelines");
@@ -153,8 +153,13 @@ void GpuRenderer::createPipelines() {
   };
   cull_ = compute(cull_instances_comp, sizeof(cull_instances_comp));
   cullSerial_ = compute(cull_instances_comp_cull_serial, sizeof(cull_instances_comp_cull_serial));
-  persistent_ = compute(traverse_persistent_comp, sizeof(traverse_persistent_comp));
-  if (vk_.deviceClock()) persistentProfile_ = compute(traverse_persistent_comp_profile, sizeof(traverse_persistent_comp_profile));
+  // Tests a lane between draw-list atomics (traverse_persistent.comp, runRound): 1 on lavapipe.
+  const uint32_t laneTests = vk_.isLavapipe() ? 1u : 4u;
+  const VkSpecializationMapEntry laneTestsEntry{VGEO_SPEC_LANE_TESTS, 0, sizeof(uint32_t)};
+  const VkSpecializationInfo persistentSpecialization{1, &laneTestsEntry, sizeof(laneTests), &laneTests};
+  persistent_ = compute(traverse_persistent_comp, sizeof(traverse_persistent_comp), &persistentSpecialization);
+  if (vk_.deviceClock())
+    persistentProfile_ = compute(traverse_persistent_comp_profile, sizeof(traverse_persistent_comp_profile), &persistentSpecialization);
   level_ = compute(traverse_level_comp, sizeof(traverse_level_comp));
   prepareLevel_ = compute(prepare_level_comp, sizeof(prepare_level_comp));
   flat_ = compute(traverse_flat_comp, sizeof(traverse_flat_comp));

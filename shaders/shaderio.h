@@ -211,6 +211,8 @@ uint patchWordCount(uint info) {
 #define VGEO_RUN_INSTANCE_BITS 26u
 #define VGEO_SWEEP_RUN 64u
 #define VGEO_TRAVERSAL_WORKGROUP 64
+// Specialization constant of traverse_persistent.comp: cluster tests a lane runs between draw-list atomics.
+#define VGEO_SPEC_LANE_TESTS 0
 // Worker profile (traverse_persistent.comp built with VGEO_PROFILE, binding 21; vgeo bench cut
 // --profile-workers): per workgroup VGEO_PROFILE_WORKER_WORDS words. Header: [0] working iterations
 // recorded, [1] iterations, [2] iterations without an item, [3] their summed clock ticks, [4,5] begin,
