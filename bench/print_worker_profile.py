@@ -14,6 +14,10 @@ for r in json.load(open(sys.argv[1])):
         r["layout"], r["instances"], r["camera"], r["tau"], r["traversal_ms"], p.get("span_ticks"), p.get("first_item_ticks"),
         p.get("last_item_end_ticks"), p.get("tail_ticks"), p.get("claim_ticks_median"), p.get("take_ticks_median"),
         p.get("rounds_ticks_median"), p.get("items_per_iteration", 0.0), p.get("polls"), " TRUNCATED" if p.get("truncated") else ""))
-    if "items_taken_per_1000_ticks" in p:
+    if "items_taken" in p:
+        step = p["timeline_step_ticks"]
+        print("   workers started a %d ticks:" % step, p["workers_started"])
+        print("   items taken a %d ticks:    " % step, p["items_taken"])
+    elif "items_taken_per_1000_ticks" in p:  # results of before 2026-11-21's session 8
         print("   workers started a 1000 ticks:", p["workers_started_per_1000_ticks"])
         print("   items taken a 1000 ticks:    ", p["items_taken_per_1000_ticks"])

@@ -68,14 +68,18 @@ nlohmann::ordered_json summarizeWorkerProfile(const std::vector<uint32_t>& words
     j["tests_per_iteration"] = double(tests) / double(recorded);
     // Share of the workers' time spent in iterations that took items.
     j["busy_share"] = double(busy) / (double(workgroups) * double(exit - begin));
-    // The frame as a timeline of 1,000-tick (1 us on NVIDIA) steps from the first worker's start: workers
-    // started, and items taken by iterations that started, in each step.
-    const size_t steps = size_t((exit - begin) / 1000 + 1);
+    // The frame as a timeline from the first worker's start: workers started, and items taken by
+    // iterations that started, in each step. Steps of 1,000 ticks (1 us on NVIDIA and lavapipe), or of as
+    // many thousands as keep it within kTimelineSteps (a lavapipe frame spans milliseconds).
+    constexpr uint64_t kTimelineSteps = 64;
+    const uint64_t span = exit - begin, step = 1000 * std::max<uint64_t>(1, (span / kTimelineSteps + 999) / 1000);
+    const size_t steps = size_t(span / step + 1);
     std::vector<uint64_t> started(steps), itemsAt(steps);
-    for (uint64_t b : begins) started[std::min<size_t>((b - begin) / 1000, steps - 1)]++;
-    for (const Taken& t : takenItems) itemsAt[std::min<size_t>((t.start - begin) / 1000, steps - 1)] += t.items;
-    j["workers_started_per_1000_ticks"] = started;
-    j["items_taken_per_1000_ticks"] = itemsAt;
+    for (uint64_t b : begins) started[std::min<size_t>((b - begin) / step, steps - 1)]++;
+    for (const Taken& t : takenItems) itemsAt[std::min<size_t>((t.start - begin) / step, steps - 1)] += t.items;
+    j["timeline_step_ticks"] = step;
+    j["workers_started"] = started;
+    j["items_taken"] = itemsAt;
   }
   if (polls != 0) j["poll_ticks_mean"] = double(pollTicks) / double(polls);
   return j;
