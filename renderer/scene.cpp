@@ -196,15 +196,16 @@ void finishScene(RenderScene& scene) {
       uint64_t count = 0;
       std::function<void(uint32_t)> visit = [&](uint32_t n) {
         const auto& node = d.nodes[n];
-        for (uint32_t c = 0; c < (node.childCountAndFlags & ~VGEO_NODE_LEAF_BIT); c++) {
+        const uint32_t children = node.childCountAndFlags & ~VGEO_NODE_LEAF_BIT;
+        for (uint32_t c = 0; c < children; c++) {
           if (!(node.childCountAndFlags & VGEO_NODE_LEAF_BIT)) {
             visit(node.childOffset + c);
-            continue;
+          } else {
+            const auto& group = d.groups[node.childOffset + c];
+            first = std::min(first, group.clusterOffset);
+            end = std::max(end, group.clusterOffset + group.clusterCount);
+            count += group.clusterCount;
           }
-          const auto& group = d.groups[node.childOffset + c];
-          first = std::min(first, group.clusterOffset);
-          end = std::max(end, group.clusterOffset + group.clusterCount);
-          count += group.clusterCount;
         }
       };
       visit(root.childOffset + i);

@@ -142,19 +142,18 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
   enabled.pipelineStatisticsQuery = supported.pipelineStatisticsQuery;
   tessellation_ = supported.tessellationShader;
   pipelineStatistics_ = supported.pipelineStatisticsQuery;
-  // The device clock, where there is one, for the persistent traversal's worker profile (bench only).
   uint32_t extensionCount = 0;
   vkEnumerateDeviceExtensionProperties(physical_, nullptr, &extensionCount, nullptr);
-  std::vector<VkExtensionProperties> deviceExtensions(extensionCount);
-  vkEnumerateDeviceExtensionProperties(physical_, nullptr, &extensionCount, deviceExtensions.data());
+  deviceExtensions_.resize(extensionCount);
+  vkEnumerateDeviceExtensionProperties(physical_, nullptr, &extensionCount, deviceExtensions_.data());
+  // The device clock, where there is one, for the persistent traversal's worker profile (bench only).
   VkPhysicalDeviceShaderClockFeaturesKHR clock{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_CLOCK_FEATURES_KHR};
-  for (const auto& e : deviceExtensions)
-    if (std::strcmp(e.extensionName, VK_KHR_SHADER_CLOCK_EXTENSION_NAME) == 0) {
-      VkPhysicalDeviceFeatures2 features2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
-      features2.pNext = &clock;
-      vkGetPhysicalDeviceFeatures2(physical_, &features2);
-      deviceClock_ = clock.shaderDeviceClock == VK_TRUE;
-    }
+  if (hasDeviceExtension(VK_KHR_SHADER_CLOCK_EXTENSION_NAME)) {
+    VkPhysicalDeviceFeatures2 features2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    features2.pNext = &clock;
+    vkGetPhysicalDeviceFeatures2(physical_, &features2);
+    deviceClock_ = clock.shaderDeviceClock == VK_TRUE;
+  }
   const char* clockExtension = VK_KHR_SHADER_CLOCK_EXTENSION_NAME;
   VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   if (deviceClock_) {  // `clock` holds the supported features: enabled as they are
@@ -172,6 +171,12 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
   poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
   poolInfo.queueFamilyIndex = queueFamily_;
   vkCheck(vkCreateCommandPool(device_, &poolInfo, nullptr, &pool_), "vkCreateCommandPool");
+}
+
+bool VulkanContext::hasDeviceExtension(const char* name) const {
+  for (const auto& e : deviceExtensions_)
+    if (std::strcmp(e.extensionName, name) == 0) return true;
+  return false;
 }
 
 VulkanContext::~VulkanContext() {

@@ -40,6 +40,7 @@ class VulkanContext {
   bool tessellation() const { return tessellation_; }            // tessellationShader enabled
   bool pipelineStatistics() const { return pipelineStatistics_; }  // pipelineStatisticsQuery enabled
   bool deviceClock() const { return deviceClock_; }                // VK_KHR_shader_clock's device clock enabled
+  bool hasDeviceExtension(const char* name) const;                // the physical device offers it
   // Nanoseconds per timestamp tick; 0 when the queue has no timestamps.
   double timestampPeriod() const { return timestampValidBits_ ? double(properties_.limits.timestampPeriod) : 0.0; }
   // Validation messages seen so far (warnings and errors); each is also printed to stderr.
@@ -76,6 +77,7 @@ class VulkanContext {
   VkPhysicalDeviceMemoryProperties memory_{};
   VkDriverId driverId_{};
   bool tessellation_ = false, pipelineStatistics_ = false, deviceClock_ = false;
+  std::vector<VkExtensionProperties> deviceExtensions_;
   std::string driverName_;
   uint32_t validationMessages_ = 0;
 };

@@ -254,9 +254,8 @@ struct FrameData {
   uint patchCapacity;    // entries in the patch list
   uint queueRoots;       // 1 (flat traversal): instance culling queues (instance, root) for each visible
                          // instance; 0: it tests the root's children and queues those
-  uint framePad2;
   uint sweepBudget;      // persistent traversal: cluster tests a frame may spend sweeping levels (0: none)
-  uint framePad1;
+  uint framePad0, framePad1;
 };
 
 // GPU counters of one frame, and the indirect arguments built from them. The counters the persistent
