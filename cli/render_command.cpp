@@ -212,8 +212,9 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--workgroups", a->workgroups, "Persistent traversal workgroups (default: as many as the device runs at once)");
   cmd->add_option("--sweep-budget", a->sweepBudget, "Persistent traversal: cluster tests a frame may sweep instead of walking (0: none)")
       ->capture_default_str();
-  cmd->add_option("--cull-lanes", a->cullLanes, "Lanes instance culling gives an instance, 1 or 8 (default: the renderer's; sweeps need 8)")
-      ->check(CLI::IsMember({1u, 8u}));
+  cmd->add_option("--cull-lanes", a->cullLanes, "Lanes instance culling gives an instance, 1 or " + std::to_string(VGEO_CULL_INSTANCE_LANES) +
+                                                  " (default: the renderer's; sweeps need " + std::to_string(VGEO_CULL_INSTANCE_LANES) + ")")
+      ->check(CLI::IsMember({1u, uint32_t(VGEO_CULL_INSTANCE_LANES)}));
   cmd->callback([a, &exitCode] {
     try {
       exitCode = runRender(*a);

@@ -1,6 +1,6 @@
 // gpu_renderer.cpp: the frame. Read renderFrame() top to bottom: it is the list of passes.
 //   1. reset counters            (transfer)
-//   2. cull_instances.comp       1 or 8 lanes an instance (8 on GPUs up to 4,096 instances) -> queue of
+//   2. cull_instances.comp       1 or 32 lanes an instance (32 on GPUs up to 4,096 instances) -> queue of
 //                                (instance, level subtree root), or of (instance, BVH root) for flat
 //   3. traversal                 persistent: one dispatch of resident workgroups draining the queue
 //                                levels: per depth, prepare_level.comp then traverse_level.comp (indirect)

@@ -12,7 +12,8 @@
 // Sweeps (persistent traversal, spread culling): a kept level subtree whose clusters are one run may be
 // queued as runs of up to VGEO_SWEEP_RUN clusters instead, tested in one step rather than down a chain of
 // node steps. The workgroup claims the cluster tests of all its candidates from frame.sweepBudget with one
-// atomic; when the budget cannot cover them, they are walked.
+// atomic; when the budget cannot cover them, they are walked (and the slots reserved for their runs but the
+// first are VGEO_ITEM_SKIP).
 #extension GL_GOOGLE_include_directive : require
 layout(local_size_x = 64) in;
 #include "common.glsl"
@@ -60,15 +61,15 @@ void main() {
 #else
 const uint kSpreadInstances = 64u / VGEO_CULL_INSTANCE_LANES;  // per workgroup, when spread
 const uint kMaxKept = kSpreadInstances * VGEO_BVH_ROOT_WIDTH;
-const uint kRunBits = 20u;  // sSwept: swept items << kRunBits | their runs (see the grant)
+const uint kRunBits = 20u;  // sSwept: swept items << kRunBits | their runs
+// Levels of more clusters are walked, so that a workgroup's runs stay under 2^kRunBits (kMaxKept levels of
+// 65,536 clusters: 2^19 runs) and its tests under 2^32.
+const uint kMaxSweptLevel = 65536u;
 shared uint sVisible, sKept, sFirst, sWalked, sSweepTests, sSweep, sSwept, sPending;
 shared uint sKeptInstance[kMaxKept], sKeptCode[kMaxKept], sKeptSlot[kMaxKept];
 shared uint sKeptRunFirst[kMaxKept], sKeptRunCount[kMaxKept];  // the level's cluster run (count 0: none)
 shared uint sSweptList[kMaxKept], sSweptStart[kMaxKept];  // swept items, and their first run in the reservation
 layout(set = 0, binding = 22, std430) readonly buffer LevelRunBuffer { uvec2 levelClusterRuns[]; };
-
-// Kept item k is swept: its workgroup's claim on the budget was granted and its clusters are one run.
-bool swept(uint k) { return sSweep != 0u && sKeptRunCount[k] != 0u; }
 
 void main() {
   beginStats();
@@ -102,41 +103,38 @@ void main() {
           sKeptInstance[k] = instance;
           sKeptCode[k] = childItem(child, leaf);
           uvec2 run = frame.sweepBudget != 0u && !leaf ? levelClusterRuns[child] : uvec2(0u);
+          if (run.y > kMaxSweptLevel) run = uvec2(0u);
           sKeptRunFirst[k] = run.x;
           sKeptRunCount[k] = run.y;
-          if (run.y != 0u) atomicAdd(sSweepTests, run.y);
+          if (run.y != 0u) {  // its runs, as if the sweep is granted (one shared atomic counts items and runs)
+            atomicAdd(sSweepTests, run.y);
+            uint counts = atomicAdd(sSwept, (1u << kRunBits) | ((run.y + VGEO_SWEEP_RUN - 1u) / VGEO_SWEEP_RUN));
+            sSweptList[counts >> kRunBits] = k;
+            sSweptStart[counts >> kRunBits] = counts & ((1u << kRunBits) - 1u);
+          } else {
+            sKeptSlot[k] = atomicAdd(sWalked, 1u);
+          }
         }
       }
     }
   }
   barrier();
+  // The budget claim and the queue reservation together (two round trips in a row cost a view of a few
+  // instances ~1 us): the reservation counts the runs, as if the claim is granted. When it is not, each
+  // swept item is walked instead from its first run's slot, and its other runs' slots are skipped.
+  const uint sweptItems = sSwept >> kRunBits, runs = sSwept & ((1u << kRunBits) - 1u);
   if (lane == 0u) {
     if (sVisible != 0u) atomicAdd(counters.visibleInstances, sVisible);
-    if (sSweepTests != 0u) {
-      uint claimed = atomicAdd(counters.sweepTests, sSweepTests);
-      // Runs of a workgroup < 2^kRunBits: sSweepTests / VGEO_SWEEP_RUN + kMaxKept.
-      sSweep = claimed + sSweepTests <= frame.sweepBudget && sSweepTests < (1u << (kRunBits + 5u)) ? 1u : 0u;
-      if (sSweep != 0u) atomicAdd(counters.sweptTests, sSweepTests);
-    }
+    uint claimed = 0u;
+    if (sSweepTests != 0u) claimed = atomicAdd(counters.sweepTests, sSweepTests);
+    if (runs + sWalked != 0u) sFirst = reserveQueue(runs + sWalked);
+    sSweep = sSweepTests != 0u && claimed + sSweepTests <= frame.sweepBudget ? 1u : 0u;
+    if (sSweep != 0u) atomicAdd(counters.sweptTests, sSweepTests);
   }
   barrier();
-  // The workgroup's reservation: the swept items' runs first, in sSweptList order (one shared atomic
-  // counts items and runs together, so starts follow that order), then one slot for each walked item.
-  for (uint k = lane; k < sKept; k += 64u) {
-    if (swept(k)) {
-      uint counts = atomicAdd(sSwept, (1u << kRunBits) | ((sKeptRunCount[k] + VGEO_SWEEP_RUN - 1u) / VGEO_SWEEP_RUN));
-      sSweptList[counts >> kRunBits] = k;
-      sSweptStart[counts >> kRunBits] = counts & ((1u << kRunBits) - 1u);
-    } else {
-      sKeptSlot[k] = atomicAdd(sWalked, 1u);
-    }
-  }
-  barrier();
-  const uint sweptItems = sSwept >> kRunBits, runs = sSwept & ((1u << kRunBits) - 1u);
-  if (lane == 0u && runs + sWalked != 0u) sFirst = reserveQueue(runs + sWalked);
-  barrier();
+  // The reservation: the swept items' runs first, in sSweptList order, then one slot for each walked item.
   for (uint k = lane; k < sKept; k += 64u)
-    if (!swept(k) && writeQueue(sFirst + runs + sKeptSlot[k], sKeptInstance[k], sKeptCode[k]) && (sKeptCode[k] & VGEO_ITEM_GROUP_BIT) == 0u)
+    if (sKeptRunCount[k] == 0u && writeQueue(sFirst + runs + sKeptSlot[k], sKeptInstance[k], sKeptCode[k]) && (sKeptCode[k] & VGEO_ITEM_GROUP_BIT) == 0u)
       atomicAdd(sPending, 1u);
   // Every run by its own lane, over all swept items at once: a loop over the items, their runs spread over
   // the lanes, cost a far view of 100 instances (a run an item, ~12 items a workgroup) ~6 us on an H100,
@@ -149,8 +147,14 @@ void main() {
       else hi = mid - 1u;
     }
     uint k = sSweptList[lo], r = j - sSweptStart[lo];
-    uint length = min(VGEO_SWEEP_RUN, sKeptRunCount[k] - r * VGEO_SWEEP_RUN);
-    writeQueue(sFirst + j, sKeptInstance[k] | ((length - 1u) << VGEO_RUN_INSTANCE_BITS), VGEO_ITEM_RUN_BIT | (sKeptRunFirst[k] + r * VGEO_SWEEP_RUN));
+    if (sSweep != 0u) {
+      uint length = min(VGEO_SWEEP_RUN, sKeptRunCount[k] - r * VGEO_SWEEP_RUN);
+      writeQueue(sFirst + j, sKeptInstance[k] | ((length - 1u) << VGEO_RUN_INSTANCE_BITS), VGEO_ITEM_RUN_BIT | (sKeptRunFirst[k] + r * VGEO_SWEEP_RUN));
+    } else if (r == 0u) {  // walked: a level subtree's root is a node, never a group
+      if (writeQueue(sFirst + j, sKeptInstance[k], sKeptCode[k])) atomicAdd(sPending, 1u);
+    } else {
+      writeQueue(sFirst + j, 0u, VGEO_ITEM_SKIP);
+    }
   }
   barrier();
   if (lane == 0u && sPending != 0u) atomicAdd(counters.nodesPending, sPending);

@@ -208,6 +208,8 @@ uint patchWordCount(uint info) {
 // clusters of one simplification level, tested without walking its subtree. Instances are 64 bytes, so a
 // storage buffer (maxStorageBufferRange <= 2^32) holds fewer than 2^26 of them.
 #define VGEO_ITEM_RUN_BIT 0x40000000u
+// A slot reserved for a sweep run that was not granted (cull_instances.comp): taken and skipped.
+#define VGEO_ITEM_SKIP (VGEO_ITEM_GROUP_BIT | VGEO_ITEM_RUN_BIT)
 #define VGEO_RUN_INSTANCE_BITS 26u
 #define VGEO_SWEEP_RUN 64u
 #define VGEO_TRAVERSAL_WORKGROUP 64
@@ -225,8 +227,10 @@ uint patchWordCount(uint info) {
 #define VGEO_PROFILE_HEADER_WORDS 8
 #define VGEO_PROFILE_WORKER_WORDS (VGEO_PROFILE_HEADER_WORDS + VGEO_PROFILE_ITERATIONS * VGEO_PROFILE_ITERATION_WORDS)
 // cull_instances.comp: lanes an instance (workgroups of 64) in scenes of up to VGEO_CULL_SPREAD_INSTANCES
-// instances; one lane an instance in larger ones.
-#define VGEO_CULL_INSTANCE_LANES 8
+// instances; one lane an instance in larger ones. 32 (2 instances a workgroup) rather than 8: the runs of
+// a close view's few instances are written by more workgroups side by side (H100, selection of 100
+// instances 4.5% and of 1,000 2% faster in sum); 64 made far views of 1,000 instances ~5% slower.
+#define VGEO_CULL_INSTANCE_LANES 32
 #define VGEO_CULL_SPREAD_INSTANCES 4096
 
 // Per-frame constants (a uniform buffer). The cull camera selects the cut and culls; the draw camera

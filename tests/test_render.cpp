@@ -117,7 +117,7 @@ TEST_F(Render, SweptLevelsGiveTheSameCutWhateverTheBudget) {
       const shaderio::Counters all = run(UINT32_MAX);
       ASSERT_GT(all.sweepTests, 0u) << "no level to sweep";
       EXPECT_EQ(all.sweptTests, all.sweepTests);
-      // Two culling workgroups of 8 instances each claim their candidates: one budget test short of them
+      // Several culling workgroups each claim their candidates: one budget test short of them
       // all, at least one claim fails; the first claim that fits is swept.
       const shaderio::Counters some = run(all.sweepTests - 1);
       EXPECT_LT(some.sweptTests, all.sweepTests);
