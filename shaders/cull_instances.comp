@@ -87,36 +87,37 @@ void main() {
   uint instance = gl_WorkGroupID.x * kSpreadInstances + lane / lanes;
   Instance inst;
   Geometry g;
-  if (instanceVisible(instance, inst, g)) {
-    if (part == 0u) atomicAdd(sVisible, 1u);
-    if (frame.queueRoots != 0u) {
-      if (part == 0u) writeQueue(reserveQueue(1u), instance, g.nodeOffset);
-    } else {
-      BvhNode root = nodes[g.nodeOffset];
-      uint count = root.childCountAndFlags & ~VGEO_NODE_LEAF_BIT;
-      bool leaf = (root.childCountAndFlags & VGEO_NODE_LEAF_BIT) != 0u;
-      if (part == 0u) gNodes++;
-      for (uint i = part; i < count; i += lanes) {
-        uint child = root.childOffset + i;
-        if (childMayHoldDrawn(inst, child, leaf)) {
-          uint k = atomicAdd(sKept, 1u);
-          sKeptInstance[k] = instance;
-          sKeptCode[k] = childItem(child, leaf);
-          uvec2 run = frame.sweepBudget != 0u && !leaf ? levelClusterRuns[child] : uvec2(0u);
-          if (run.y > kMaxSweptLevel) run = uvec2(0u);
-          sKeptRunFirst[k] = run.x;
-          sKeptRunCount[k] = run.y;
-          if (run.y != 0u) {  // its runs, as if the sweep is granted (one shared atomic counts items and runs)
-            atomicAdd(sSweepTests, run.y);
-            uint counts = atomicAdd(sSwept, (1u << kRunBits) | ((run.y + VGEO_SWEEP_RUN - 1u) / VGEO_SWEEP_RUN));
-            sSweptList[counts >> kRunBits] = k;
-            sSweptStart[counts >> kRunBits] = counts & ((1u << kRunBits) - 1u);
-          } else {
-            sKeptSlot[k] = atomicAdd(sWalked, 1u);
-          }
+  const bool visible = instanceVisible(instance, inst, g);
+  if (frame.queueRoots == 0u && instance < frame.instanceCount) {
+    // The root's children from the instance record, tested beside the geometry's load (not after it and
+    // the root's: two loads in a row), kept when the instance is visible.
+    const uint count = (inst.flags >> VGEO_INSTANCE_ROOT_COUNT_SHIFT) & 0xffu;
+    const bool leaf = (inst.flags & VGEO_INSTANCE_ROOT_LEAF) != 0u;
+    for (uint i = part; i < count; i += lanes) {
+      uint child = inst.rootChildOffset + i;
+      uvec2 run = frame.sweepBudget != 0u && !leaf ? levelClusterRuns[child] : uvec2(0u);
+      if (childMayHoldDrawn(inst, child, leaf) && visible) {
+        uint k = atomicAdd(sKept, 1u);
+        sKeptInstance[k] = instance;
+        sKeptCode[k] = childItem(child, leaf);
+        if (run.y > kMaxSweptLevel) run = uvec2(0u);
+        sKeptRunFirst[k] = run.x;
+        sKeptRunCount[k] = run.y;
+        if (run.y != 0u) {  // its runs, as if the sweep is granted (one shared atomic counts items and runs)
+          atomicAdd(sSweepTests, run.y);
+          uint counts = atomicAdd(sSwept, (1u << kRunBits) | ((run.y + VGEO_SWEEP_RUN - 1u) / VGEO_SWEEP_RUN));
+          sSweptList[counts >> kRunBits] = k;
+          sSweptStart[counts >> kRunBits] = counts & ((1u << kRunBits) - 1u);
+        } else {
+          sKeptSlot[k] = atomicAdd(sWalked, 1u);
         }
       }
     }
+  }
+  if (visible && part == 0u) {
+    atomicAdd(sVisible, 1u);
+    if (frame.queueRoots != 0u) writeQueue(reserveQueue(1u), instance, g.nodeOffset);
+    else gNodes++;
   }
   barrier();
   // The budget claim and the queue reservation together (two round trips in a row cost a view of a few
