@@ -30,10 +30,12 @@ constexpr uint32_t kSceneBindings = 16;  // bindings 1..9: geometries .. BVH nod
 constexpr uint32_t kLavapipeIterationBudget = 50000;
 // lavapipe starts the workgroups one after another, each for ~14 us even when the queue is already
 // empty: 128 of them made the traversal of 100 instances 2-3x slower than 16 (a worker profile there
-// showed the work done after 0.4 ms and 1.7 ms of late workers). 16 carried 100,000 instances of the
-// shipped cage (3 workers' budgets were needed); a frame whose workers all run out of budget is
+// showed the work done after 0.4 ms and 1.7 ms of late workers). 4 rather than 16 (alternated, 3 repeats,
+// the cut benchmark's 24 records a size summed): 1 instance 11 / 20 ms, 100 instances 21-25 / 29-51,
+// 1,000 and 10,000 within the noise (4 slightly ahead), 100,000 and the main job's traversal the same;
+// 4 carried 100,000 instances of the shipped cage. A frame whose workers all run out of budget is
 // reported incomplete and the next one runs twice as many (renderFrame).
-constexpr uint32_t kLavapipeWorkgroups = 16;
+constexpr uint32_t kLavapipeWorkgroups = 4;
 constexpr uint32_t kMaxPersistentWorkgroups = 4096;
 // Up to this many instances the persistent traversal runs two workgroups an SM, four above (measured at
 // 10,000 and 100,000 instances; the switch sits between them).
