@@ -4,11 +4,12 @@
 // levels' subtrees, up to VGEO_BVH_ROOT_WIDTH) are tested here and those that may hold drawn clusters are
 // queued as (instance, node): the root is never a queue item. Two variants (two pipelines):
 //   VGEO_CULL_SERIAL: one lane an instance, queueing its own (large scenes, lavapipe). It declares none of
-//     the spread variant's shared arrays: with them (~14 KB a workgroup, unused) culling 100,000 instances
-//     took ~0.047 instead of ~0.030 ms on an H100.
+//     the spread variant's shared arrays: with them (~14 KB a workgroup at 8 lanes an instance, unused)
+//     culling 100,000 instances took ~0.047 instead of ~0.030 ms on an H100.
 //   otherwise VGEO_CULL_INSTANCE_LANES lanes an instance test the children side by side and the workgroup
 //     queues them with one reservation (one lane testing ~20 children in a row put a chain of ~20 loads in
-//     front of the traversal: 10-18% of a close view's selection on an H100).
+//     front of the traversal: 10-18% of a close view's selection on an H100). The root's children come
+//     from the instance record (Instance::rootChildOffset), so their loads go out beside the geometry's.
 // Sweeps (persistent traversal, spread culling): a kept level subtree whose clusters are one run may be
 // queued as runs of up to VGEO_SWEEP_RUN clusters instead, tested in one step rather than down a chain of
 // node steps. The workgroup claims the cluster tests of all its candidates from frame.sweepBudget with one
