@@ -133,7 +133,8 @@ class GpuRenderer {
 const char* traversalName(Traversal t);
 
 // Binding count of the one descriptor set (common.glsl): 0 frame data, 1..9, 13 and 15..19 the scene,
-// 10 counters, 11 queue, 12 draw list, 14 triangle list, 20 patch list, 21 worker profile.
+// 10 counters, 11 queue, 12 draw list, 14 triangle list, 20 patch list, 21 worker profile, 22 level
+// subtrees' cluster runs (RenderScene::levelClusterRuns).
 constexpr uint32_t kRendererBindings = 23;
 
 }  // namespace vgeo

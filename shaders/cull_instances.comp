@@ -97,11 +97,11 @@ void main() {
     for (uint i = part; i < count; i += lanes) {
       uint child = inst.rootChildOffset + i;
       uvec2 run = frame.sweepBudget != 0u && !leaf ? levelClusterRuns[child] : uvec2(0u);
+      if (run.y > kMaxSweptLevel) run = uvec2(0u);
       if (childMayHoldDrawn(inst, child, leaf) && visible) {
         uint k = atomicAdd(sKept, 1u);
         sKeptInstance[k] = instance;
         sKeptCode[k] = childItem(child, leaf);
-        if (run.y > kMaxSweptLevel) run = uvec2(0u);
         sKeptRunFirst[k] = run.x;
         sKeptRunCount[k] = run.y;
         if (run.y != 0u) {  // its runs, as if the sweep is granted (one shared atomic counts items and runs)
