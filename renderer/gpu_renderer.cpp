@@ -5,7 +5,8 @@
 //   3. traversal                 persistent: one dispatch of resident workgroups draining the queue
 //                                levels: per depth, prepare_level.comp then traverse_level.comp (indirect)
 //                                flat: prepare_flat.comp then traverse_flat.comp (one thread a cluster)
-//   4. finalize.comp             triangle-culling dispatch (or draw) arguments from the draw-list count
+//   4. draw_arguments.glsl       triangle-culling dispatch (or draw) arguments from the draw-list count:
+//                                the persistent traversal's last worker, reset_flat.comp, finalize.comp
 //   5. cull_triangles.comp       one workgroup a listed cluster -> triangle list of what can make fragments
 //      finalize_triangles.comp   indirect draw arguments from the triangle count
 //   6. render pass: one vkCmdDrawIndirect of the listed triangles (draw.vert, draw.frag); without
@@ -279,8 +280,11 @@ void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& sett
     vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, dispatch));
     computeToCompute(cmd);
   };
+  // 4. Triangle-culling dispatch or draw arguments (draw_arguments.glsl): written by the persistent
+  // traversal's last worker and by the flat traversal's reset pass, by finalize.comp after the levels.
   if (settings.traversal == Traversal::Persistent) {
-    dispatch(settings.profileWorkers && persistentProfile_ ? persistentProfile_ : persistent_, persistentWorkgroups_);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, settings.profileWorkers && persistentProfile_ ? persistentProfile_ : persistent_);
+    vkCmdDispatch(cmd, persistentWorkgroups_, 1, 1);
   } else if (settings.traversal == Traversal::Levels) {
     // The roots' children (queued by instance culling), one level of nodes per dispatch, then the groups:
     // depth windows.
@@ -288,14 +292,14 @@ void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& sett
       dispatch(prepareLevel_, 1);
       dispatchIndirect(level_);
     }
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, finalize_);
+    vkCmdDispatch(cmd, 1, 1, 1);
   } else {
     dispatch(prepareFlat_, 1);
     dispatchIndirect(flat_);
-    dispatch(resetFlat_, (uint32_t(scene_.data.instances.size()) + 63) / 64);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, resetFlat_);
+    vkCmdDispatch(cmd, (uint32_t(scene_.data.instances.size()) + 63) / 64, 1, 1);
   }
-  // 4. Triangle-culling dispatch or draw arguments.
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, finalize_);
-  vkCmdDispatch(cmd, 1, 1, 1);
   // Read by triangle culling (indirect dispatch and counters), or else by the draw and the copies.
   globalBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | drawShaderStages() |

@@ -33,6 +33,7 @@
 #include "common.glsl"
 layout(local_size_x = VGEO_TRAVERSAL_WORKGROUP) in;
 #include "traverse_common.glsl"
+#include "draw_arguments.glsl"
 
 const uint kMinBatch = 4u;         // measured on an H100: 4 to 8 best for close views, 16 and more worse
 const uint kSerialBatch = 32u;     // batches this large are tested a lane an item (see takeItemSerial)
@@ -326,8 +327,15 @@ void main() {
 #ifdef VGEO_PROFILE
         profileExit();
 #endif
-        atomicAdd(counters.workgroupsExited, 1u);
         if (sExit == 2u) atomicAdd(counters.budgetExits, 1u);
+        // The last worker to leave writes the draw arguments: every other worker's draw-list atomics
+        // returned before its own exit count (a barrier of its workgroup lies between), so the count it
+        // reads is final. Saves the dispatch of finalize.comp and its barrier (~5 us on an H100).
+        memoryBarrierBuffer();
+        if (atomicAdd(counters.workgroupsExited, 1u) == gl_NumWorkGroups.x - 1u) {
+          memoryBarrierBuffer();
+          writeDrawArguments();
+        }
       }
       break;  // uniform: sExit is shared
     }

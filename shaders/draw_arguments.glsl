@@ -1,0 +1,17 @@
+// draw_arguments.glsl: once the draw list is final, sizes the next step by it (never more than it
+// holds): the triangle-culling dispatch, one workgroup an entry in rows of 65,535 (the least
+// maxComputeWorkGroupCount a device may have), or, without triangle culling, the indirect draw of 384
+// vertices an entry. One invocation calls it: finalize.comp (levels), the flat traversal's reset pass,
+// or the persistent traversal's last worker to leave, so the last two need no dispatch of its own (a
+// dispatch and its barrier cost ~5 us on an H100).
+void writeDrawArguments() {
+  uint listed = min(atomicOr(counters.drawCount, 0u), frame.drawCapacity);
+  counters.dispatch[0] = min(listed, 65535u);
+  counters.dispatch[1] = (listed + 65534u) / 65535u;
+  counters.dispatch[2] = 1u;
+  counters.draw[0] = 3u * VGEO_MAX_CLUSTER_TRIANGLES;
+  counters.draw[1] = frame.triangleCull != 0u ? 0u : listed;
+  counters.draw[2] = 0u;
+  counters.draw[3] = 0u;
+  counters.queueHighWater = atomicOr(counters.queueWrite, 0u);  // the queue is never reused within a frame
+}
