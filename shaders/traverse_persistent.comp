@@ -274,11 +274,10 @@ void main() {
     sKeepCount = 0u;
     sFinal = 0u;
     sLetGo = 0u;
-    if (frame.claimMode == 0u) {
-      uint written = counters.queueWrite;  // instance culling's items: all there is when it is 0
-      sBatch = clamp(written / gl_NumWorkGroups.x, kMinBatch, uint(VGEO_TRAVERSAL_WORKGROUP));
-      sLetGo = written == 0u ? 1u : 0u;
-    }
+    // The first claim goes out at once, sized by the instance count (a load of queueWrite first put a
+    // round trip in front of every frame's work); the watch lane sizes the next ones by the backlog. An
+    // empty queue ends at the first take: nothing pending, every slot claimed (see Termination).
+    sBatch = clamp(frame.instanceCount / gl_NumWorkGroups.x, kMinBatch, uint(VGEO_TRAVERSAL_WORKGROUP));
   }
   for (;;) {
     barrier();
