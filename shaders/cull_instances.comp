@@ -138,24 +138,32 @@ void main() {
   for (uint k = lane; k < sKept; k += 64u)
     if (sKeptRunCount[k] == 0u && writeQueue(sFirst + runs + sKeptSlot[k], sKeptInstance[k], sKeptCode[k]) && (sKeptCode[k] & VGEO_ITEM_GROUP_BIT) == 0u)
       atomicAdd(sPending, 1u);
-  // Every run by its own lane, over all swept items at once: a loop over the items, their runs spread over
-  // the lanes, cost a far view of 100 instances (a run an item, ~12 items a workgroup) ~6 us on an H100,
-  // and one lane writing an item's runs in a row cost a close view 0.029 instead of 0.020 ms.
-  for (uint j = lane; j < runs; j += 64u) {
+  // Each lane writes a contiguous share of the runs, over all swept items at once: one search for its
+  // first run, then along the items (a search for every run put ~10 searches in a row in front of a close
+  // view's heaviest workgroup). A loop over the items, their runs spread over the lanes, cost a far view
+  // of 100 instances (a run an item, ~12 items a workgroup) ~6 us on an H100, and one lane writing an
+  // item's runs in a row cost a close view 0.029 instead of 0.020 ms.
+  const uint share = (runs + 63u) / 64u;
+  uint j = lane * share;
+  const uint end = min(j + share, runs);
+  if (j < end) {
     uint lo = 0u, hi = sweptItems - 1u;  // the last item whose runs start at or before j
     while (lo < hi) {
       uint mid = (lo + hi + 1u) / 2u;
       if (sSweptStart[mid] <= j) lo = mid;
       else hi = mid - 1u;
     }
-    uint k = sSweptList[lo], r = j - sSweptStart[lo];
-    if (sSweep != 0u) {
-      uint length = min(VGEO_SWEEP_RUN, sKeptRunCount[k] - r * VGEO_SWEEP_RUN);
-      writeQueue(sFirst + j, sKeptInstance[k] | ((length - 1u) << VGEO_RUN_INSTANCE_BITS), VGEO_ITEM_RUN_BIT | (sKeptRunFirst[k] + r * VGEO_SWEEP_RUN));
-    } else if (r == 0u) {  // walked: a level subtree's root is a node, never a group
-      if (writeQueue(sFirst + j, sKeptInstance[k], sKeptCode[k])) atomicAdd(sPending, 1u);
-    } else {
-      writeQueue(sFirst + j, 0u, VGEO_ITEM_SKIP);
+    for (; j < end; j++) {
+      while (lo + 1u < sweptItems && sSweptStart[lo + 1u] <= j) lo++;
+      uint k = sSweptList[lo], r = j - sSweptStart[lo];
+      if (sSweep != 0u) {
+        uint length = min(VGEO_SWEEP_RUN, sKeptRunCount[k] - r * VGEO_SWEEP_RUN);
+        writeQueue(sFirst + j, sKeptInstance[k] | ((length - 1u) << VGEO_RUN_INSTANCE_BITS), VGEO_ITEM_RUN_BIT | (sKeptRunFirst[k] + r * VGEO_SWEEP_RUN));
+      } else if (r == 0u) {  // walked: a level subtree's root is a node, never a group
+        if (writeQueue(sFirst + j, sKeptInstance[k], sKeptCode[k])) atomicAdd(sPending, 1u);
+      } else {
+        writeQueue(sFirst + j, 0u, VGEO_ITEM_SKIP);
+      }
     }
   }
   barrier();
