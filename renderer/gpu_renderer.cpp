@@ -383,6 +383,7 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
   frame.claimMode = claimMode_;
   frame.queueRoots = settings.traversal == Traversal::Flat ? 1u : 0u;
   frame.sweepBudget = settings.traversal == Traversal::Persistent ? settings.sweepBudget : 0u;
+  frame.firstClaimItems = lastCullItems_;
   const bool cullTriangles = settings.draw && settings.triangleCull;
   frame.triangleCull = cullTriangles ? 1u : 0u;
   frame.triangleCapacity = triangleCapacity_;
@@ -454,6 +455,7 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
 
   std::memcpy(&result.counters, countersReadback_.mapped, sizeof(result.counters));
   const auto& c = result.counters;
+  lastCullItems_ = settings.traversal == Traversal::Persistent ? c.cullItems : 0u;
   result.trianglesDrawn = cullTriangles ? std::min(c.trianglesDrawn, triangleCapacity_) : c.triangles;
   result.patchesDrawn = std::min(c.patchesDrawn, patchCapacity_);
   if (patches && statistics_) {

@@ -129,7 +129,10 @@ void main() {
     if (sVisible != 0u) atomicAdd(counters.visibleInstances, sVisible);
     uint claimed = 0u;
     if (sSweepTests != 0u) claimed = atomicAdd(counters.sweepTests, sSweepTests);
-    if (runs + sWalked != 0u) sFirst = reserveQueue(runs + sWalked);
+    if (runs + sWalked != 0u) {
+      sFirst = reserveQueue(runs + sWalked);
+      atomicMax(counters.cullItems, sFirst + runs + sWalked);
+    }
     sSweep = sSweepTests != 0u && claimed + sSweepTests <= frame.sweepBudget ? 1u : 0u;
     if (sSweep != 0u) atomicAdd(counters.sweptTests, sSweepTests);
   }

@@ -265,7 +265,8 @@ struct FrameData {
   uint queueRoots;       // 1 (flat traversal): instance culling queues (instance, root) for each visible
                          // instance; 0: it tests the root's children and queues those
   uint sweepBudget;      // persistent traversal: cluster tests a frame may spend sweeping levels (0: none)
-  uint framePad0, framePad1;
+  uint firstClaimItems;  // persistent traversal: the last frame's counters.cullItems (0: unknown), sizes the first claim
+  uint framePad1;
 };
 
 // GPU counters of one frame, and the indirect arguments built from them. The counters the persistent
@@ -304,7 +305,7 @@ struct Counters {
   uint patchDraw[4];     // VkDrawIndirectCommand of the patch draw (one vertex a patch)
   uint sweepTests;       // cluster tests claimed for sweeps (may pass frame.sweepBudget: then not swept)
   uint sweptTests;       // of those, swept
-  uint counterPad1;
+  uint cullItems;        // queue items instance culling wrote (spread variant): sizes the next frame's first claim
 };
 
 // Triangle list entry: draw-list entry << 7 | triangle within its cluster. Patch list entry: draw-list

@@ -274,10 +274,12 @@ void main() {
     sKeepCount = 0u;
     sFinal = 0u;
     sLetGo = 0u;
-    // The first claim goes out at once, sized by the instance count (a load of queueWrite first put a
-    // round trip in front of every frame's work); the watch lane sizes the next ones by the backlog. An
-    // empty queue ends at the first take: nothing pending, every slot claimed (see Termination).
-    sBatch = clamp(frame.instanceCount / gl_NumWorkGroups.x, kMinBatch, uint(VGEO_TRAVERSAL_WORKGROUP));
+    // The first claim goes out at once (a load of queueWrite first put a round trip in front of every
+    // frame's work), sized to take all of instance culling's items if the last frame's count holds (or by
+    // the instance count); the watch lane sizes the next ones by the backlog. An empty queue ends at the
+    // first take: nothing pending, every slot claimed (see Termination).
+    const uint expected = frame.firstClaimItems != 0u ? frame.firstClaimItems : frame.instanceCount;
+    sBatch = clamp((expected + gl_NumWorkGroups.x - 1u) / gl_NumWorkGroups.x, kMinBatch, uint(VGEO_TRAVERSAL_WORKGROUP));
   }
   for (;;) {
     barrier();
