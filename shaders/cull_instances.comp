@@ -31,13 +31,14 @@ bool instanceVisible(uint instance, out Instance inst, out Geometry g) {
 }
 
 #ifdef VGEO_CULL_SERIAL
-shared uint sVisible, sPending;
+shared uint sVisible, sPending, sQueueEnd;
 
 void main() {
   beginStats();
   if (gl_LocalInvocationIndex == 0u) {
     sVisible = 0u;
     sPending = 0u;
+    sQueueEnd = 0u;
   }
   barrier();
   uint instance = gl_GlobalInvocationID.x;
@@ -50,12 +51,14 @@ void main() {
     } else {
       uint queuedNodes = processItem(instance, g.nodeOffset);
       if (queuedNodes != 0u) atomicAdd(sPending, queuedNodes);
+      if (gQueueEnd != 0u) atomicMax(sQueueEnd, gQueueEnd);
     }
   }
   barrier();
   if (gl_LocalInvocationIndex == 0u) {
     if (sVisible != 0u) atomicAdd(counters.visibleInstances, sVisible);
     if (sPending != 0u) atomicAdd(counters.nodesPending, sPending);
+    if (sQueueEnd != 0u) atomicMax(counters.cullItems, sQueueEnd);  // not waited on
   }
   flushStats();
 }
@@ -131,7 +134,7 @@ void main() {
     if (sSweepTests != 0u) claimed = atomicAdd(counters.sweepTests, sSweepTests);
     if (runs + sWalked != 0u) {
       sFirst = reserveQueue(runs + sWalked);
-      atomicMax(counters.cullItems, sFirst + runs + sWalked);
+      atomicMax(counters.cullItems, gQueueEnd);  // not waited on
     }
     sSweep = sSweepTests != 0u && claimed + sSweepTests <= frame.sweepBudget ? 1u : 0u;
     if (sSweep != 0u) atomicAdd(counters.sweptTests, sSweepTests);

@@ -305,7 +305,7 @@ struct Counters {
   uint patchDraw[4];     // VkDrawIndirectCommand of the patch draw (one vertex a patch)
   uint sweepTests;       // cluster tests claimed for sweeps (may pass frame.sweepBudget: then not swept)
   uint sweptTests;       // of those, swept
-  uint cullItems;        // queue items instance culling wrote (spread variant): sizes the next frame's first claim
+  uint cullItems;        // queue items instance culling wrote: sizes the next frame's first claim
 };
 
 // Triangle list entry: draw-list entry << 7 | triangle within its cluster. Patch list entry: draw-list

@@ -34,8 +34,10 @@ void flushStats() {
 
 // Reserves `count` queue slots; returns the first. Slots past the capacity are dropped, counted as
 // overflow and as done (so the traversal still terminates), and reported to the host.
+uint gQueueEnd = 0u;  // the end of the last slots this invocation reserved
 uint reserveQueue(uint count) {
   uint first = atomicAdd(counters.queueWrite, count);
+  gQueueEnd = first + count;
   if (first + count > frame.queueCapacity) {
     uint lost = min(count, first + count - max(first, frame.queueCapacity));
     atomicAdd(counters.queueOverflow, lost);

@@ -275,10 +275,10 @@ void main() {
     sFinal = 0u;
     sLetGo = 0u;
     // The first claim goes out at once (a load of queueWrite first put a round trip in front of every
-    // frame's work), sized to take all of instance culling's items if the last frame's count holds (or by
-    // the instance count); the watch lane sizes the next ones by the backlog. An empty queue ends at the
-    // first take: nothing pending, every slot claimed (see Termination).
-    const uint expected = frame.firstClaimItems != 0u ? frame.firstClaimItems : frame.instanceCount;
+    // frame's work), sized to take all of instance culling's items if the last frame's count holds (the
+    // least batch when there is none); the watch lane sizes the next ones by the backlog. An empty queue
+    // ends at the first take: nothing pending, every slot claimed (see Termination).
+    const uint expected = frame.firstClaimItems;
     sBatch = clamp((expected + gl_NumWorkGroups.x - 1u) / gl_NumWorkGroups.x, kMinBatch, uint(VGEO_TRAVERSAL_WORKGROUP));
   }
   for (;;) {
