@@ -11,7 +11,7 @@
 //      (a chain of single items, as in a close view of a few instances: spread over many workgroups) to
 //      64 (100,000 instances: fewer claims). The first claim, which nothing has been read for, is sized
 //      by the last frame's instance-culling items (frame.firstClaimItems): sizing it by the instance count
-//      instead made close views of 10,000 instances up to 1.6x slower (a few workgroups took every item).
+//      instead made close views of 10,000 instances up to 1.7x slower (a few workgroups took every item).
 //   1  written items only (lavapipe): the lanes find the written prefix after the read position and
 //      lane 0 claims it by compare-and-swap; nobody waits on a slot, a workgroup holds nothing between
 //      iterations, so it can leave on the iteration budget (lavapipe ends loops silently after 65,535
