@@ -269,10 +269,15 @@ void GpuRenderer::recordInstanceCull(VkCommandBuffer cmd, const FrameSettings& s
 
 void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& settings) {
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
-  // 3. Traversal. Every pass is followed by a barrier before the next reads what it wrote.
-  auto dispatch = [&](VkPipeline pipeline, uint32_t workgroups) {
+  // 3. Traversal. Every pass is followed by a barrier before the next reads what it wrote; the last one
+  // writes the draw arguments (4., draw_arguments.glsl: the persistent traversal's last worker, the flat
+  // traversal's reset pass, finalize.comp after the levels) and is followed by the barrier below.
+  auto lastPass = [&](VkPipeline pipeline, uint32_t workgroups) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
     vkCmdDispatch(cmd, workgroups, 1, 1);
+  };
+  auto dispatch = [&](VkPipeline pipeline, uint32_t workgroups) {
+    lastPass(pipeline, workgroups);
     computeToCompute(cmd);
   };
   auto dispatchIndirect = [&](VkPipeline pipeline) {  // sized by the preceding prepare pass
@@ -280,11 +285,8 @@ void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& sett
     vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, dispatch));
     computeToCompute(cmd);
   };
-  // 4. Triangle-culling dispatch or draw arguments (draw_arguments.glsl): written by the persistent
-  // traversal's last worker and by the flat traversal's reset pass, by finalize.comp after the levels.
   if (settings.traversal == Traversal::Persistent) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, settings.profileWorkers && persistentProfile_ ? persistentProfile_ : persistent_);
-    vkCmdDispatch(cmd, persistentWorkgroups_, 1, 1);
+    lastPass(settings.profileWorkers && persistentProfile_ ? persistentProfile_ : persistent_, persistentWorkgroups_);
   } else if (settings.traversal == Traversal::Levels) {
     // The roots' children (queued by instance culling), one level of nodes per dispatch, then the groups:
     // depth windows.
@@ -292,13 +294,11 @@ void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& sett
       dispatch(prepareLevel_, 1);
       dispatchIndirect(level_);
     }
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, finalize_);
-    vkCmdDispatch(cmd, 1, 1, 1);
+    lastPass(finalize_, 1);
   } else {
     dispatch(prepareFlat_, 1);
     dispatchIndirect(flat_);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, resetFlat_);
-    vkCmdDispatch(cmd, (uint32_t(scene_.data.instances.size()) + 63) / 64, 1, 1);
+    lastPass(resetFlat_, (uint32_t(scene_.data.instances.size()) + 63) / 64);
   }
   // Read by triangle culling (indirect dispatch and counters), or else by the draw and the copies.
   globalBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,

@@ -32,9 +32,9 @@ void flushStats() {
   }
 }
 
+uint gQueueEnd = 0u;  // the end of the last slots this invocation reserved (instance culling reports it)
 // Reserves `count` queue slots; returns the first. Slots past the capacity are dropped, counted as
 // overflow and as done (so the traversal still terminates), and reported to the host.
-uint gQueueEnd = 0u;  // the end of the last slots this invocation reserved
 uint reserveQueue(uint count) {
   uint first = atomicAdd(counters.queueWrite, count);
   gQueueEnd = first + count;
