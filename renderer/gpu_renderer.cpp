@@ -38,8 +38,9 @@ constexpr uint32_t kLavapipeIterationBudget = 50000;
 // reported incomplete and the next one runs twice as many (renderFrame).
 constexpr uint32_t kLavapipeWorkgroups = 4;
 constexpr uint32_t kMaxPersistentWorkgroups = 4096;
-// Up to this many instances the persistent traversal runs two workgroups an SM, four above (measured at
-// 10,000 and 100,000 instances; the switch sits between them).
+// Up to this many instances the persistent traversal runs two workgroups an SM (three up to
+// VGEO_CULL_SPREAD_INSTANCES), four above (measured at 10,000 and 100,000 instances; the switch sits
+// between them).
 constexpr size_t kFewWorkgroupsInstances = 32768;
 // Frame start, then the end of instance culling, traversal, triangle culling and the draw.
 constexpr uint32_t kTimestamps = 5;
@@ -120,12 +121,15 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
     persistentWorkgroups_ = kLavapipeWorkgroups;
   } else {
     // Four workgroups an SM where NVIDIA tells the SM count, two in scenes of up to
-    // kFewWorkgroupsInstances instances. Measured on an H100 (132 SMs), armadillo --subdiv 2 at 1920x1080:
-    // 10k instances 0.24 ms with 4,224 workgroups (all the device holds), 0.09 ms with 528, 0.08 with 264;
-    // 100k instances 0.29 / 0.11 / 0.15 ms. Claiming past the frontier makes every extra workgroup a
-    // poller of empty slots. The cut benchmark over every camera (bench/README.md): 264 against 528
-    // workgroups 6% faster at 10,000 instances, 3% at 1,000, even at 100; 66 and 132 slower everywhere.
-    const uint32_t perSm = scene_.data.instances.size() <= kFewWorkgroupsInstances ? 2u : 4u;
+    // kFewWorkgroupsInstances instances, three in those of up to VGEO_CULL_SPREAD_INSTANCES. Measured on an
+    // H100 (132 SMs), armadillo --subdiv 2 at 1920x1080: 10k instances 0.24 ms with 4,224 workgroups (all
+    // the device holds), 0.09 ms with 528, 0.08 with 264; 100k instances 0.29 / 0.11 / 0.15 ms. Claiming
+    // past the frontier makes every extra workgroup a poller of empty slots. The cut benchmark over every
+    // camera (bench/README.md): 264 against 528 workgroups 6% faster at 10,000 instances, 3% at 1,000, even
+    // at 100; 66 and 132 slower everywhere. Since the preloading rounds (session 11), 396 against 264: 100
+    // instances 2% and 1,000 4% faster in sum (a close view's runs over more workers), 10,000 2% slower.
+    const size_t instances = scene_.data.instances.size();
+    const uint32_t perSm = instances <= VGEO_CULL_SPREAD_INSTANCES ? 3u : instances <= kFewWorkgroupsInstances ? 2u : 4u;
     persistentWorkgroups_ = 128 * perSm;
     if (vk_.hasDeviceExtension(VK_NV_SHADER_SM_BUILTINS_EXTENSION_NAME)) {
       VkPhysicalDeviceShaderSMBuiltinsPropertiesNV sm{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_SM_BUILTINS_PROPERTIES_NV};
@@ -261,7 +265,7 @@ void GpuRenderer::recordInstanceCull(VkCommandBuffer cmd, const FrameSettings& s
   // 1. Reset the counters.
   recordCounterReset(cmd);
   // 2. Instance culling.
-  const uint32_t lanes = cullInstanceLanes(settings), instancesPerWorkgroup = 64 / lanes;
+  const uint32_t lanes = cullInstanceLanes(settings), instancesPerWorkgroup = lanes == 1 ? 64 : VGEO_CULL_SPREAD_WORKGROUP / lanes;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, lanes == 1 ? cullSerial_ : cull_);
   vkCmdDispatch(cmd, (uint32_t(scene_.data.instances.size()) + instancesPerWorkgroup - 1) / instancesPerWorkgroup, 1, 1);
   computeToCompute(cmd);

@@ -86,11 +86,11 @@ void writeDraw(uint index, uint instance, uint cluster) {
   }
 }
 
-// The cut rule for one cluster of one instance, with frustum culling of its self sphere: the draw-list
-// code of the cluster (with VGEO_DRAW_PATCHES_BIT when its patches are drawn), or VGEO_INVALID.
-uint cutCluster(uint instance, uint cluster) {
-  Instance inst = instances[instance];
-  Cluster c = clusters[cluster];
+// The cut rule for one cluster of one instance, with frustum culling of its self sphere and cone culling:
+// the draw-list code of the cluster (with VGEO_DRAW_PATCHES_BIT when its patches are drawn), or
+// VGEO_INVALID. cutCluster loads the records itself; the persistent traversal's preloading rounds load
+// them for several tests at once and call the two parts (cutClusterByError, then coneCulled).
+uint cutClusterByError(Instance inst, uint cluster, Cluster c) {
   gTested++;
   if (!sphereInFrustum(worldSphere(inst, c.selfSphere))) return VGEO_INVALID;
   float self = projectedErrorWorld(inst, c.selfSphere, c.selfError);
@@ -98,13 +98,19 @@ uint cutCluster(uint instance, uint cluster) {
   if (!inCut(self, parent, frame.tau, c.producer == VGEO_NO_GROUP)) return VGEO_INVALID;
   // A leaf too coarse for tau: its patches are drawn (cull_triangles.comp lists them).
   uint patchBit = frame.patches != 0u && c.producer == VGEO_NO_GROUP && self > frame.tau ? VGEO_DRAW_PATCHES_BIT : 0u;
-  // Closed, uniformly scaled: a cluster whose every triangle faces away cannot be seen.
-  if ((inst.flags & VGEO_INSTANCE_CONE_CULL) != 0u) {
-    ClusterCone cc = clusterCones[cluster];
-    vec3 axis = normalize(vec3(dot(inst.row0.xyz, cc.cone.xyz), dot(inst.row1.xyz, cc.cone.xyz), dot(inst.row2.xyz, cc.cone.xyz)));
-    if (clusterFacesAway(vec4(axis, cc.cone.w), worldSphere(inst, cc.sphere), frame.cullEye.xyz)) return VGEO_INVALID;
-  }
   return cluster | patchBit;
+}
+// Closed, uniformly scaled: a cluster whose every triangle faces away cannot be seen.
+bool coneCulled(Instance inst, ClusterCone cc) {
+  if ((inst.flags & VGEO_INSTANCE_CONE_CULL) == 0u) return false;
+  vec3 axis = normalize(vec3(dot(inst.row0.xyz, cc.cone.xyz), dot(inst.row1.xyz, cc.cone.xyz), dot(inst.row2.xyz, cc.cone.xyz)));
+  return clusterFacesAway(vec4(axis, cc.cone.w), worldSphere(inst, cc.sphere), frame.cullEye.xyz);
+}
+uint cutCluster(uint instance, uint cluster) {
+  Instance inst = instances[instance];
+  uint draw = cutClusterByError(inst, cluster, clusters[cluster]);
+  if (draw == VGEO_INVALID || coneCulled(inst, clusterCones[cluster])) return VGEO_INVALID;
+  return draw;
 }
 
 void testCluster(uint instance, uint cluster) {
