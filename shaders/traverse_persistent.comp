@@ -54,6 +54,7 @@ shared uint sFinal;    // claim mode 0: no node item was pending at this iterati
                        // reserved slot was claimed)
 shared uint sLetGo;    // claim mode 0: a slot was let go as past the end (then the worker leaves)
 shared uint sBatch;    // claim mode 0: slots the next claim takes
+shared uint sNoItems;  // claim mode 0: instance culling queued nothing (read beside the first claim)
 const uint kWatchLane = VGEO_TRAVERSAL_WORKGROUP - 1u;  // reads the counters while lanes from 0 take slots
 
 // The work of an iteration is spread over all lanes, one test a lane, in two rounds (a chain of
@@ -318,6 +319,7 @@ void main() {
   beginStats();
   const uint lane = gl_LocalInvocationIndex;
   uint slot = VGEO_INVALID;  // the slot this lane holds (claim mode 0)
+  bool firstClaim = true;
   PROFILE_STAMP(pBegin);
   if (lane == 0u) {
     sHolding = 0u;
@@ -331,16 +333,22 @@ void main() {
     sKeepCount = 0u;
     sFinal = 0u;
     sLetGo = 0u;
+    sNoItems = 0u;
     // The first claim goes out at once (a load of queueWrite first put a round trip in front of every
     // frame's work), sized to take all of instance culling's items if the last frame's count holds (the
     // least batch when there is none); the watch lane sizes the next ones by the backlog. An empty queue
-    // ends at the first take: nothing pending, every slot claimed (see Termination).
+    // ends at the first claim (sNoItems).
     const uint expected = frame.firstClaimItems;
     sBatch = clamp((expected + gl_NumWorkGroups.x - 1u) / gl_NumWorkGroups.x, kMinBatch, uint(VGEO_TRAVERSAL_WORKGROUP));
   }
   for (;;) {
     barrier();
     PROFILE_STAMP(pStart);
+    // Beside the first claim: when instance culling queued nothing, nothing will ever be queued (only node
+    // items produce items), and the workers leave without reading their slots (a view with nothing in it
+    // ends ~1 us sooner).
+    if (lane == kWatchLane && firstClaim && frame.claimMode == 0u) sNoItems = counters.queueWrite == 0u ? 1u : 0u;
+    firstClaim = false;
     if (lane == 0u) {
       sExit = 0u;
       sCount = 0u;
@@ -380,7 +388,7 @@ void main() {
       barrier();
     }
     PROFILE_STAMP(pClaimed);
-    if (sExit != 0u) {
+    if (sExit != 0u || sNoItems != 0u) {
       if (lane == 0u) {
 #ifdef VGEO_PROFILE
         profileExit();
