@@ -6,9 +6,10 @@
 //   VGEO_CULL_SERIAL: one lane an instance, queueing its own (large scenes, lavapipe). It declares none of
 //     the spread variant's shared arrays: with them (~14 KB a workgroup at 8 lanes an instance, unused)
 //     culling 100,000 instances took ~0.047 instead of ~0.030 ms on an H100.
-//   otherwise VGEO_CULL_INSTANCE_LANES lanes an instance (workgroups of VGEO_CULL_SPREAD_WORKGROUP) test the
-//     children side by side and the workgroup queues them with one reservation (one lane testing ~20 children in a row put a chain of ~20 loads in
-//     front of the traversal: 10-18% of a close view's selection on an H100). The root's children come
+//   otherwise VGEO_CULL_INSTANCE_LANES lanes an instance (workgroups of VGEO_CULL_SPREAD_WORKGROUP) test
+//     the children side by side and the workgroup queues them with one reservation (one lane testing ~20
+//     children in a row put a chain of ~20 loads in front of the traversal: 10-18% of a close view's
+//     selection on an H100). The root's children come
 //     from the instance record (Instance::rootChildOffset), not from the root's.
 // Sweeps (persistent traversal, spread culling): a kept level subtree whose clusters are one run may be
 // queued as runs of up to VGEO_SWEEP_RUN clusters instead, tested in one step rather than down a chain of
@@ -96,13 +97,13 @@ void main() {
   Instance inst;
   Geometry g;
   const bool visible = instanceVisible(instance, inst, g);
-  if (frame.queueRoots == 0u && instance < frame.instanceCount) {
+  if (frame.queueRoots == 0u && visible) {
     // The root's children from the instance record (not from the root's record: a load less in a row),
     // once the instance is known to be visible: an instance out of view loads none (a view with nothing in
     // it culled ~0.7 us sooner on an H100; close views the same within +-0.6 us).
     const uint count = (inst.flags >> VGEO_INSTANCE_ROOT_COUNT_SHIFT) & 0xffu;
     const bool leaf = (inst.flags & VGEO_INSTANCE_ROOT_LEAF) != 0u;
-    for (uint i = part; visible && i < count; i += lanes) {
+    for (uint i = part; i < count; i += lanes) {
       uint child = inst.rootChildOffset + i;
       uvec2 run = frame.sweepBudget != 0u && !leaf ? levelClusterRuns[child] : uvec2(0u);
       if (run.y > kMaxSweptLevel) run = uvec2(0u);

@@ -228,7 +228,9 @@ void runRound(uint round, uint lane) {
 // of all its tests (instance, cluster, cone) before the first, so that they go out together; runRound's
 // tests of a lane run one after another (a pass of 4 ~6 us against ~3 us for 1 in a close view of 100
 // instances on an H100). Only where some lane has more than one test and batches are small (see main):
-// loading every round this way made far views of 10,000 and 100,000 instances 3% slower.
+// loading every round this way made far views of 10,000 and 100,000 instances 3% slower. Its own function
+// rather than a uniform flag of runRound: the merged version measured 0.4% (100 instances) and 0.8%
+// (1,000) slower in sum on an H100 (session 11's review, variants.txt).
 void runClusterRound(uint round, uint lane) {
   const uint base = round == 0u ? 0u : kRound2;
   const uint entries = sEntryCounts[round] >> kTestBits;
