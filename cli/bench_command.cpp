@@ -70,6 +70,7 @@ struct BenchArgs {
                              traversals = "persistent,levels,flat,cpu", size = "1920x1080", device;
   uint32_t frames = 5, cpuMaxInstances = 1000, flatMaxInstances = 10000, workgroups = 0, sweepBudget = kDefaultSweepBudget;
   bool profileWorkers = false;
+  InstanceCulling instanceCulling = InstanceCulling::Auto;
   float fov = 60.0f;
 };
 
@@ -96,6 +97,7 @@ void runBenchCut(const BenchArgs& a) {
             s.drawView = s.cullView = makeView(camera, width, height, scene.bounds);
             s.tau = tau;
             s.sweepBudget = a.sweepBudget;
+            s.instanceCulling = a.instanceCulling;
             // On a GPU every frame also draws (not timed: the traversal has its own timestamps): selection
             // alone left an H100 idle most of the time, its clock dropped within ~100 ms, and the same
             // traversal then measured 2-4x slower. lavapipe has no clocks to keep up: selection only.
@@ -141,7 +143,8 @@ void runBenchCut(const BenchArgs& a) {
               }
               const auto& c = f.counters;
               r["traversal_ms"] = median(ms);
-              r["instance_cull_ms"] = median(cullMs);  // part of traversal_ms
+              r["instance_cull_ms"] = median(cullMs);  // part of traversal_ms (the counter reset when culled in the traversal)
+              r["instance_culling"] = f.culledInTraversal ? "traversal" : "pass";
               r["timing"] = f.timing;
               r["nodes_visited"] = c.nodesVisited;
               r["clusters_tested"] = c.clustersTested;
@@ -195,6 +198,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
   cut->add_option("--workgroups", a->workgroups, "Persistent traversal workgroups (default: the renderer's)");
   cut->add_option("--sweep-budget", a->sweepBudget, "Persistent traversal: cluster tests a frame may sweep instead of walking (0: none)")
       ->capture_default_str();
+  addInstanceCullingOption(cut, a->instanceCulling);
   cut->add_flag("--profile-workers", a->profileWorkers,
                 "Persistent records: one more frame with the workers' iterations timed in the shader (needs VK_KHR_shader_clock)");
   cut->add_option("--device", a->device, "Use the first Vulkan device whose name contains this");

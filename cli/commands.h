@@ -4,9 +4,12 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
+
+#include "../renderer/gpu_renderer.h"
 
 namespace vgeo {
 
@@ -20,6 +23,17 @@ inline void writeJson(const std::string& path, const nlohmann::ordered_json& j, 
   std::ofstream out(path);
   out << j.dump(indent) << "\n";
   if (!out) throw std::runtime_error(path + ": cannot write the file");
+}
+
+// --instance-culling auto|pass|traversal (render and bench cut): FrameSettings::instanceCulling.
+inline void addInstanceCullingOption(CLI::App* cmd, InstanceCulling& target) {
+  const std::map<std::string, InstanceCulling> names{
+      {"auto", InstanceCulling::Auto}, {"pass", InstanceCulling::Pass}, {"traversal", InstanceCulling::InTraversal}};
+  cmd->add_option("--instance-culling", target,
+                  "Persistent traversal: cull the instances in a pass of their own, or first thing in the traversal's dispatch "
+                  "(auto: the traversal on GPUs in scenes of up to 3 instances a worker)")
+      ->transform(CLI::CheckedTransformer(names))
+      ->default_str("auto");
 }
 
 void addBuildCommand(CLI::App& app, int& exitCode);

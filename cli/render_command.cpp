@@ -42,6 +42,7 @@ struct RenderArgs {
   float fov = 60.0f, tau = 1.0f;
   uint32_t grid = 1, frames = 2, queueCapacity = 0, drawCapacity = 0, triangleCapacity = 0, workgroups = 0, cullLanes = 0;
   uint32_t sweepBudget = kDefaultSweepBudget;
+  InstanceCulling instanceCulling = InstanceCulling::Auto;
   bool compareCpu = false, validate = false, noTriangleCull = false, noPatches = false;
 };
 
@@ -76,10 +77,13 @@ int runRender(const RenderArgs& a) {
   settings.mode = kModes.at(a.mode);
   settings.sweepBudget = a.sweepBudget;
   settings.cullLanes = a.cullLanes;
+  settings.instanceCulling = a.instanceCulling;
   settings.traversal = traversal;
   settings.readDrawList = a.compareCpu;
   settings.triangleCull = !a.noTriangleCull;
   settings.patches = !a.noPatches;
+  if (settings.instanceCulling == InstanceCulling::InTraversal && !renderer.cullsInTraversal(settings))
+    throw std::runtime_error("--instance-culling traversal needs the persistent traversal and culling lanes " + std::to_string(VGEO_CULL_INSTANCE_LANES));
 
   // Frames until one is complete (an overflow grows the buffers for the next); the first frames warm
   // the shader cache (GPU-NOTES 4), the last one is reported.
@@ -146,6 +150,7 @@ int runRender(const RenderArgs& a) {
   j["queue_high_water"] = c.queueHighWater;
   j["persistent_workgroups"] = renderer.persistentWorkgroups();
   j["swept_tests"] = c.sweptTests;
+  j["instance_culling"] = result.culledInTraversal ? "traversal" : "pass";  // traversal: instance_cull_ms is the counter reset
   j["instance_cull_ms"] = result.instanceCullMs;
   j["traversal_ms"] = result.traversalMs;
   j["triangle_cull_ms"] = result.triangleCullMs;
@@ -215,6 +220,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--cull-lanes", a->cullLanes, "Lanes instance culling gives an instance, 1 or " + std::to_string(VGEO_CULL_INSTANCE_LANES) +
                                                   " (default: the renderer's; sweeps need " + std::to_string(VGEO_CULL_INSTANCE_LANES) + ")")
       ->check(CLI::IsMember({1u, uint32_t(VGEO_CULL_INSTANCE_LANES)}));
+  addInstanceCullingOption(cmd, a->instanceCulling);
   cmd->callback([a, &exitCode] {
     try {
       exitCode = runRender(*a);

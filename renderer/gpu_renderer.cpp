@@ -1,7 +1,9 @@
 // gpu_renderer.cpp: the frame. Read renderFrame() top to bottom: it is the list of passes.
 //   1. reset counters            (transfer)
-//   2. cull_instances.comp       1 or 32 lanes an instance (32 on GPUs up to 4,096 instances) -> queue of
-//                                (instance, level subtree root), or of (instance, BVH root) for flat
+//   2. cull_instances.comp       1 or 64 lanes an instance (64 on GPUs up to 4,096 instances) -> queue of
+//                                (instance, level subtree root), or of (instance, BVH root) for flat; in
+//                                scenes of up to 3 instances a persistent worker on GPUs, the workers cull
+//                                them first themselves (cull_instances.glsl), in the traversal's dispatch
 //   3. traversal                 persistent: one dispatch of resident workgroups draining the queue
 //                                levels: per depth, prepare_level.comp then traverse_level.comp (indirect)
 //                                flat: prepare_flat.comp then traverse_flat.comp (one thread a cluster)
@@ -249,12 +251,13 @@ void GpuRenderer::writeDescriptors() {
   vkUpdateDescriptorSets(vk_.device(), kRendererBindings, writes, 0, nullptr);
 }
 
-// Zeroes the counters (earlier submissions are ordered before it by the opening barrier) and binds the
+// Zeroes the counters but nodesPending (earlier submissions are ordered before it by the opening barrier) and binds the
 // descriptor set for the compute passes.
-void GpuRenderer::recordCounterReset(VkCommandBuffer cmd) {
+void GpuRenderer::recordCounterReset(VkCommandBuffer cmd, uint32_t nodesPending) {
   globalBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT,
                 VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
   shaderio::Counters zero{};
+  zero.nodesPending = nodesPending;
   vkCmdUpdateBuffer(cmd, counters_.buffer, 0, sizeof(zero), &zero);
   globalBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                 VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
@@ -262,9 +265,13 @@ void GpuRenderer::recordCounterReset(VkCommandBuffer cmd) {
 }
 
 void GpuRenderer::recordInstanceCull(VkCommandBuffer cmd, const FrameSettings& settings) {
-  // 1. Reset the counters.
+  // 1. Reset the counters. 2. Instance culling, unless the persistent traversal's workers do it: then each
+  // culling worker counts as pending until it has queued its instance's items (traverse_persistent.comp).
+  if (cullsInTraversal(settings)) {
+    recordCounterReset(cmd, uint32_t(scene_.data.instances.size()));
+    return;
+  }
   recordCounterReset(cmd);
-  // 2. Instance culling.
   const uint32_t lanes = cullInstanceLanes(settings), instancesPerWorkgroup = lanes == 1 ? 64 : VGEO_CULL_SPREAD_WORKGROUP / lanes;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, lanes == 1 ? cullSerial_ : cull_);
   vkCmdDispatch(cmd, (uint32_t(scene_.data.instances.size()) + instancesPerWorkgroup - 1) / instancesPerWorkgroup, 1, 1);
@@ -388,6 +395,7 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
   frame.queueRoots = settings.traversal == Traversal::Flat ? 1u : 0u;
   frame.sweepBudget = settings.traversal == Traversal::Persistent ? settings.sweepBudget : 0u;
   frame.firstClaimItems = lastCullItems_;
+  frame.cullInTraversal = cullsInTraversal(settings) ? 1u : 0u;
   const bool cullTriangles = settings.draw && settings.triangleCull;
   frame.triangleCull = cullTriangles ? 1u : 0u;
   frame.triangleCapacity = triangleCapacity_;
@@ -414,6 +422,7 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
   }
 
   FrameResult result;
+  result.culledInTraversal = frame.cullInTraversal != 0u;
   double period = vk_.timestampPeriod();
   auto start = std::chrono::steady_clock::now();
   if (vk_.isLavapipe() || period == 0.0) {

@@ -16,10 +16,11 @@
 //      lane 0 claims it by compare-and-swap; nobody waits on a slot, a workgroup holds nothing between
 //      iterations, so it can leave on the iteration budget (lavapipe ends loops silently after 65,535
 //      iterations per invocation, all loops counted, GPU-NOTES 1: every loop here counts into gLoops).
-// Termination: only node items produce items, and counters.nodesPending counts those queued and not yet
-// finished (a producer adds its children before it takes itself off, on the same counter). At 0 nothing
-// more will be written: every slot below the last reservation is then visible (instance culling's, before
-// this dispatch) or was a node item, taken already. So a worker that sees 0 lets go of the slots it holds
+// Termination: only node items (and workers culling instances, frame.cullInTraversal) produce items, and
+// counters.nodesPending counts those queued or culling and not yet finished (a producer adds its children
+// before it takes itself off, on the same counter). At 0 nothing more will be written: every slot below the
+// last reservation is then visible (instance culling's, before this dispatch or before its worker left the
+// count) or was a node item, taken already. So a worker that sees 0 lets go of the slots it holds
 // unfilled and leaves: they lie past the end, and every item before them is claimed. One load, read beside
 // the slots (the itemsDone == queueWrite test it replaces took two in a row, every 4th poll: ~8 us after
 // the last item on an H100). A worker that sees 0 and as many slots claimed as reserved leaves after the
@@ -36,6 +37,8 @@
 #include "common.glsl"
 layout(local_size_x = VGEO_TRAVERSAL_WORKGROUP) in;
 #include "traverse_common.glsl"
+#define VGEO_CULL_WORKGROUP VGEO_TRAVERSAL_WORKGROUP
+#include "cull_instances.glsl"
 #include "draw_arguments.glsl"
 
 const uint kMinBatch = 4u;         // measured on an H100: 4 to 8 best for close views, 16 and more worse
@@ -343,13 +346,19 @@ void main() {
     const uint expected = frame.firstClaimItems;
     sBatch = clamp((expected + gl_NumWorkGroups.x - 1u) / gl_NumWorkGroups.x, kMinBatch, uint(VGEO_TRAVERSAL_WORKGROUP));
   }
+  // Small scenes (frame.cullInTraversal): worker w culls instances w, w + workers, ... first, their items
+  // written into slots that the other workers may have claimed already (they wait on them as on any slot
+  // past the frontier). The host counted every instance in nodesPending and each culling takes its own off,
+  // so no worker sees 0 before all are queued.
+  if (frame.cullInTraversal != 0u)
+    for (uint i = gl_WorkGroupID.x; i < frame.instanceCount; i += gl_NumWorkGroups.x) cullInstancesSpread(i, true);
   for (;;) {
     barrier();
     PROFILE_STAMP(pStart);
     // Beside the first claim: when instance culling queued nothing, nothing will ever be queued (only node
     // items produce items), and the workers leave without reading their slots (a view with nothing in it
     // ends ~1 us sooner).
-    if (lane == kWatchLane && firstClaim && frame.claimMode == 0u) sNoItems = counters.queueWrite == 0u ? 1u : 0u;
+    if (lane == kWatchLane && firstClaim && frame.claimMode == 0u && frame.cullInTraversal == 0u) sNoItems = counters.queueWrite == 0u ? 1u : 0u;
     firstClaim = false;
     if (lane == 0u) {
       sExit = 0u;

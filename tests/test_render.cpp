@@ -125,6 +125,60 @@ TEST_F(Render, SweptLevelsGiveTheSameCutWhateverTheBudget) {
     }
 }
 
+TEST_F(Render, CullingInsideTheTraversalGivesTheSameCut) {
+  // The persistent workers cull the instances themselves (on GPUs in scenes of up to 3 instances a
+  // worker), each instance counted in nodesPending until its items are queued. The CPU's cut with every
+  // sweep budget (none, all, all but one test: some items walked), nodesPending back at 0, and the
+  // instances counted as the culling pass counts them: with a worker for each instance and with 3 workers
+  // for 16 instances. On lavapipe the workers run a few at a time, so one waiting on a later culling worker
+  // leaves on its iteration budget (made small here) and a later one carries on.
+  for (auto [scene, fewWorkers] : {std::pair(single, false), std::pair(grid, false), std::pair(grid, true)}) {
+    GpuRenderer renderer(*vk, *scene, kW, kH);
+    renderer.setPersistentWorkgroups(fewWorkers ? 3 : uint32_t(scene->data.instances.size()) + 3);
+    renderer.setIterationBudget(2000);
+    FrameSettings probe = settingsFor(*scene, test::orbit(*scene, 0.7f, 0.4f, 1.4f), 1.0f);
+    EXPECT_EQ(renderer.cullsInTraversal(probe), !vk->isLavapipe() && !fewWorkers) << "auto: on GPUs, up to 3 instances a worker";
+    probe.instanceCulling = InstanceCulling::InTraversal;
+    ASSERT_TRUE(renderer.cullsInTraversal(probe));
+    probe.cullLanes = 1;
+    EXPECT_FALSE(renderer.cullsInTraversal(probe)) << "one culling lane an instance: a pass of its own";
+    probe.cullLanes = 0;
+    probe.traversal = Traversal::Flat;
+    EXPECT_FALSE(renderer.cullsInTraversal(probe)) << "the persistent traversal only";
+    const float r = scene->bounds.w;
+    Camera away;
+    away.eye = glm::vec3(scene->bounds) + glm::vec3(0.0f, 0.0f, 2.0f) * r;
+    away.target = glm::vec3(scene->bounds) + glm::vec3(0.0f, 0.0f, 4.0f) * r;
+    for (const Camera& camera : {defaultCamera(scene->bounds, scene->boxMin, scene->boxMax, 60.0f), test::orbit(*scene, 0.7f, 0.4f, 1.4f), away})
+      for (float tau : {1.0f, 4.0f}) {
+        FrameSettings s = settingsFor(*scene, camera, tau);
+        s.readImage = false;
+        const SceneCut reference = selectSceneCut(*scene, s.cullView, tau);
+        s.instanceCulling = InstanceCulling::Pass;
+        const FrameResult pass = renderer.renderFrame(s);
+        ASSERT_TRUE(pass.complete);
+        EXPECT_FALSE(pass.culledInTraversal);
+        s.instanceCulling = InstanceCulling::InTraversal;
+        auto run = [&](uint32_t budget) {
+          SCOPED_TRACE(std::string(scene == grid ? "grid" : "single") + " workers " + std::to_string(renderer.persistentWorkgroups()) + " sweep budget " + std::to_string(budget) + " tau " + std::to_string(tau));
+          s.sweepBudget = budget;
+          FrameResult result = renderer.renderFrame(s);
+          for (int i = 0; i < 8 && !result.complete; i++) result = renderer.renderFrame(s);
+          EXPECT_TRUE(result.complete);
+          EXPECT_TRUE(result.culledInTraversal);
+          EXPECT_EQ(result.counters.nodesPending, 0u);
+          EXPECT_EQ(result.counters.visibleInstances, pass.counters.visibleInstances);
+          std::string difference;
+          EXPECT_TRUE(compareCuts(reference, result.drawList, difference)) << difference;
+          return result.counters;
+        };
+        run(0);
+        const shaderio::Counters all = run(UINT32_MAX);
+        if (all.sweepTests > 0) EXPECT_LT(run(all.sweepTests - 1).sweptTests, all.sweepTests);
+      }
+  }
+}
+
 TEST_F(Render, WorkerProfileAccountsForEveryItem) {
   // The profiled persistent traversal (a pipeline of its own) lists the same cut, and its records hold
   // every queue item once, in stamps that follow each other (begin <= start <= claimed <= taken <= end <=
