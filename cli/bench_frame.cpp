@@ -76,6 +76,7 @@ void runBenchFrame(const FrameBenchArgs& a) {
           r["traversal"] = a.traversal;
           r["triangle_cull"] = triangleCull;
           r["patches"] = patches;
+          r["instance_culling"] = f.culledInTraversal ? "traversal" : "pass";  // traversal: instance_cull_ms is the counter reset
           r["instance_cull_ms"] = median(cull);
           r["traversal_ms"] = median(traverse);
           r["triangle_cull_ms"] = median(triangles);
