@@ -70,7 +70,7 @@ struct BenchArgs {
                              traversals = "persistent,levels,flat,cpu", size = "1920x1080", device;
   uint32_t frames = 5, cpuMaxInstances = 1000, flatMaxInstances = 10000, workgroups = 0, sweepBudget = kDefaultSweepBudget;
   bool profileWorkers = false;
-  InstanceCulling instanceCulling = InstanceCulling::Auto;
+  std::string instanceCulling = "auto";
   float fov = 60.0f;
 };
 
@@ -97,7 +97,7 @@ void runBenchCut(const BenchArgs& a) {
             s.drawView = s.cullView = makeView(camera, width, height, scene.bounds);
             s.tau = tau;
             s.sweepBudget = a.sweepBudget;
-            s.instanceCulling = a.instanceCulling;
+            s.instanceCulling = instanceCullingNamed(a.instanceCulling);
             // On a GPU every frame also draws (not timed: the traversal has its own timestamps): selection
             // alone left an H100 idle most of the time, its clock dropped within ~100 ms, and the same
             // traversal then measured 2-4x slower. lavapipe has no clocks to keep up: selection only.

@@ -4,7 +4,6 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <fstream>
-#include <map>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
@@ -25,15 +24,16 @@ inline void writeJson(const std::string& path, const nlohmann::ordered_json& j, 
   if (!out) throw std::runtime_error(path + ": cannot write the file");
 }
 
-// --instance-culling auto|pass|traversal (render and bench cut): FrameSettings::instanceCulling.
-inline void addInstanceCullingOption(CLI::App* cmd, InstanceCulling& target) {
-  const std::map<std::string, InstanceCulling> names{
-      {"auto", InstanceCulling::Auto}, {"pass", InstanceCulling::Pass}, {"traversal", InstanceCulling::InTraversal}};
-  cmd->add_option("--instance-culling", target,
+// --instance-culling auto|pass|traversal (render and bench cut), for FrameSettings::instanceCulling.
+inline void addInstanceCullingOption(CLI::App* cmd, std::string& name) {
+  cmd->add_option("--instance-culling", name,
                   "Persistent traversal: cull the instances in a pass of their own, or first thing in the traversal's dispatch "
                   "(auto: the traversal on GPUs in scenes of up to 3 instances a worker)")
-      ->transform(CLI::CheckedTransformer(names))
-      ->default_str("auto");
+      ->check(CLI::IsMember({"auto", "pass", "traversal"}))
+      ->capture_default_str();
+}
+inline InstanceCulling instanceCullingNamed(const std::string& name) {
+  return name == "pass" ? InstanceCulling::Pass : name == "traversal" ? InstanceCulling::InTraversal : InstanceCulling::Auto;
 }
 
 void addBuildCommand(CLI::App& app, int& exitCode);

@@ -42,7 +42,7 @@ struct RenderArgs {
   float fov = 60.0f, tau = 1.0f;
   uint32_t grid = 1, frames = 2, queueCapacity = 0, drawCapacity = 0, triangleCapacity = 0, workgroups = 0, cullLanes = 0;
   uint32_t sweepBudget = kDefaultSweepBudget;
-  InstanceCulling instanceCulling = InstanceCulling::Auto;
+  std::string instanceCulling = "auto";
   bool compareCpu = false, validate = false, noTriangleCull = false, noPatches = false;
 };
 
@@ -77,13 +77,15 @@ int runRender(const RenderArgs& a) {
   settings.mode = kModes.at(a.mode);
   settings.sweepBudget = a.sweepBudget;
   settings.cullLanes = a.cullLanes;
-  settings.instanceCulling = a.instanceCulling;
+  settings.instanceCulling = instanceCullingNamed(a.instanceCulling);
   settings.traversal = traversal;
   settings.readDrawList = a.compareCpu;
   settings.triangleCull = !a.noTriangleCull;
   settings.patches = !a.noPatches;
   if (settings.instanceCulling == InstanceCulling::InTraversal && !renderer.cullsInTraversal(settings))
-    throw std::runtime_error("--instance-culling traversal needs the persistent traversal and culling lanes " + std::to_string(VGEO_CULL_INSTANCE_LANES));
+    throw std::runtime_error("--instance-culling traversal needs the persistent traversal, culling lanes " + std::to_string(VGEO_CULL_INSTANCE_LANES) +
+                             " and at most " + std::to_string(GpuRenderer::kCullInTraversalMaxPerWorker) + " instances a worker (" +
+                             std::to_string(renderer.persistentWorkgroups()) + " workers)");
 
   // Frames until one is complete (an overflow grows the buffers for the next); the first frames warm
   // the shader cache (GPU-NOTES 4), the last one is reported.

@@ -251,8 +251,8 @@ void GpuRenderer::writeDescriptors() {
   vkUpdateDescriptorSets(vk_.device(), kRendererBindings, writes, 0, nullptr);
 }
 
-// Zeroes the counters but nodesPending (earlier submissions are ordered before it by the opening barrier) and binds the
-// descriptor set for the compute passes.
+// Resets the counters: all 0 but nodesPending, the instances the persistent workers will cull (earlier
+// submissions are ordered before it by the opening barrier); binds the descriptor set for the compute passes.
 void GpuRenderer::recordCounterReset(VkCommandBuffer cmd, uint32_t nodesPending) {
   globalBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT,
                 VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
@@ -266,7 +266,7 @@ void GpuRenderer::recordCounterReset(VkCommandBuffer cmd, uint32_t nodesPending)
 
 void GpuRenderer::recordInstanceCull(VkCommandBuffer cmd, const FrameSettings& settings) {
   // 1. Reset the counters. 2. Instance culling, unless the persistent traversal's workers do it: then each
-  // culling worker counts as pending until it has queued its instance's items (traverse_persistent.comp).
+  // instance counts as pending until its culling has queued its items (traverse_persistent.comp).
   if (cullsInTraversal(settings)) {
     recordCounterReset(cmd, uint32_t(scene_.data.instances.size()));
     return;

@@ -90,12 +90,15 @@ class GpuRenderer {
   // VGEO_CULL_INSTANCE_LANES lanes an instance: never with cullLanes 1; Auto on GPUs, in scenes of up to
   // kCullInTraversalPerWorker instances a worker. On an H100 (396 workers, the cut benchmark's 24 views a
   // size summed against the culling pass): 1 to 400 instances 8-11% faster, 1,000 (2.5 a worker) 4.5%
-  // faster, 3,000 (7.6) 9% slower.
-  static constexpr size_t kCullInTraversalPerWorker = 3;
+  // faster, 3,000 (7.6) 9% slower. InTraversal up to kCullInTraversalMaxPerWorker a worker: lavapipe
+  // counts the culling's loop iterations (~50 an instance at most) against its limit of 65,535 an
+  // invocation, past the traversal's budget (kLavapipeIterationBudget), which leaves ~15,000 to spare.
+  static constexpr size_t kCullInTraversalPerWorker = 3, kCullInTraversalMaxPerWorker = 64;
   bool cullsInTraversal(const FrameSettings& s) const {
+    const size_t instances = scene_.data.instances.size();
     if (s.traversal != Traversal::Persistent || s.instanceCulling == InstanceCulling::Pass || s.cullLanes == 1) return false;
-    if (s.instanceCulling == InstanceCulling::InTraversal) return true;
-    return claimMode_ == 0 && cullInstanceLanes(s) != 1 && scene_.data.instances.size() <= kCullInTraversalPerWorker * persistentWorkgroups_;
+    if (s.instanceCulling == InstanceCulling::InTraversal) return instances <= kCullInTraversalMaxPerWorker * persistentWorkgroups_;
+    return claimMode_ == 0 && cullInstanceLanes(s) != 1 && instances <= kCullInTraversalPerWorker * persistentWorkgroups_;
   }
 
  private:

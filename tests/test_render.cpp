@@ -143,6 +143,16 @@ TEST_F(Render, CullingInsideTheTraversalGivesTheSameCut) {
     probe.cullLanes = 1;
     EXPECT_FALSE(renderer.cullsInTraversal(probe)) << "one culling lane an instance: a pass of its own";
     probe.cullLanes = 0;
+    if (fewWorkers) {  // forced: up to kCullInTraversalMaxPerWorker (64) instances a worker
+      const RenderScene many = loadRenderScene(std::filesystem::temp_directory_path() / "vgeo_render_tests" / "horned.vgeo", 9);
+      GpuRenderer manyRenderer(*vk, many, kW, kH);
+      FrameSettings manyProbe = settingsFor(many, test::orbit(many, 0.7f, 0.4f, 1.4f), 1.0f);
+      manyProbe.instanceCulling = InstanceCulling::InTraversal;
+      manyRenderer.setPersistentWorkgroups(1);
+      EXPECT_FALSE(manyRenderer.cullsInTraversal(manyProbe)) << "81 instances, 1 worker";
+      manyRenderer.setPersistentWorkgroups(2);
+      EXPECT_TRUE(manyRenderer.cullsInTraversal(manyProbe)) << "81 instances, 2 workers";
+    }
     probe.traversal = Traversal::Flat;
     EXPECT_FALSE(renderer.cullsInTraversal(probe)) << "the persistent traversal only";
     const float r = scene->bounds.w;
