@@ -270,8 +270,9 @@ struct FrameData {
                          // instance; 0: it tests the root's children and queues those
   uint sweepBudget;      // persistent traversal: cluster tests a frame may spend sweeping levels (0: none)
   uint firstClaimItems;  // persistent traversal: the last frame's counters.cullItems (0: unknown), sizes the first claim
-  uint cullInTraversal;  // persistent traversal: its workers cull the instances (one a worker) instead of
-                         // cull_instances.comp; the host starts counters.nodesPending at frame.instanceCount
+  uint cullInTraversal;  // persistent traversal: its workers cull the instances first (worker w: instances w,
+                         // w + workers, ...) instead of cull_instances.comp; the host starts
+                         // counters.nodesPending at frame.instanceCount
 };
 
 // GPU counters of one frame, and the indirect arguments built from them. The counters the persistent

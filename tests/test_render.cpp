@@ -40,6 +40,17 @@ class Render : public ::testing::Test {
     return s;
   }
 
+  // Renders `s` until a frame is complete (a few frames at most: an overflow or workers that ran out
+  // grow the buffers or the workers for the next) and expects its draw list to equal `reference`.
+  static FrameResult renderEqualToCut(GpuRenderer& renderer, const FrameSettings& s, const SceneCut& reference) {
+    FrameResult result = renderer.renderFrame(s);
+    for (int i = 0; i < 8 && !result.complete; i++) result = renderer.renderFrame(s);
+    EXPECT_TRUE(result.complete);
+    std::string difference;
+    EXPECT_TRUE(compareCuts(reference, result.drawList, difference)) << difference;
+    return result;
+  }
+
   static VulkanContext* vk;
   static RenderScene *single, *grid, *armadillo;
 };
@@ -107,11 +118,7 @@ TEST_F(Render, SweptLevelsGiveTheSameCutWhateverTheBudget) {
       auto run = [&](uint32_t budget) {
         SCOPED_TRACE("sweep budget " + std::to_string(budget) + " tau " + std::to_string(tau));
         s.sweepBudget = budget;
-        FrameResult result = renderer.renderFrame(s);
-        EXPECT_TRUE(result.complete);
-        std::string difference;
-        EXPECT_TRUE(compareCuts(reference, result.drawList, difference)) << difference;
-        return result.counters;
+        return renderEqualToCut(renderer, s, reference).counters;
       };
       EXPECT_EQ(run(0).sweptTests, 0u);
       const shaderio::Counters all = run(UINT32_MAX);
@@ -143,16 +150,6 @@ TEST_F(Render, CullingInsideTheTraversalGivesTheSameCut) {
     probe.cullLanes = 1;
     EXPECT_FALSE(renderer.cullsInTraversal(probe)) << "one culling lane an instance: a pass of its own";
     probe.cullLanes = 0;
-    if (fewWorkers) {  // forced: up to kCullInTraversalMaxPerWorker (64) instances a worker
-      const RenderScene many = loadRenderScene(std::filesystem::temp_directory_path() / "vgeo_render_tests" / "horned.vgeo", 9);
-      GpuRenderer manyRenderer(*vk, many, kW, kH);
-      FrameSettings manyProbe = settingsFor(many, test::orbit(many, 0.7f, 0.4f, 1.4f), 1.0f);
-      manyProbe.instanceCulling = InstanceCulling::InTraversal;
-      manyRenderer.setPersistentWorkgroups(1);
-      EXPECT_FALSE(manyRenderer.cullsInTraversal(manyProbe)) << "81 instances, 1 worker";
-      manyRenderer.setPersistentWorkgroups(2);
-      EXPECT_TRUE(manyRenderer.cullsInTraversal(manyProbe)) << "81 instances, 2 workers";
-    }
     probe.traversal = Traversal::Flat;
     EXPECT_FALSE(renderer.cullsInTraversal(probe)) << "the persistent traversal only";
     const float r = scene->bounds.w;
@@ -170,23 +167,31 @@ TEST_F(Render, CullingInsideTheTraversalGivesTheSameCut) {
         EXPECT_FALSE(pass.culledInTraversal);
         s.instanceCulling = InstanceCulling::InTraversal;
         auto run = [&](uint32_t budget) {
-          SCOPED_TRACE(std::string(scene == grid ? "grid" : "single") + " workers " + std::to_string(renderer.persistentWorkgroups()) + " sweep budget " + std::to_string(budget) + " tau " + std::to_string(tau));
+          SCOPED_TRACE(std::string(scene == grid ? "grid" : "single") + " workers " + std::to_string(renderer.persistentWorkgroups()) +
+                       " sweep budget " + std::to_string(budget) + " tau " + std::to_string(tau));
           s.sweepBudget = budget;
-          FrameResult result = renderer.renderFrame(s);
-          for (int i = 0; i < 8 && !result.complete; i++) result = renderer.renderFrame(s);
-          EXPECT_TRUE(result.complete);
+          const FrameResult result = renderEqualToCut(renderer, s, reference);
           EXPECT_TRUE(result.culledInTraversal);
           EXPECT_EQ(result.counters.nodesPending, 0u);
           EXPECT_EQ(result.counters.visibleInstances, pass.counters.visibleInstances);
-          std::string difference;
-          EXPECT_TRUE(compareCuts(reference, result.drawList, difference)) << difference;
           return result.counters;
         };
         run(0);
         const shaderio::Counters all = run(UINT32_MAX);
-        if (all.sweepTests > 0) EXPECT_LT(run(all.sweepTests - 1).sweptTests, all.sweepTests);
+        if (all.sweepTests > 0) {
+          EXPECT_LT(run(all.sweepTests - 1).sweptTests, all.sweepTests);
+        }
       }
   }
+  // Forced, up to kCullInTraversalMaxPerWorker (64) instances a worker.
+  const RenderScene many = loadRenderScene(std::filesystem::temp_directory_path() / "vgeo_render_tests" / "horned.vgeo", 9);
+  GpuRenderer manyRenderer(*vk, many, kW, kH);
+  FrameSettings manyProbe = settingsFor(many, test::orbit(many, 0.7f, 0.4f, 1.4f), 1.0f);
+  manyProbe.instanceCulling = InstanceCulling::InTraversal;
+  manyRenderer.setPersistentWorkgroups(1);
+  EXPECT_FALSE(manyRenderer.cullsInTraversal(manyProbe)) << "81 instances, 1 worker";
+  manyRenderer.setPersistentWorkgroups(2);
+  EXPECT_TRUE(manyRenderer.cullsInTraversal(manyProbe)) << "81 instances, 2 workers";
 }
 
 TEST_F(Render, WorkerProfileAccountsForEveryItem) {
