@@ -12,6 +12,7 @@
 #include "common.glsl"
 
 layout(vertices = 1) out;
+layout(location = 0) in uint vPatch[];     // the patch's index in the patch list (patch.vert)
 layout(location = 0) patch out uvec4 pIds;  // face, instance, cluster, level-0 group
 
 const float kMaxFactor = 64.0;
@@ -27,7 +28,7 @@ float segments(float error, float distanceToEye) {
 }
 
 void main() {
-  uint packed = patchList[gl_PrimitiveID];
+  uint packed = patchList[vPatch[0]];
   uint entry = packed >> VGEO_TRIANGLE_BITS, local = packed & ((1u << VGEO_TRIANGLE_BITS) - 1u);
   uint instance = drawList[2u * entry], cluster = drawList[2u * entry + 1u] & ~VGEO_DRAW_PATCHES_BIT;
   Cluster c = clusters[cluster];
