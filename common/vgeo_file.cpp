@@ -349,10 +349,20 @@ shaderio::Instance makeInstance(const glm::mat4& m, uint32_t geometry, bool geom
   inst.row1 = t[1];
   inst.row2 = t[2];
   inst.geometry = geometry;
-  float sx = glm::length(glm::vec3(m[0])), sy = glm::length(glm::vec3(m[1])), sz = glm::length(glm::vec3(m[2]));
-  inst.maxScale = std::max({sx, sy, sz});
-  bool uniform = std::abs(sx - sy) <= 1e-5f * inst.maxScale && std::abs(sx - sz) <= 1e-5f * inst.maxScale;
-  inst.flags = uniform && geometryClosed ? VGEO_INSTANCE_CONE_CULL : 0u;
+  // maxScale bounds how far the transform stretches any length (errors and radii grow by it): the
+  // square root of a Gershgorin bound on the largest eigenvalue of M^T M, which is the largest column
+  // length when the columns are orthogonal and stays an upper bound under shear.
+  const glm::mat3 a(m);
+  const glm::mat3 gram = glm::transpose(a) * a;
+  float bound = 0.0f;
+  for (int i = 0; i < 3; i++) bound = std::max(bound, std::abs(gram[i][0]) + std::abs(gram[i][1]) + std::abs(gram[i][2]));
+  inst.maxScale = std::sqrt(bound);
+  // Normal cones turn with the transform only when it is a rotation (or a mirror) times one scale:
+  // orthogonal columns of equal length. A mirror keeps the outward side outward, so it may cone-cull.
+  const float tolerance = 1e-5f * bound;
+  bool similarity = std::abs(gram[0][0] - gram[1][1]) <= tolerance && std::abs(gram[0][0] - gram[2][2]) <= tolerance &&
+                    std::abs(gram[0][1]) <= tolerance && std::abs(gram[0][2]) <= tolerance && std::abs(gram[1][2]) <= tolerance;
+  inst.flags = similarity && geometryClosed ? VGEO_INSTANCE_CONE_CULL : 0u;
   return inst;
 }
 

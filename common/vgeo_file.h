@@ -76,8 +76,9 @@ VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name);
 void writeVgeo(const VgeoData& data, const std::string& path);
 VgeoData readVgeo(const std::string& path);
 
-// An instance of `geometry` placed by `transform`, with its largest axis scale; flagged for normal-cone
-// culling when the scale is uniform and the geometry closed.
+// An instance of `geometry` placed by `transform` (mirrors allowed), with a bound on how much it stretches
+// lengths; flagged for normal-cone culling when it is a rotation, or a mirror, times one scale and the
+// geometry is closed.
 shaderio::Instance makeInstance(const glm::mat4& transform, uint32_t geometry, bool geometryClosed);
 
 // Octahedral encoding of unit normals (Cigolle et al. 2014), 16 bits a component.

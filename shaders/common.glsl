@@ -37,6 +37,14 @@ vec3 toWorld(Instance inst, vec3 p) {
   return vec3(dot(inst.row0, h), dot(inst.row1, h), dot(inst.row2, h));
 }
 
+// A normal to world space by the cofactor matrix of the instance's linear part (det(M) M^-T): right under
+// non-uniform scale, and under a mirror (det < 0) it turns with the winding, so the fragment shader's
+// "flip the normal of a back face" still yields the outward normal of the mirrored surface.
+vec3 normalToWorld(Instance inst, vec3 n) {
+  vec3 r0 = inst.row0.xyz, r1 = inst.row1.xyz, r2 = inst.row2.xyz;
+  return normalize(vec3(dot(cross(r1, r2), n), dot(cross(r2, r0), n), dot(cross(r0, r1), n)));
+}
+
 vec3 vertexPosition(uint vertex) { return vec3(positions[3u * vertex], positions[3u * vertex + 1u], positions[3u * vertex + 2u]); }
 
 // Clip position of an object-space point: the triangle and patch draws compute shared corners with this

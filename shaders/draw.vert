@@ -43,7 +43,7 @@ void main() {
   Instance inst = instances[instance];
   gl_Position = clipPosition(inst, vertexPosition(vertex));
   vec3 n = decodeNormal(normals[vertex]);
-  outNormal = normalize(vec3(dot(inst.row0.xyz, n), dot(inst.row1.xyz, n), dot(inst.row2.xyz, n)));
+  outNormal = normalToWorld(inst, n);
 
   float self = projectedErrorWorld(inst, c.selfSphere, c.selfError);
   // Frozen-diff: would the live (draw) camera pick this cluster too? 0 yes, 1 it wants finer, 2 coarser.

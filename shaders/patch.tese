@@ -78,7 +78,7 @@ void main() {
     position = evaluateFace(evalFace, st, normal);
   }
   gl_Position = clipPosition(inst, position);
-  outNormal = normalize(vec3(dot(inst.row0.xyz, normal), dot(inst.row1.xyz, normal), dot(inst.row2.xyz, normal)));
+  outNormal = normalToWorld(inst, normal);
   outBarycentric = vec3(1.0);
   Cluster c = clusters[pIds.z];
   outIds = uvec4(pIds.z, pIds.w, pIds.y, clusterLevel(c.counts));
