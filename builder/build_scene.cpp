@@ -24,6 +24,9 @@ void add(RepairReport& sum, const RepairReport& r) {
   sum.splitVertices += r.splitVertices;
   sum.boundaryEdges += r.boundaryEdges;
   sum.unusedVertices += r.unusedVertices;
+  sum.flippedFaces += r.flippedFaces;
+  sum.components += r.components;
+  sum.nonOrientableComponents += r.nonOrientableComponents;
 }
 
 // Vertices and triangles after `levels` rounds, exactly: V' = V + E + F, E' = 2E + C, F' = C, C' = 4C.
@@ -48,6 +51,16 @@ double signedVolume(const PolygonMesh& mesh) {
       volume += glm::dot(a, glm::cross(glm::dvec3(mesh.positions[c[k]]), glm::dvec3(mesh.positions[c[k + 1]])));
   }
   return volume;
+}
+
+// Why a DAG kept more than one root per component: a topology-preserving simplifier cannot remove a
+// handle or close a boundary loop, so a surface of genus g keeps about 4g triangles and each loop at
+// least three edges; otherwise the last groups could not be halved within the simplifier's rules.
+std::string unreducedReason(const SurfaceTopology& t) {
+  if (t.genus > 0 || t.boundaryLoops > t.components)
+    return "genus " + std::to_string(t.genus) + " and " + std::to_string(t.boundaryLoops) +
+           " boundary loops; simplification keeps every handle and hole";
+  return "no group could be halved without moving a locked group border or folding the surface";
 }
 
 }  // namespace
@@ -122,6 +135,8 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
       stats.levelTriangles[l] += dag.levelTriangles[l];
     }
     stats.rootClusters += dag.rootClusters;
+    if (dag.rootClusters > dag.roots.components)
+      stats.unreduced.push_back({scene.meshes.size() > 1 ? scene.meshNames[m] : path, dag.rootClusters, dag.roots, unreducedReason(dag.roots)});
     stats.relaxedGroups += dag.relaxedGroups;
     stats.stuckGroups += dag.stuckGroups;
     patchErrors[m] = {};

@@ -16,6 +16,14 @@ struct SceneBuildOptions {
   std::function<void(double fraction, const char* stage)> progress;
 };
 
+// A mesh whose DAG ended with more root clusters than its root level has connected components, and why.
+struct UnreducedMesh {
+  std::string mesh;            // the file, or the glTF mesh's name
+  uint64_t rootClusters = 0;
+  SurfaceTopology roots;       // of the root level
+  std::string reason;
+};
+
 struct SceneBuildStats {
   uint64_t inputTriangles = 0;   // of the input file's faces, fanned
   uint64_t leafTriangles = 0;    // after subdivision: the finest level
@@ -31,6 +39,7 @@ struct SceneBuildStats {
   uint32_t geometries = 0;
   uint32_t instances = 0;
   RepairReport repair;           // summed over meshes
+  std::vector<UnreducedMesh> unreduced;
   double loadSeconds = 0.0, subdivideSeconds = 0.0, buildSeconds = 0.0;
 };
 

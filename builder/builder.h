@@ -69,11 +69,34 @@ struct RepairReport {
   size_t splitVertices = 0;         // vertex copies added to make every edge and vertex manifold
   size_t boundaryEdges = 0;         // edges with one face after repair (0 means closed)
   size_t unusedVertices = 0;        // dropped: referenced by no face
+  size_t flippedFaces = 0;          // turned to agree with their component (orientFaces)
+  size_t components = 0;            // of faces joined through two-face edges
+  size_t nonOrientableComponents = 0;
 };
 // Welds bit-identical positions, drops degenerate and duplicate faces, and splits non-manifold edges and
 // vertices so that every edge has at most two faces of opposite orientation and every vertex has one fan.
 // Throws InputError (naming `file`) when positions are not finite or nothing is left.
 RepairReport repairMesh(PolygonMesh& mesh, const std::string& file);
+
+// ---- orient.cpp -------------------------------------------------------------------------------------
+struct OrientReport {
+  size_t flippedFaces = 0;
+  size_t components = 0;               // faces joined through edges of exactly two faces
+  size_t nonOrientableComponents = 0;  // e.g. a Moebius strip: left as they are
+};
+// Turns faces so that every component walks each of its two-face edges once each way, keeping the
+// orientation of the larger part (by area) of each component. Deterministic; positions are not moved.
+OrientReport orientFaces(PolygonMesh& mesh);
+
+// ---- topology.cpp -----------------------------------------------------------------------------------
+struct SurfaceTopology {
+  uint64_t triangles = 0;
+  uint64_t components = 0;     // triangles joined through shared edges
+  uint64_t boundaryLoops = 0;  // of edges with one triangle (loops that touch count once)
+  uint64_t genus = 0;          // summed over the components, from V - E + F = 2 - 2g - b each
+};
+// The topology of the surface of `indices` (triangles, any vertex ids).
+SurfaceTopology surfaceTopology(const std::vector<uint32_t>& indices);
 
 // ---- subdivide.cpp ----------------------------------------------------------------------------------
 // Faces of `mesh` after `levels` rounds, computed without allocating; used to reject sizes that would not
@@ -250,9 +273,11 @@ struct GroupPlan {
 };
 // Partitions the `active` clusters into groups of about `targetSize` neighbours: METIS on the graph
 // of clusters sharing an edge, edges weighted by the shared edge count, so that groups have short
-// borders (the locked part of the next simplification). Deterministic (fixed METIS seed).
+// borders (the locked part of the next simplification). Deterministic (fixed METIS seed). `openEdges`,
+// when given, receives the edges (min << 32 | max, ascending) on the border of one cluster only: the
+// open boundary of the surface, which is no group's shared border.
 std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, const std::vector<uint32_t>& active,
-                                     uint32_t targetSize, int threads);
+                                     uint32_t targetSize, int threads, std::vector<uint64_t>* openEdges = nullptr);
 
 // ---- simplify.cpp -----------------------------------------------------------------------------------
 struct SimplifiedGroup {
@@ -262,10 +287,12 @@ struct SimplifiedGroup {
   bool halved = false;            // reached <= 55% of the input triangles
 };
 // Simplifies a group's triangles to half by quadric-error half-edge collapses with the group border
-// (edges without a twin inside the group) locked, keeping the surface manifold (link condition, no
-// flips). A new edge between two locked vertices a, b (absolute ids) is made only if chordAllowed(a, b).
+// (edges without a twin inside the group that another cluster has) locked, keeping the surface manifold
+// (link condition, no flips). Edges of `openEdges` (absolute ids, min << 32 | max, ascending) are the
+// surface's open boundary: their vertices, unless also on the locked border, collapse along it. A new
+// edge between two locked vertices a, b (absolute ids) is made only if chordAllowed(a, b).
 SimplifiedGroup simplifyGroup(const std::vector<uint32_t>& indices, const std::vector<glm::vec3>& positions,
-                              const std::function<bool(uint32_t, uint32_t)>& chordAllowed);
+                              const std::function<bool(uint32_t, uint32_t)>& chordAllowed, const std::vector<uint64_t>& openEdges);
 
 // ---- dag.cpp ----------------------------------------------------------------------------------------
 struct BuildOptions {
@@ -291,6 +318,7 @@ struct Dag {
   uint32_t relaxedGroups = 0;            // groups that needed any relaxation (see SimplifiedGroup)
   uint32_t stuckGroups = 0;              // groups that could not be halved; their clusters were retried
   uint32_t rootClusters = 0;
+  SurfaceTopology roots;                 // of the root clusters' triangles together
 };
 // Builds the DAG of a repaired mesh whose faces are the leaf faces (the level-N cage).
 Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options);

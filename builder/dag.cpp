@@ -139,7 +139,8 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
   // in proportion to the pixels covered.
   for (uint32_t round = 1; active.size() > 1 || (active.size() == 1 && triangleCount(dag.clusters, active) > kSmallestRoot); round++) {
     report(doneWork / totalWork, "simplifying");
-    std::vector<GroupPlan> plans = groupClusters(dag.clusters, active, options.groupSize, options.threads);
+    std::vector<uint64_t> openEdges;
+    std::vector<GroupPlan> plans = groupClusters(dag.clusters, active, options.groupSize, options.threads, &openEdges);
     struct Outcome {
       SimplifiedGroup simplified;
       std::vector<BuildCluster> produced;
@@ -174,7 +175,7 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
             if (holders[size_t(a) * kHolders + i] == holders[size_t(b) * kHolders + j] && holders[size_t(a) * kHolders + i] < g) return false;
         return true;
       };
-      outcomes[g].simplified = simplifyGroup(indices, positions, chordAllowed);
+      outcomes[g].simplified = simplifyGroup(indices, positions, chordAllowed, openEdges);
       if (outcomes[g].simplified.halved) outcomes[g].produced = splitIntoClusters(outcomes[g].simplified.indices, positions);
     });
     // Merge in group order: ids depend only on the plans, never on thread timing.
@@ -217,6 +218,11 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
   // Root groups: the clusters left at the end, with parent error +inf so that they are always drawn
   // when nothing finer is needed.
   dag.rootClusters = uint32_t(active.size());
+  {
+    std::vector<uint32_t> rootIndices;
+    for (uint32_t c : active) rootIndices.insert(rootIndices.end(), dag.clusters[c].indices.begin(), dag.clusters[c].indices.end());
+    dag.roots = surfaceTopology(rootIndices);
+  }
   std::vector<GroupPlan> roots;
   if (active.size() <= 32) roots.push_back({active, true});
   else roots = groupClusters(dag.clusters, active, options.groupSize, options.threads);

@@ -13,7 +13,7 @@
 namespace vgeo {
 
 std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, const std::vector<uint32_t>& active,
-                                     uint32_t targetSize, int threads) {
+                                     uint32_t targetSize, int threads, std::vector<uint64_t>* openEdges) {
   const size_t n = active.size();
   // Border edges of each cluster (edges used once inside it), tagged with the cluster's slot.
   std::vector<std::vector<uint64_t>> clusterBorders(n);
@@ -38,11 +38,13 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
     for (uint64_t e : clusterBorders[slot]) borders.push_back({e, uint32_t(slot)});
   std::vector<std::vector<uint64_t>>().swap(clusterBorders);
   parallelSort(borders, threads);
-  // Cluster pairs sharing an edge, counted.
+  // Cluster pairs sharing an edge, counted; an edge on one cluster's border only is open.
   std::vector<uint64_t> pairs;
+  if (openEdges) openEdges->clear();
   for (size_t i = 0; i < borders.size();) {
     size_t j = i;
     while (j < borders.size() && borders[j].first == borders[i].first) j++;
+    if (j - i == 1 && openEdges) openEdges->push_back(borders[i].first);
     for (size_t a = i; a < j; a++)
       for (size_t b = a + 1; b < j; b++)
         if (borders[a].second != borders[b].second)

@@ -1,7 +1,8 @@
 // repair.cpp: turns a polygon soup into a manifold mesh the later steps can trust.
 // 1. Positions must be finite (else an error). 2. Bit-identical positions are welded, so that meshes
 // split for texture seams (glTF) become connected. 3. Faces with fewer than 3 distinct corners are
-// dropped, as are faces with the corner set of an earlier face. 4. Non-manifold edges and vertices are
+// dropped, as are faces with the corner set of an earlier face. 4. Faces are turned to agree with their
+// neighbours (orient.cpp). 5. Non-manifold edges and vertices are
 // split by wedges: every face corner is a wedge; the wedges of a vertex that are joined through manifold
 // edges (two faces, opposite orientations) form one fan and share one output vertex, every other fan gets
 // its own copy. At an edge with more than two faces, or two of one orientation, the first face and the
@@ -131,6 +132,12 @@ RepairReport repairMesh(PolygonMesh& mesh, const std::string& file) {
     faces = std::move(kept);
   }
   if (faces.faceCount() == 0) throw InputError(file, "empty mesh: every face is degenerate or a duplicate");
+  {
+    OrientReport orient = orientFaces(faces);
+    report.flippedFaces = orient.flippedFaces;
+    report.components = orient.components;
+    report.nonOrientableComponents = orient.nonOrientableComponents;
+  }
 
   // Edges sorted by (key, corner): every undirected edge's faces are adjacent, in face order.
   const size_t cornerCount = faces.faceVertices.size();

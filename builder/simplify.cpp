@@ -12,6 +12,10 @@
 //   the DAG builder forbids chords that another cluster already has or that a neighbouring group of the
 //   same round could also make, since the cut would then hold that edge four times.
 // Locked border vertices never move, so the edges a group shares with its neighbours stay identical.
+// The surface's own open boundary (edges no other cluster has) is not locked: a vertex on it alone
+// collapses along it onto a boundary neighbour, its quadric holding the planes through each boundary
+// edge perpendicular to its triangle (Garland & Heckbert's boundary constraint), so an open mesh keeps
+// its outline while it is reduced instead of carrying every boundary vertex to the root.
 // Collapses are ordered by the root mean square distance, weighted by area, of the target position to
 // the planes of the triangles merged into the vertex. The group's error is the larger of the largest
 // such distance and the one-sided Hausdorff distance of the removed vertices to the result.
@@ -48,6 +52,9 @@ namespace {
 
 constexpr float kHalvedRatio = 0.55f;
 constexpr double kBoundedError = 0.02;  // of the group's bounding box diagonal: beyond it, "relaxed"
+constexpr double kBoundaryWeight = 4.0;  // boundary planes against the surface's: keeps outlines in place
+
+enum VertexKind : uint8_t { kFree = 0, kLocked = 1, kOpen = 2 };  // kOpen: on the open boundary only
 
 struct Quadric {
   double a[10] = {};  // xx xy xz xw yy yz yw zz zw ww
@@ -87,9 +94,10 @@ struct Candidate {
 
 class Simplifier {
  public:
-  Simplifier(std::vector<uint32_t> triangles, std::vector<glm::dvec3> points, std::vector<uint8_t> locked,
-             std::function<bool(uint32_t, uint32_t)> chordAllowed)
-      : tri_(std::move(triangles)), p_(std::move(points)), locked_(std::move(locked)), chordAllowed_(std::move(chordAllowed)) {
+  // kind[v]: VertexKind; openEdges: local (min << 32 | max), ascending.
+  Simplifier(std::vector<uint32_t> triangles, std::vector<glm::dvec3> points, std::vector<uint8_t> kind,
+             const std::vector<uint64_t>& openEdges, std::function<bool(uint32_t, uint32_t)> chordAllowed)
+      : tri_(std::move(triangles)), p_(std::move(points)), kind_(std::move(kind)), chordAllowed_(std::move(chordAllowed)) {
     const size_t n = p_.size(), m = tri_.size() / 3;
     alive_.assign(m, 1);
     removed_.assign(n, 0);
@@ -121,6 +129,19 @@ class Simplifier {
       for (int k = 0; k < 3; k++) {
         append(tri_[3 * t + k], t);
         quadric_[tri_[3 * t + k]].addPlane(normal, -glm::dot(normal, a), area + 1e-30);
+      }
+      if (openEdges.empty()) continue;
+      for (int k = 0; k < 3; k++) {
+        uint32_t e0 = tri_[3 * t + k], e1 = tri_[3 * t + (k + 1) % 3];
+        if (!std::binary_search(openEdges.begin(), openEdges.end(), uint64_t(std::min(e0, e1)) << 32 | std::max(e0, e1))) continue;
+        glm::dvec3 edge = p_[e1] - p_[e0];
+        glm::dvec3 side = glm::cross(edge, normal);
+        double length = glm::length(side);
+        if (!(length > 0.0)) continue;
+        side /= length;
+        double weight = kBoundaryWeight * glm::dot(edge, edge);
+        quadric_[e0].addPlane(side, -glm::dot(side, p_[e0]), weight);
+        quadric_[e1].addPlane(side, -glm::dot(side, p_[e0]), weight);
       }
     }
     for (uint32_t u = 0; u < n; u++) pushBest(u);
@@ -212,7 +233,8 @@ class Simplifier {
   // Pushes u's cheapest collapse. Candidates come straight from u's triangles (a neighbour seen twice
   // costs one more quadric evaluation, cheaper than sorting the neighbours).
   void pushBest(uint32_t u) {
-    if (locked_[u]) return;
+    if (kind_[u] == kLocked) return;
+    const bool open = kind_[u] == kOpen;
     double best = INFINITY;
     uint32_t target = UINT32_MAX;
     const std::vector<uint32_t>& rejected = rejected_[u];
@@ -222,12 +244,23 @@ class Simplifier {
       for (int k = 0; k < 3; k++) {
         uint32_t v = tri_[3 * t + k];
         if (v == u || (!rejected.empty() && std::find(rejected.begin(), rejected.end(), v) != rejected.end())) continue;
+        if (open && !onOneTriangle(u, v)) continue;  // an open vertex moves along the boundary only
         double cost = quadric_[u].meanSquaredDistance(p_[v], quadric_[v]);
         if (cost < best || (cost == best && v < target)) best = cost, target = v;
       }
     }
     bestTarget_[u] = target;
     if (target != UINT32_MAX) heap_.push({best, u, target, version_[u]});
+  }
+
+  // Whether edge uv has exactly one live triangle (a boundary edge).
+  bool onOneTriangle(uint32_t u, uint32_t v) const {
+    int count = 0;
+    for (uint32_t i = 0; i < size_[u]; i++) {
+      uint32_t t = trianglesOf(u)[i];
+      if (alive_[t] && (tri_[3 * t] == v || tri_[3 * t + 1] == v || tri_[3 * t + 2] == v)) count++;
+    }
+    return count == 1;
   }
 
   bool valid(uint32_t u, uint32_t v) {
@@ -266,9 +299,9 @@ class Simplifier {
       if (l0 > 0.0 && glm::dot(n0, n1) < 0.2 * l0 * l1) return false;
     }
     // Chords: new edges v-w between two locked vertices.
-    if (locked_[v])
+    if (kind_[v] == kLocked)
       for (uint32_t w : scratchA_)
-        if (w != v && locked_[w] && !std::binary_search(scratchB_.begin(), scratchB_.end(), w) && !chordAllowed_(v, w)) return false;
+        if (w != v && kind_[w] == kLocked && !std::binary_search(scratchB_.begin(), scratchB_.end(), w) && !chordAllowed_(v, w)) return false;
     return true;
   }
 
@@ -307,7 +340,7 @@ class Simplifier {
 
   std::vector<uint32_t> tri_;
   std::vector<glm::dvec3> p_;
-  std::vector<uint8_t> locked_;
+  std::vector<uint8_t> kind_;
   std::function<bool(uint32_t, uint32_t)> chordAllowed_;
   std::vector<uint8_t> alive_, removed_;
   std::vector<uint32_t> collapsedInto_;
@@ -325,7 +358,7 @@ class Simplifier {
 }  // namespace
 
 SimplifiedGroup simplifyGroup(const std::vector<uint32_t>& indices, const std::vector<glm::vec3>& positions,
-                              const std::function<bool(uint32_t, uint32_t)>& chordAllowed) {
+                              const std::function<bool(uint32_t, uint32_t)>& chordAllowed, const std::vector<uint64_t>& openEdges) {
   // Local vertex ids in order of first use.
   thread_local std::vector<uint32_t> localOf;
   if (localOf.size() < positions.size()) localOf.assign(positions.size(), UINT32_MAX);
@@ -340,7 +373,8 @@ SimplifiedGroup simplifyGroup(const std::vector<uint32_t>& indices, const std::v
   }
   for (uint32_t g : globals) localOf[g] = UINT32_MAX;
 
-  // Locked: vertices on an edge with one triangle in the group (the group border).
+  // Locked: vertices on an edge with one triangle in the group that another cluster has (the group
+  // border); open: vertices on edges of the surface's open boundary and on no locked edge.
   std::vector<uint64_t> edges;
   edges.reserve(local.size());
   for (size_t t = 0; t + 2 < local.size(); t += 3)
@@ -349,10 +383,20 @@ SimplifiedGroup simplifyGroup(const std::vector<uint32_t>& indices, const std::v
       edges.push_back(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
     }
   std::sort(edges.begin(), edges.end());
-  std::vector<uint8_t> locked(globals.size(), 0);
-  for (size_t i = 0; i < edges.size(); i++)
-    if ((i == 0 || edges[i - 1] != edges[i]) && (i + 1 == edges.size() || edges[i + 1] != edges[i]))
-      locked[edges[i] >> 32] = locked[edges[i] & 0xffffffffu] = 1;
+  std::vector<uint8_t> kind(globals.size(), kFree);
+  std::vector<uint64_t> localOpen;
+  for (size_t i = 0; i < edges.size(); i++) {
+    if (!((i == 0 || edges[i - 1] != edges[i]) && (i + 1 == edges.size() || edges[i + 1] != edges[i]))) continue;
+    const uint32_t a = uint32_t(edges[i] >> 32), b = uint32_t(edges[i]);
+    const uint64_t global = uint64_t(std::min(globals[a], globals[b])) << 32 | std::max(globals[a], globals[b]);
+    if (std::binary_search(openEdges.begin(), openEdges.end(), global)) {
+      localOpen.push_back(edges[i]);
+      for (uint32_t v : {a, b})
+        if (kind[v] == kFree) kind[v] = kOpen;
+    } else {
+      kind[a] = kind[b] = kLocked;
+    }
+  }
 
   std::vector<glm::dvec3> points(globals.size());
   glm::dvec3 lower(INFINITY), upper(-INFINITY);
@@ -362,7 +406,7 @@ SimplifiedGroup simplifyGroup(const std::vector<uint32_t>& indices, const std::v
     upper = glm::max(upper, points[i]);
   }
   const size_t triangles = indices.size() / 3;
-  Simplifier s(std::move(local), std::move(points), std::move(locked),
+  Simplifier s(std::move(local), std::move(points), std::move(kind), localOpen,
                [&](uint32_t a, uint32_t b) { return chordAllowed(globals[a], globals[b]); });
   double error = s.run(triangles / 2);
   error = std::max(error, s.removedVertexError());

@@ -56,9 +56,14 @@ void addBuildCommand(CLI::App& app, int& exitCode) {
     std::printf("time: DAG %.2f s (%.2f M leaf triangles/s on %d threads), total %.2f s; peak memory %.1f MB (%.0f bytes per leaf triangle)\n",
                 s.buildSeconds, double(s.leafTriangles) / 1e6 / std::max(s.buildSeconds, 1e-9), args->threads, total, double(rss) / 1e6,
                 double(rss) / double(std::max<uint64_t>(s.leafTriangles, 1)));
-    if (s.repair.degenerateFaces || s.repair.duplicateFaces || s.repair.nonManifoldEdges || s.repair.splitVertices)
-      std::printf("repaired: %zu degenerate and %zu duplicate faces dropped, %zu non-manifold edges, %zu vertices split\n",
-                  s.repair.degenerateFaces, s.repair.duplicateFaces, s.repair.nonManifoldEdges, s.repair.splitVertices);
+    if (s.repair.degenerateFaces || s.repair.duplicateFaces || s.repair.nonManifoldEdges || s.repair.splitVertices || s.repair.flippedFaces)
+      std::printf("repaired: %zu degenerate and %zu duplicate faces dropped, %zu faces turned to agree with their neighbours, "
+                  "%zu non-manifold edges, %zu vertices split\n",
+                  s.repair.degenerateFaces, s.repair.duplicateFaces, s.repair.flippedFaces, s.repair.nonManifoldEdges, s.repair.splitVertices);
+    for (const UnreducedMesh& u : s.unreduced)
+      std::printf("note: %s keeps %llu root clusters for %llu connected component%s (%llu triangles): %s\n", u.mesh.c_str(),
+                  (unsigned long long)u.rootClusters, (unsigned long long)u.roots.components, u.roots.components == 1 ? "" : "s",
+                  (unsigned long long)u.roots.triangles, u.reason.c_str());
     if (!args->stats.empty()) {
       nlohmann::ordered_json j;
       j["input"] = args->input;
@@ -74,11 +79,18 @@ void addBuildCommand(CLI::App& app, int& exitCode) {
       j["avg_cluster_triangles"] = s.clusters ? double(s.clusterTriangles) / double(s.clusters) : 0.0;
       j["relaxed_groups"] = s.relaxedGroups;
       j["stuck_groups"] = s.stuckGroups;
+      j["unreduced"] = nlohmann::ordered_json::array();
+      for (const UnreducedMesh& u : s.unreduced)
+        j["unreduced"].push_back({{"mesh", u.mesh}, {"root_clusters", u.rootClusters}, {"root_triangles", u.roots.triangles},
+                                  {"root_components", u.roots.components}, {"genus", u.roots.genus},
+                                  {"boundary_loops", u.roots.boundaryLoops}, {"reason", u.reason}});
       j["geometries"] = s.geometries;
       j["instances"] = s.instances;
       j["repair"] = {{"welded_vertices", s.repair.weldedVertices}, {"degenerate_faces", s.repair.degenerateFaces},
                      {"duplicate_faces", s.repair.duplicateFaces},  {"non_manifold_edges", s.repair.nonManifoldEdges},
-                     {"split_vertices", s.repair.splitVertices},    {"boundary_edges", s.repair.boundaryEdges}};
+                     {"split_vertices", s.repair.splitVertices},    {"boundary_edges", s.repair.boundaryEdges},
+                     {"flipped_faces", s.repair.flippedFaces},      {"components", s.repair.components},
+                     {"non_orientable_components", s.repair.nonOrientableComponents}};
       j["load_seconds"] = s.loadSeconds;
       j["subdivide_seconds"] = s.subdivideSeconds;
       j["build_seconds"] = s.buildSeconds;

@@ -5,6 +5,7 @@
 // A leaf is covered once when it is drawn, or its group is coarse and that group's products all cover
 // once. Any product that covers its share zero times (a hole) or twice (an overlap) is a violation.
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -113,7 +114,11 @@ struct GeometryChecker {
   // whether it is locked, and an edge with a flat face on either side is locked.
   bool patches(uint64_t& checked) {
     static const float kCorner[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-    const double tolerance = 1e-5 * std::max(double(g.boundsSphere.w), 1e-6);
+    // Relative to the geometry's size, but never below what float arithmetic resolves at its
+    // coordinates: a small part far from the origin (CGAL's fold.off: 0.4 wide at x = 43) evaluates
+    // its patches to within a few units in the last place of those coordinates, not of its size.
+    const double magnitude = glm::length(glm::dvec3(g.boundsSphere)) + double(g.boundsSphere.w);
+    const double tolerance = std::max(1e-5 * std::max(double(g.boundsSphere.w), 1e-6), 16.0 * double(FLT_EPSILON) * magnitude);
     for (uint32_t f = g.cageFaceOffset; f < g.cageFaceOffset + g.cageFaceCount; f++) {
       const shaderio::Patch& patch = d.patches[f];
       const std::string what = "cage face " + std::to_string(f);

@@ -14,6 +14,7 @@ struct DagCase {
   std::string path;
   int subdiv;
   bool closedConnected;
+  bool connected = false;  // one component, maybe open: one root (its open boundary is simplified too)
 };
 
 void PrintTo(const DagCase& c, std::ostream* os) { *os << c.name; }
@@ -34,6 +35,11 @@ TEST_P(Dag, InvariantsHold) {
   if (c.closedConnected) {
     EXPECT_EQ(stats.rootClusters, 1u);
     EXPECT_EQ(stats.repair.boundaryEdges, 0u);
+  }
+  if (c.connected) {
+    EXPECT_EQ(stats.repair.components, 1u);
+    EXPECT_EQ(stats.rootClusters, 1u);
+    EXPECT_GT(stats.repair.boundaryEdges, 0u);
   }
   if (c.closedConnected && stats.leafTriangles >= 50000) {
     EXPECT_GE(double(stats.levelTriangles[0]) / double(stats.leafClusters), 124.0);
@@ -57,6 +63,13 @@ INSTANTIATE_TEST_SUITE_P(
                       DagCase{"Armadillo0", test::cgalMesh("armadillo.off"), 0, true},
                       DagCase{"Armadillo1", test::cgalMesh("armadillo.off"), 1, true},
                       DagCase{"Armadillo2", test::cgalMesh("armadillo.off"), 2, true},
+                      // Faces wound inconsistently (CGAL's shuffled copies): oriented first, then reduced to one root.
+                      DagCase{"BlobbyShuffled0", test::cgalMesh("blobby-shuffled.off"), 0, true},
+                      DagCase{"OblongShuffled1", test::cgalMesh("oblong-shuffled.off"), 1, true},
+                      // Open surfaces: their boundary is simplified along with the rest.
+                      DagCase{"Lion0", test::cgalMesh("lion.off"), 0, false, true},
+                      DagCase{"Blade2", test::cgalMesh("blade.off"), 2, false, true},
+                      DagCase{"MeshWithBorder1", test::cgalMesh("mesh_with_border.off"), 1, false, true},
                       DagCase{"HornedCube0", test::asset("horned_cube.obj"), 0, true},
                       DagCase{"HornedCube2", test::asset("horned_cube.obj"), 2, true},
                       DagCase{"HornedCube4", test::asset("horned_cube.obj"), 4, true},

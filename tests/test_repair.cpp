@@ -1,5 +1,6 @@
 // test_repair.cpp: welding, degenerate and duplicate faces, non-manifold edges and vertices.
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "test_util.h"
@@ -52,6 +53,60 @@ TEST(Repair, DropsDegenerateAndDuplicateFacesAndWelds) {
   EXPECT_EQ(m.faceCount(), 2u);
   EXPECT_EQ(m.positions.size(), 4u);
   EXPECT_EQ(r.boundaryEdges, 4u);
+  expectManifold(m);
+}
+
+TEST(Repair, TurnsFacesToAgreeWithTheirComponent) {
+  // CGAL's cube of 12 triangles with every other face reversed, and a second cube apart from it with
+  // one face reversed: each becomes consistent, keeping the orientation most of its area has.
+  PolygonMesh m;
+  for (float offset : {0.0f, 5.0f})
+    for (int i = 0; i < 8; i++) m.positions.push_back({float(i & 1) + offset, float((i >> 1) & 1), float((i >> 2) & 1)});
+  const uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};  // outward
+  size_t face = 0;
+  for (uint32_t base : {0u, 8u})
+    for (const auto& q : quads)
+      for (int half = 0; half < 2; half++) {
+        uint32_t tri[3] = {base + q[0], base + q[1 + half], base + q[2 + half]};
+        const bool reverse = base == 0 ? face % 2 == 1 : face == 17;
+        if (reverse) std::swap(tri[1], tri[2]);
+        m.addFace(tri, 3);
+        face++;
+      }
+  OrientReport r = orientFaces(m);
+  EXPECT_EQ(r.components, 2u);
+  EXPECT_EQ(r.nonOrientableComponents, 0u);
+  EXPECT_EQ(r.flippedFaces, 6u + 1u);  // half of the first cube (a tie keeps the seed's side), one face of the second
+  expectManifold(m);
+  // Through repair, nothing is split any more.
+  RepairReport repaired = repairMesh(m, "cubes");
+  EXPECT_EQ(repaired.nonManifoldEdges, 0u);
+  EXPECT_EQ(repaired.splitVertices, 0u);
+  EXPECT_EQ(repaired.boundaryEdges, 0u);
+}
+
+TEST(Repair, AMoebiusStripIsCountedAndCutWhereItDisagrees) {
+  // A strip of 8 quads whose ends meet with a half twist: no orientation agrees all round.
+  PolygonMesh m;
+  const int n = 8;
+  for (int i = 0; i < n; i++) {
+    float a = 6.2831853f * float(i) / float(n), twist = a / 2.0f;
+    glm::vec3 centre(std::cos(a), std::sin(a), 0.0f), radial(std::cos(a), std::sin(a), 0.0f), up(0, 0, 1);
+    glm::vec3 d = 0.3f * (std::cos(twist) * up + std::sin(twist) * radial);
+    m.positions.push_back(centre + d);
+    m.positions.push_back(centre - d);
+  }
+  for (int i = 0; i < n; i++) {
+    uint32_t a0 = uint32_t(2 * i), a1 = a0 + 1;
+    uint32_t b0 = uint32_t(2 * ((i + 1) % n)), b1 = b0 + 1;
+    if (i == n - 1) std::swap(b0, b1);  // the half twist
+    uint32_t q[4] = {a0, a1, b1, b0};
+    m.addFace(q, 4);
+  }
+  RepairReport r = repairMesh(m, "moebius");
+  EXPECT_EQ(r.components, 1u);
+  EXPECT_EQ(r.nonOrientableComponents, 1u);
+  EXPECT_EQ(r.nonManifoldEdges, 1u);  // cut open at the one edge where the orientations disagree
   expectManifold(m);
 }
 
