@@ -121,8 +121,10 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
     bo.leafFaceErrors = &patchErrors[m];
     if (options.progress)
       bo.progress = [&, m](double f, const char* stage) { options.progress((double(m) + f) / double(leaves.size()), stage); };
+    const ShadingNormals shading = shadingNormals(leaves[m], leafNormals[m], options.creaseAngleDegrees);
+    bo.shading = &shading;
     Dag dag = buildDag(leaves[m], bo);
-    appendGeometry(data, dag, leaves[m], leafNormals[m], std::move(patches[m]), patchErrors[m], closed[m]);
+    appendGeometry(data, dag, leaves[m], shading, std::move(patches[m]), patchErrors[m], closed[m]);
     patches[m] = MeshPatches();  // what the layout did not move into the file
     stats.clusters += dag.clusters.size();
     stats.leafClusters += dag.levelClusters[0];

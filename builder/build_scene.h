@@ -13,6 +13,9 @@ namespace vgeo {
 struct SceneBuildOptions {
   int subdivisionLevels = 0;
   int threads = 1;
+  // Inputs without normals (OBJ, OFF, PLY): faces meeting at more than this many degrees get a hard
+  // edge; 180 smooths everything. Subdivided cages always get the limit surface's normals.
+  float creaseAngleDegrees = 180.0f;
   std::function<void(double fraction, const char* stage)> progress;
 };
 

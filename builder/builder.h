@@ -19,17 +19,22 @@
 namespace vgeo {
 
 
-// An indexed polygon mesh: face f has the corners faceVertices[faceStart[f] .. faceStart[f+1]).
+// An indexed polygon mesh: face f has the corners faceVertices[faceStart[f] .. faceStart[f+1]). Shading
+// normals the input gave (glTF NORMAL, OBJ vn, PLY nx ny nz) travel with the corners, one a corner, or
+// are absent (cornerNormals empty); every step that moves corners moves them alike.
 struct PolygonMesh {
   std::vector<glm::vec3> positions;
   std::vector<uint32_t> faceStart{0};
   std::vector<uint32_t> faceVertices;
+  std::vector<glm::vec3> cornerNormals;
 
   size_t faceCount() const { return faceStart.size() - 1; }
   uint32_t faceSize(size_t f) const { return faceStart[f + 1] - faceStart[f]; }
   const uint32_t* face(size_t f) const { return faceVertices.data() + faceStart[f]; }
-  void addFace(const uint32_t* corners, size_t count) {
+  const glm::vec3* faceNormals(size_t f) const { return cornerNormals.empty() ? nullptr : cornerNormals.data() + faceStart[f]; }
+  void addFace(const uint32_t* corners, size_t count, const glm::vec3* normals = nullptr) {
     faceVertices.insert(faceVertices.end(), corners, corners + count);
+    if (normals) cornerNormals.insert(cornerNormals.end(), normals, normals + count);
     faceStart.push_back(uint32_t(faceVertices.size()));
   }
   // Triangles when every face is fanned: sum of (corners - 2).
@@ -97,6 +102,24 @@ struct SurfaceTopology {
 };
 // The topology of the surface of `indices` (triangles, any vertex ids).
 SurfaceTopology surfaceTopology(const std::vector<uint32_t>& indices);
+
+// ---- shading_normals.cpp ----------------------------------------------------------------------------
+// A vertex's corners grouped by shading normal: wedge w sits at vertex wedgeVertex[w] with normal
+// wedgeNormal[w]; the wedges of vertex v are wedgeStart[v] .. wedgeStart[v + 1].
+struct ShadingNormals {
+  std::vector<uint32_t> cornerWedge;  // one a corner of the mesh (faceVertices); empty when oneAVertex
+  std::vector<uint32_t> wedgeVertex;
+  std::vector<glm::vec3> wedgeNormal;  // unit
+  std::vector<uint32_t> wedgeStart;
+  bool oneAVertex = true;              // every vertex has one: wedge w is vertex w
+  uint32_t wedgeOfCorner(const PolygonMesh& mesh, uint32_t corner) const { return oneAVertex ? mesh.faceVertices[corner] : cornerWedge[corner]; }
+  // The wedge of `vertex` whose normal is nearest `faceNormal` (a coarse triangle's corner).
+  uint32_t nearestWedge(uint32_t vertex, glm::vec3 faceNormal) const;
+};
+// Wedges of a leaf mesh: from `vertexNormals` when given (a subdivided cage's limit normals, one a
+// vertex), else from the mesh's cornerNormals when it has them, else from its faces, with a crease
+// wherever two faces meet at more than creaseAngleDegrees (180: smooth everywhere).
+ShadingNormals shadingNormals(const PolygonMesh& mesh, const std::vector<glm::vec3>& vertexNormals, float creaseAngleDegrees);
 
 // ---- subdivide.cpp ----------------------------------------------------------------------------------
 // Faces of `mesh` after `levels` rounds, computed without allocating; used to reject sizes that would not
@@ -240,6 +263,7 @@ Partition partitionGraph(const Graph& graph, const std::vector<uint8_t>& weights
 struct BuildCluster {
   std::vector<uint32_t> indices;    // 3 per triangle, <= 128 triangles, <= 256 distinct vertices
   std::vector<uint32_t> cageFaces;  // leaves: the cage faces it holds (their triangles are consecutive)
+  std::vector<uint32_t> wedges;     // the wedge of each index, where the mesh has hard edges (else empty)
   glm::vec4 selfSphere{0.0f};
   float selfError = 0.0f;
   uint32_t producer = VGEO_NO_GROUP;  // the group that produced it
@@ -255,10 +279,12 @@ void triangulateFace(const glm::vec3* positions, const uint32_t* v, uint32_t n, 
 // Leaf clusters from whole faces of `mesh` (a face's triangles never part): faces adjacent by an edge
 // are graph neighbours, weighted by their triangle count. cageFaces lists each cluster's faces, whose
 // triangles follow in that order (quads split along the shorter diagonal, other faces fanned).
-std::vector<BuildCluster> buildLeafClusters(const PolygonMesh& mesh, int threads);
-// Splits a triangle list (absolute vertex indices) into clusters by edge adjacency.
-std::vector<BuildCluster> splitIntoClusters(const std::vector<uint32_t>& indices,
-                                            const std::vector<glm::vec3>& positions);
+// With `shading` that has hard edges, the vertex limit counts wedges and each cluster lists its corners'.
+std::vector<BuildCluster> buildLeafClusters(const PolygonMesh& mesh, int threads, const ShadingNormals* shading = nullptr);
+// Splits a triangle list (absolute vertex indices) into clusters by edge adjacency; with `shading` as
+// above, each corner takes the wedge nearest its triangle's normal.
+std::vector<BuildCluster> splitIntoClusters(const std::vector<uint32_t>& indices, const std::vector<glm::vec3>& positions,
+                                            const ShadingNormals* shading = nullptr);
 
 // ---- bounds.cpp -------------------------------------------------------------------------------------
 // Smallest sphere enclosing the points (CGAL), rounded outward so that float tests agree.
@@ -301,6 +327,8 @@ struct BuildOptions {
   // Chord error of each face against the limit surface (patchChordErrors); a leaf cluster's self error
   // is the largest of its faces'. Empty: leaves have error 0 (the input is the surface).
   const std::vector<PatchErrors>* leafFaceErrors = nullptr;
+  // The leaf mesh's wedges; clusters list them only where some vertex has two (a hard edge).
+  const ShadingNormals* shading = nullptr;
   std::function<void(double fraction, const char* stage)> progress;
 };
 struct BuildGroup {

@@ -109,9 +109,11 @@ bool fitsVertexLimit(const std::vector<uint32_t>& faceStart, const std::vector<u
 }
 
 
+// `wedges`, when given (one a corner, like faceVertices), are what the vertex limit counts, and each
+// cluster lists those of its triangles' corners.
 std::vector<BuildCluster> clustersFromFaces(const std::vector<uint32_t>& faceStart, const std::vector<uint32_t>& faceVertices,
                                             const std::vector<glm::vec3>& positions, int threads, bool keepFaces,
-                                            uint32_t targetTriangles) {
+                                            uint32_t targetTriangles, const std::vector<uint32_t>* wedges) {
   const size_t faceCount = faceStart.size() - 1;
   Graph graph = dualGraph(faceStart, faceVertices, threads);
   std::vector<uint8_t> weights(faceCount);
@@ -123,15 +125,23 @@ std::vector<BuildCluster> clustersFromFaces(const std::vector<uint32_t>& faceSta
     for (uint32_t c = faceStart[f]; c < faceStart[f + 1]; c++) sum += positions[faceVertices[c]];
     centroids[f] = sum / float(n);
   }
-  auto fits = [&](const uint32_t* faces, size_t count) { return fitsVertexLimit(faceStart, faceVertices, faces, count); };
+  const std::vector<uint32_t>& limited = wedges ? *wedges : faceVertices;
+  auto fits = [&](const uint32_t* faces, size_t count) { return fitsVertexLimit(faceStart, limited, faces, count); };
   Partition parts = partitionGraph(graph, weights, centroids, VGEO_MAX_CLUSTER_TRIANGLES, targetTriangles, threads, fits);
   std::vector<BuildCluster> clusters(parts.partCount());
   for (size_t p = 0; p < parts.partCount(); p++) {
     BuildCluster& c = clusters[p];
     for (uint32_t i = parts.partStart[p]; i < parts.partStart[p + 1]; i++) {
       uint32_t f = parts.order[i];
+      const size_t first = c.indices.size();
       triangulateFace(positions.data(), &faceVertices[faceStart[f]], faceStart[f + 1] - faceStart[f], c.indices);
       if (keepFaces) c.cageFaces.push_back(f);
+      if (!wedges) continue;
+      for (size_t k = first; k < c.indices.size(); k++) {  // the corner of the face at that vertex
+        uint32_t corner = faceStart[f];
+        while (faceVertices[corner] != c.indices[k]) corner++;
+        c.wedges.push_back((*wedges)[corner]);
+      }
     }
   }
   return clusters;
@@ -147,26 +157,31 @@ void fanLargeFaces(PolygonMesh& mesh) {
   fanned.positions = std::move(mesh.positions);
   for (size_t f = 0; f < mesh.faceCount(); f++) {
     if (mesh.faceSize(f) <= kMaxLeafFaceCorners) {
-      fanned.addFace(mesh.face(f), mesh.faceSize(f));
+      fanned.addFace(mesh.face(f), mesh.faceSize(f), mesh.faceNormals(f));
       continue;
     }
     for (uint32_t i = 1; i + 1 < mesh.faceSize(f); i++) {
       uint32_t t[3] = {mesh.face(f)[0], mesh.face(f)[i], mesh.face(f)[i + 1]};
-      fanned.addFace(t, 3);
+      const glm::vec3* n = mesh.faceNormals(f);
+      glm::vec3 tn[3];
+      if (n) tn[0] = n[0], tn[1] = n[i], tn[2] = n[i + 1];
+      fanned.addFace(t, 3, n ? tn : nullptr);
     }
   }
   mesh = std::move(fanned);
 }
 
-std::vector<BuildCluster> buildLeafClusters(const PolygonMesh& mesh, int threads) {
+std::vector<BuildCluster> buildLeafClusters(const PolygonMesh& mesh, int threads, const ShadingNormals* shading) {
   for (size_t f = 0; f < mesh.faceCount(); f++)
     if (mesh.faceSize(f) > kMaxLeafFaceCorners) throw std::logic_error("buildLeafClusters: call fanLargeFaces first");
   // Leaves: nearly full clusters (the builder's promise is >= 124 triangles on average), with a little
   // room left for merging cut-off pieces.
-  return clustersFromFaces(mesh.faceStart, mesh.faceVertices, mesh.positions, threads, true, 126);
+  const bool hardEdges = shading && !shading->oneAVertex;
+  return clustersFromFaces(mesh.faceStart, mesh.faceVertices, mesh.positions, threads, true, 126, hardEdges ? &shading->cornerWedge : nullptr);
 }
 
-std::vector<BuildCluster> splitIntoClusters(const std::vector<uint32_t>& indices, const std::vector<glm::vec3>& positions) {
+std::vector<BuildCluster> splitIntoClusters(const std::vector<uint32_t>& indices, const std::vector<glm::vec3>& positions,
+                                            const ShadingNormals* shading) {
   // Work on compact local vertex ids: the adjacency arrays are sized by the vertex count.
   thread_local std::vector<uint32_t> localOf;
   if (localOf.size() < positions.size()) localOf.assign(positions.size(), UINT32_MAX);
@@ -186,7 +201,16 @@ std::vector<BuildCluster> splitIntoClusters(const std::vector<uint32_t>& indices
   for (size_t i = 0; i < faceStart.size(); i++) faceStart[i] = uint32_t(3 * i);
   // Simplified groups have a fine border ring around coarse insides, which cuts pieces off easily:
   // leave more room for merging them back.
-  std::vector<BuildCluster> clusters = clustersFromFaces(faceStart, local, points, 1, false, 120);
+  std::vector<uint32_t> wedges;
+  if (shading && !shading->oneAVertex) {
+    wedges.resize(indices.size());
+    for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+      const glm::vec3 &a = positions[indices[t]], &b = positions[indices[t + 1]], &d = positions[indices[t + 2]];
+      const glm::vec3 normal = glm::cross(b - a, d - a);
+      for (size_t k = 0; k < 3; k++) wedges[t + k] = shading->nearestWedge(indices[t + k], normal);
+    }
+  }
+  std::vector<BuildCluster> clusters = clustersFromFaces(faceStart, local, points, 1, false, 120, wedges.empty() ? nullptr : &wedges);
   for (BuildCluster& c : clusters)
     for (uint32_t& v : c.indices) v = globals[v];
   return clusters;

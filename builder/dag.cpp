@@ -113,7 +113,7 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
     if (options.progress) options.progress(f, stage);
   };
   report(0.0, "clustering");
-  dag.clusters = buildLeafClusters(mesh, options.threads);
+  dag.clusters = buildLeafClusters(mesh, options.threads, options.shading);
   parallelFor(dag.clusters.size(), options.threads, [&](size_t i) {
     BuildCluster& c = dag.clusters[i];
     c.selfSphere = sphereOfClusterVertices(c, positions);
@@ -176,7 +176,7 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
         return true;
       };
       outcomes[g].simplified = simplifyGroup(indices, positions, chordAllowed, openEdges);
-      if (outcomes[g].simplified.halved) outcomes[g].produced = splitIntoClusters(outcomes[g].simplified.indices, positions);
+      if (outcomes[g].simplified.halved) outcomes[g].produced = splitIntoClusters(outcomes[g].simplified.indices, positions, options.shading);
     });
     // Merge in group order: ids depend only on the plans, never on thread timing.
     std::vector<uint32_t> next;

@@ -39,7 +39,7 @@ glm::vec4 normalCone(const std::vector<uint32_t>& indices, const std::vector<glm
 
 }  // namespace
 
-void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh, const std::vector<glm::vec3>& leafNormals,
+void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh, const ShadingNormals& shading,
                     MeshPatches&& patches, const std::vector<PatchErrors>& patchErrors, bool closed) {
   Bvh bvh = buildBvh(dag.groups);
   const uint32_t vertexOffset = uint32_t(file.vertexCount()), clusterOffset = uint32_t(file.clusters.size()),
@@ -59,7 +59,7 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
   // build's peak memory.
   size_t triangles = 0, faces = 0;
   for (const BuildCluster& c : dag.clusters) triangles += c.indices.size() / 3, faces += c.cageFaces.size();
-  const size_t vertices = leafMesh.positions.size();
+  const size_t vertices = shading.wedgeVertex.size();
   file.positions.reserve(file.positions.size() + 3 * vertices);
   file.controlPoints.reserve(file.controlPoints.size() + 3 * patches.points.size());
   file.normals.reserve(file.normals.size() + vertices);
@@ -71,21 +71,11 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
   file.patches.reserve(file.patches.size() + faces);
   file.cageFaceVertices.reserve(file.cageFaceVertices.size() + 4 * faces);
 
-  // Vertices, with the limit normals when given, else area-weighted normals of the leaf triangles.
-  std::vector<glm::vec3> normals(leafNormals);
-  if (normals.size() != leafMesh.positions.size()) normals.assign(leafMesh.positions.size(), glm::vec3(0.0f));
-  for (const BuildCluster& c : dag.clusters) {
-    if (c.level != 0 || !leafNormals.empty()) continue;
-    for (size_t t = 0; t + 2 < c.indices.size(); t += 3) {
-      const glm::vec3 &a = leafMesh.positions[c.indices[t]], &b = leafMesh.positions[c.indices[t + 1]], &d = leafMesh.positions[c.indices[t + 2]];
-      glm::vec3 n = glm::cross(b - a, d - a);
-      for (int i = 0; i < 3; i++) normals[c.indices[t + size_t(i)]] += n;
-    }
-  }
-  for (size_t v = 0; v < leafMesh.positions.size(); v++) {
-    file.positions.insert(file.positions.end(), {leafMesh.positions[v].x, leafMesh.positions[v].y, leafMesh.positions[v].z});
-    float len = glm::length(normals[v]);
-    file.normals.push_back(encodeNormal(len > 0.0f ? normals[v] / len : glm::vec3(0.0f, 0.0f, 1.0f)));
+  // Vertices: one a wedge (shading_normals.cpp), which is one a leaf vertex unless the mesh has hard edges.
+  for (size_t w = 0; w < vertices; w++) {
+    const glm::vec3& p = leafMesh.positions[shading.wedgeVertex[w]];
+    file.positions.insert(file.positions.end(), {p.x, p.y, p.z});
+    file.normals.push_back(encodeNormal(shading.wedgeNormal[w]));
   }
 
   // One patch per face of the cage (its words verbatim: control-point indices relative to the
@@ -140,7 +130,7 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
     return out;
   };
   std::vector<uint32_t> local;
-  std::vector<uint32_t> slotOf(leafMesh.positions.size(), UINT32_MAX);  // vertex -> local index, reset per cluster
+  std::vector<uint32_t> slotOf(vertices, UINT32_MAX);  // wedge -> local index, reset per cluster
   for (uint32_t id : clusterOrder) {
     const BuildCluster& c = dag.clusters[id];
     const BuildGroup& parent = dag.groups[c.group];
@@ -154,14 +144,15 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
     out.vertexOffset = uint32_t(file.clusterVertices.size());
     out.triangleOffset = uint32_t(file.clusterTriangles.size());
     local.clear();
-    for (uint32_t v : c.indices)
+    const std::vector<uint32_t>& corners = c.wedges.empty() ? c.indices : c.wedges;
+    for (uint32_t v : corners)
       if (slotOf[v] == UINT32_MAX) {
         slotOf[v] = uint32_t(local.size());
         local.push_back(v);
       }
     for (uint32_t v : local) file.clusterVertices.push_back(vertexOffset + v);
-    for (size_t t = 0; t + 2 < c.indices.size(); t += 3)
-      file.clusterTriangles.push_back(slotOf[c.indices[t]] | slotOf[c.indices[t + 1]] << 8 | slotOf[c.indices[t + 2]] << 16);
+    for (size_t t = 0; t + 2 < corners.size(); t += 3)
+      file.clusterTriangles.push_back(slotOf[corners[t]] | slotOf[corners[t + 1]] << 8 | slotOf[corners[t + 2]] << 16);
     for (uint32_t v : local) slotOf[v] = UINT32_MAX;
     out.cageFaceOffset = uint32_t(file.cageFaces.size());
     uint32_t firstTriangle = 0;
@@ -172,13 +163,18 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
       face.leafCluster = clusterIndex[id];
       face.firstTriangle = firstTriangle;
       firstTriangle += face.vertexCount - 2;
-      for (uint32_t k = 0; k < face.vertexCount; k++) file.cageFaceVertices.push_back(vertexOffset + leafMesh.face(f)[k]);
+      for (uint32_t k = 0; k < face.vertexCount; k++) file.cageFaceVertices.push_back(vertexOffset + shading.wedgeOfCorner(leafMesh, leafMesh.faceStart[f] + k));
       file.cageFaces.push_back(face);
       file.patches.push_back(filePatch(f));
     }
     shaderio::ClusterCone cone;
     cone.cone = normalCone(c.indices, leafMesh.positions);
-    cone.sphere = c.level == 0 ? c.selfSphere : sphereOfPoints(leafMesh.positions, local.data(), local.size());
+    if (c.level == 0) {
+      cone.sphere = c.selfSphere;
+    } else {
+      for (uint32_t& v : local) v = shading.wedgeVertex[v];  // the wedges' positions
+      cone.sphere = sphereOfPoints(leafMesh.positions, local.data(), local.size());
+    }
     file.clusterCones.push_back(cone);
     out.counts = shaderio::packClusterCounts(uint32_t(local.size()), uint32_t(c.indices.size() / 3), c.level, uint32_t(c.cageFaces.size()));
     file.clusters.push_back(out);
@@ -208,7 +204,7 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
   geometry.nodeOffset = nodeOffset;
   geometry.nodeCount = uint32_t(bvh.nodes.size());
   geometry.vertexOffset = vertexOffset;
-  geometry.vertexCount = uint32_t(leafMesh.positions.size());
+  geometry.vertexCount = uint32_t(vertices);
   geometry.cageFaceOffset = cageOffset;
   geometry.cageFaceCount = uint32_t(file.cageFaces.size() - cageOffset);
   geometry.levelCount = uint32_t(dag.levelClusters.size());

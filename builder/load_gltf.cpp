@@ -1,7 +1,7 @@
 // load_gltf.cpp: glTF 2.0 reader (.gltf with external or embedded buffers, .glb) through tinygltf.
 // Every triangle primitive of every mesh reached from the default scene is read; a mesh used by several
 // nodes is read once and instanced, each node's world transform becoming an instance. Images are not
-// decoded (the builder needs geometry only). Accessors are checked against their buffers before any
+// decoded (the builder needs geometry and shading normals only). Accessors are checked against their buffers before any
 // read, so a bad file is an error, never an out-of-bounds read.
 #include <tiny_gltf.h>
 
@@ -144,6 +144,16 @@ class GltfReader {
         std::memcpy(&pos, data + v * stride, sizeof(pos));
         mesh.positions.push_back(pos);
       }
+      // Shading normals: NORMAL where given; without it the specification asks for flat shading.
+      std::vector<glm::vec3> normals;
+      auto normal = prim.attributes.find("NORMAL");
+      if (normal != prim.attributes.end()) {
+        size_t nstride = 0, ncount = 0;
+        const unsigned char* ndata = accessorData(normal->second, TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT}, nstride, ncount, "NORMAL");
+        if (ncount != vertexCount) fail(where + ": " + std::to_string(ncount) + " normals for " + std::to_string(vertexCount) + " positions");
+        normals.resize(ncount);
+        for (size_t v = 0; v < ncount; v++) std::memcpy(&normals[v], ndata + v * nstride, sizeof(glm::vec3));
+      }
       std::vector<uint32_t> indices;
       if (prim.indices >= 0) {
         size_t istride = 0, icount = 0;
@@ -167,7 +177,14 @@ class GltfReader {
       }
       auto add = [&](uint32_t a, uint32_t b, uint32_t c) {
         uint32_t t[3] = {base + a, base + b, base + c};
-        mesh.addFace(t, 3);
+        glm::vec3 n[3];
+        if (!normals.empty()) {
+          n[0] = normals[a], n[1] = normals[b], n[2] = normals[c];
+        } else {
+          const glm::vec3 &pa = mesh.positions[t[0]], &pb = mesh.positions[t[1]], &pc = mesh.positions[t[2]];
+          n[0] = n[1] = n[2] = glm::cross(pb - pa, pc - pa);
+        }
+        mesh.addFace(t, 3, n);
       };
       if (mode == TINYGLTF_MODE_TRIANGLES) {
         if (indices.size() % 3) fail(where + ": " + std::to_string(indices.size()) + " indices is not a whole number of triangles");

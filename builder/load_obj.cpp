@@ -1,5 +1,6 @@
-// load_obj.cpp: Wavefront OBJ reader. Keeps polygons (faces of any size); reads only `v` and `f`
-// records, since the builder needs positions and connectivity (normals are recomputed from the surface).
+// load_obj.cpp: Wavefront OBJ reader. Keeps polygons (faces of any size); reads `v`, `vn` and `f`
+// records: positions, connectivity and the shading normals a face's corners name (v//vn, v/vt/vn). A
+// corner without a normal, in a file whose other corners have them, shades with its face's normal.
 // All objects and groups of the file become one mesh.
 #include "text_reader.h"
 
@@ -9,8 +10,10 @@ SourceScene loadObj(const std::string& path) {
   std::string data = readWholeFile(path);
   TextReader in(data, path);
   PolygonMesh mesh;
+  std::vector<glm::vec3> normals;         // vn records
+  std::vector<int64_t> cornerNormal;      // a corner's vn index (0-based), -1 for none
   std::vector<uint32_t> corners;
-  std::vector<int64_t> rawCorners;
+  std::vector<int64_t> rawCorners, rawNormals;
   std::vector<size_t> faceLines;
   while (true) {
     in.skipWhitespaceAndComments();
@@ -21,11 +24,29 @@ SourceScene loadObj(const std::string& path) {
       for (int i = 0; i < 3; i++)
         if (!in.tryNumber(p[i])) in.fail("vertex needs three numbers");
       mesh.positions.push_back(p);
+    } else if (keyword == "vn") {
+      glm::vec3 n;
+      for (int i = 0; i < 3; i++)
+        if (!in.tryNumber(n[i])) in.fail("normal needs three numbers");
+      normals.push_back(n);
     } else if (keyword == "f") {
       rawCorners.clear();
+      rawNormals.clear();
       while (!in.atLineEnd()) {
-        std::string_view t = in.token();
-        t = t.substr(0, t.find('/'));  // v/vt/vn: the position index comes first
+        std::string_view whole = in.token();
+        std::string_view t = whole.substr(0, whole.find('/'));  // v/vt/vn: the position index comes first
+        int64_t normalIndex = -1;
+        size_t second = whole.find('/', t.size() + 1);
+        if (t.size() < whole.size() && second != std::string_view::npos && second + 1 < whole.size()) {
+          std::string_view n = whole.substr(second + 1);
+          int64_t value = 0;
+          auto [nend, nec] = std::from_chars(n.data(), n.data() + n.size(), value);
+          if (nec != std::errc() || nend != n.data() + n.size() || value == 0) in.fail("bad normal index '" + std::string(n) + "'");
+          if (value < 0) value += int64_t(normals.size()) + 1;
+          if (value <= 0) in.fail("normal index " + std::string(n) + " refers before the first normal");
+          normalIndex = value - 1;
+        }
+        rawNormals.push_back(normalIndex);
         int64_t index = 0;
         auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), index);
         if (ec != std::errc() || end != t.data() + t.size() || index == 0) in.fail("bad face index '" + std::string(t) + "'");
@@ -40,6 +61,7 @@ SourceScene loadObj(const std::string& path) {
         corners.push_back(uint32_t(c));
       }
       mesh.addFace(corners.data(), corners.size());
+      cornerNormal.insert(cornerNormal.end(), rawNormals.begin(), rawNormals.end());
       faceLines.push_back(in.line());
     }
     in.skipLine();
@@ -51,6 +73,20 @@ SourceScene loadObj(const std::string& path) {
         throw InputError(path, "line " + std::to_string(faceLines[f]) + ": face index " +
                                    std::to_string(mesh.face(f)[i] + 1) + " is out of range (" +
                                    std::to_string(mesh.positions.size()) + " vertices)");
+  bool anyNormal = false;
+  for (size_t f = 0; f < mesh.faceCount(); f++)
+    for (uint32_t i = 0; i < mesh.faceSize(f); i++) {
+      int64_t n = cornerNormal[mesh.faceStart[f] + i];
+      if (n >= int64_t(normals.size()))
+        throw InputError(path, "line " + std::to_string(faceLines[f]) + ": normal index " + std::to_string(n + 1) + " is out of range (" +
+                                   std::to_string(normals.size()) + " normals)");
+      anyNormal |= n >= 0;
+    }
+  if (anyNormal) {
+    mesh.cornerNormals.resize(mesh.faceVertices.size(), glm::vec3(0.0f));  // zero: its face's normal
+    for (size_t c = 0; c < mesh.faceVertices.size(); c++)
+      if (cornerNormal[c] >= 0) mesh.cornerNormals[c] = normals[size_t(cornerNormal[c])];
+  }
   return singleMeshScene(std::move(mesh));
 }
 

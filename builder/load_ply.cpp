@@ -1,6 +1,7 @@
 // load_ply.cpp: Stanford PLY reader, ASCII and binary (either byte order). Reads the vertex element's
-// x, y, z and the face element's vertex_indices (or vertex_index) list; every other element and
-// property is skipped by its declared type, so files with colours, normals or extra elements load.
+// x, y, z (and nx, ny, nz, the shading normals, when all three are there) and the face element's
+// vertex_indices (or vertex_index) list; every other element and property is skipped by its declared
+// type, so files with colours or extra elements load.
 #include <cstring>
 
 #include "text_reader.h"
@@ -124,6 +125,7 @@ SourceScene loadPly(const std::string& path) {
 
   ValueReader in(std::string_view(data).substr(bodyStart), bodyStart, path, format);
   PolygonMesh mesh;
+  std::vector<glm::vec3> vertexNormals;
   bool sawVertices = false;
   std::vector<uint32_t> corners;
   for (const Element& e : elements) {
@@ -132,17 +134,19 @@ SourceScene loadPly(const std::string& path) {
       throw InputError(path, "truncated: element '" + e.name + "' declares " + std::to_string(e.count) +
                                  " items, more than the file holds");
     bool isVertex = e.name == "vertex", isFace = e.name == "face";
-    int xyz[3] = {-1, -1, -1};
+    int xyz[3] = {-1, -1, -1}, nxyz[3] = {-1, -1, -1};
     int indexList = -1;
     for (size_t i = 0; i < e.properties.size(); i++) {
       const Property& p = e.properties[i];
       if (isVertex && !p.isList && (p.name == "x" || p.name == "y" || p.name == "z")) xyz[p.name[0] - 'x'] = int(i);
+      if (isVertex && !p.isList && (p.name == "nx" || p.name == "ny" || p.name == "nz")) nxyz[p.name[1] - 'x'] = int(i);
       if (isFace && p.isList && (p.name == "vertex_indices" || p.name == "vertex_index")) indexList = int(i);
     }
     if (isVertex) {
       if (xyz[0] < 0 || xyz[1] < 0 || xyz[2] < 0) throw InputError(path, "vertex element lacks x, y or z");
       if (e.count > UINT32_MAX) throw InputError(path, "too many vertices for 32-bit indices");
       mesh.positions.resize(e.count);
+      vertexNormals.assign(nxyz[0] >= 0 && nxyz[1] >= 0 && nxyz[2] >= 0 ? e.count : 0, glm::vec3(0.0f));
       sawVertices = true;
     }
     if (isFace && indexList < 0) throw InputError(path, "face element lacks a vertex_indices list");
@@ -151,8 +155,10 @@ SourceScene loadPly(const std::string& path) {
         const Property& p = e.properties[i];
         if (!p.isList) {
           double v = in.read(p.type);
-          for (int k = 0; k < 3; k++)
+          for (int k = 0; k < 3; k++) {
             if (isVertex && int(i) == xyz[k]) mesh.positions[item][k] = float(v);
+            if (isVertex && int(i) == nxyz[k] && !vertexNormals.empty()) vertexNormals[item][k] = float(v);
+          }
           continue;
         }
         double n = in.read(p.countType);
@@ -172,6 +178,8 @@ SourceScene loadPly(const std::string& path) {
     }
   }
   if (!sawVertices) throw InputError(path, "no vertex element");
+  if (!vertexNormals.empty())
+    for (uint32_t v : mesh.faceVertices) mesh.cornerNormals.push_back(vertexNormals[v]);
   return singleMeshScene(std::move(mesh));
 }
 

@@ -108,6 +108,8 @@ OrientReport orientFaces(PolygonMesh& mesh) {
   for (size_t f = 0; f < faceCount; f++)
     if (flip[f] == 1) {
       std::reverse(mesh.faceVertices.begin() + mesh.faceStart[f], mesh.faceVertices.begin() + mesh.faceStart[f + 1]);
+      if (!mesh.cornerNormals.empty())
+        std::reverse(mesh.cornerNormals.begin() + mesh.faceStart[f], mesh.cornerNormals.begin() + mesh.faceStart[f + 1]);
       report.flippedFaces++;
     }
   return report;

@@ -80,21 +80,29 @@ RepairReport repairMesh(PolygonMesh& mesh, const std::string& file) {
   // Faces: weld corners, drop repeated neighbours, drop faces with < 3 distinct corners.
   PolygonMesh faces;
   faces.positions = std::move(mesh.positions);
+  const bool withNormals = !mesh.cornerNormals.empty();
   std::vector<uint32_t> corners, sorted;
+  std::vector<glm::vec3> normals;
   for (size_t f = 0; f < mesh.faceCount(); f++) {
     corners.clear();
+    normals.clear();
     for (uint32_t i = 0; i < mesh.faceSize(f); i++) {
       uint32_t v = weld[mesh.face(f)[i]];
-      if (corners.empty() || corners.back() != v) corners.push_back(v);
+      if (!corners.empty() && corners.back() == v) continue;
+      corners.push_back(v);
+      if (withNormals) normals.push_back(mesh.faceNormals(f)[i]);
     }
-    while (corners.size() > 1 && corners.front() == corners.back()) corners.pop_back();
+    while (corners.size() > 1 && corners.front() == corners.back()) {
+      corners.pop_back();
+      if (withNormals) normals.pop_back();
+    }
     sorted = corners;
     std::sort(sorted.begin(), sorted.end());
     if (corners.size() < 3 || std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
       report.degenerateFaces++;
       continue;
     }
-    faces.addFace(corners.data(), corners.size());
+    faces.addFace(corners.data(), corners.size(), withNormals ? normals.data() : nullptr);
   }
 
   // Duplicates: faces with the same corner set; the first one stays.
@@ -127,7 +135,7 @@ RepairReport repairMesh(PolygonMesh& mesh, const std::string& file) {
     kept.positions = std::move(faces.positions);
     for (size_t f = 0; f < n; f++) {
       if (drop[f]) report.duplicateFaces++;
-      else kept.addFace(faces.face(f), faces.faceSize(f));
+      else kept.addFace(faces.face(f), faces.faceSize(f), faces.faceNormals(f));
     }
     faces = std::move(kept);
   }
@@ -220,6 +228,7 @@ RepairReport repairMesh(PolygonMesh& mesh, const std::string& file) {
   }
   out.faceStart = faces.faceStart;
   out.faceVertices = newCorner;
+  out.cornerNormals = std::move(faces.cornerNormals);
 
   // Drop unused vertices, keeping order.
   std::vector<uint32_t> remap(out.positions.size(), UINT32_MAX);

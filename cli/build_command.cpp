@@ -24,6 +24,7 @@ void addBuildCommand(CLI::App& app, int& exitCode) {
   struct Args {
     std::string input, output, stats;
     int subdiv = 0;
+    float creaseAngle = 180.0f;
     int threads = int(std::max(1u, std::thread::hardware_concurrency()));
     bool quiet = false;
   };
@@ -31,6 +32,9 @@ void addBuildCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("input", args->input, "Mesh file")->required();
   cmd->add_option("-o,--output", args->output, "Output .vgeo file")->required();
   cmd->add_option("--subdiv", args->subdiv, "Catmull-Clark levels applied to the input cage")->check(CLI::Range(0, 16));
+  cmd->add_option("--crease-angle", args->creaseAngle,
+                  "Inputs without normals: a hard edge where faces meet at more than DEG degrees (180: smooth; glTF without normals is flat)")
+      ->check(CLI::Range(0.0f, 180.0f));
   cmd->add_option("--threads", args->threads, "Worker threads (the output does not depend on it)")->check(CLI::Range(1, 256));
   cmd->add_option("--stats", args->stats, "Write build statistics as JSON to this file");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress bar");
@@ -40,6 +44,7 @@ void addBuildCommand(CLI::App& app, int& exitCode) {
     SceneBuildOptions options;
     options.subdivisionLevels = args->subdiv;
     options.threads = args->threads;
+    options.creaseAngleDegrees = args->creaseAngle;
     options.progress = [&](double f, const char* stage) { bar.update(f, stage); };
     SceneBuildStats s;
     VgeoData data = buildScene(args->input, options, s);

@@ -5,13 +5,13 @@
 // not drop what faces the eye.
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "../renderer/gpu_renderer.h"
 #include "../renderer/image.h"
 #include "render_util.h"
+#include "gltf_writer.h"
 #include "test_util.h"
 
 namespace vgeo {
@@ -84,52 +84,6 @@ Camera onMirrorPlane(float y, float z, float distance) {
   return c;
 }
 
-// Base64 of bytes, for a glTF buffer given as a data URI.
-std::string base64(const std::vector<uint8_t>& bytes) {
-  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (size_t i = 0; i < bytes.size(); i += 3) {
-    const size_t n = std::min<size_t>(3, bytes.size() - i);
-    uint32_t v = uint32_t(bytes[i]) << 16 | (n > 1 ? uint32_t(bytes[i + 1]) << 8 : 0u) | (n > 2 ? uint32_t(bytes[i + 2]) : 0u);
-    out += table[v >> 18 & 63];
-    out += table[v >> 12 & 63];
-    out += n > 1 ? table[v >> 6 & 63] : '=';
-    out += n > 2 ? table[v & 63] : '=';
-  }
-  return out;
-}
-
-// A glTF of `mesh` (triangulated as a fan a face) under one node with the JSON transform `node`.
-std::string gltfOf(const std::string& dir, const std::string& name, const PolygonMesh& mesh, const std::string& node) {
-  std::vector<float> positions;
-  glm::vec3 lo(1e30f), hi(-1e30f);
-  for (const glm::vec3& p : mesh.positions) {
-    positions.insert(positions.end(), {p.x, p.y, p.z});
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  std::vector<uint32_t> indices;
-  for (size_t f = 0; f < mesh.faceCount(); f++)
-    for (uint32_t k = 2; k < mesh.faceSize(f); k++) indices.insert(indices.end(), {mesh.face(f)[0], mesh.face(f)[k - 1], mesh.face(f)[k]});
-  std::vector<uint8_t> bytes(positions.size() * 4 + indices.size() * 4);
-  std::memcpy(bytes.data(), positions.data(), positions.size() * 4);
-  std::memcpy(bytes.data() + positions.size() * 4, indices.data(), indices.size() * 4);
-  auto vec = [](glm::vec3 v) {
-    char text[96];
-    std::snprintf(text, sizeof text, "[%.9g, %.9g, %.9g]", v.x, v.y, v.z);
-    return std::string(text);
-  };
-  std::string json = R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0)" + node + R"(}],
-    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
-    "buffers": [{"byteLength": )" + std::to_string(bytes.size()) + R"(, "uri": "data:application/octet-stream;base64,)" + base64(bytes) + R"("}],
-    "bufferViews": [{"buffer": 0, "byteLength": )" + std::to_string(positions.size() * 4) + R"(},
-                    {"buffer": 0, "byteOffset": )" + std::to_string(positions.size() * 4) + R"(, "byteLength": )" + std::to_string(indices.size() * 4) + R"(}],
-    "accessors": [{"bufferView": 0, "componentType": 5126, "count": )" + std::to_string(mesh.positions.size()) + R"(, "type": "VEC3", "min": )" + vec(lo) +
-                     R"(, "max": )" + vec(hi) + R"(},
-                  {"bufferView": 1, "componentType": 5125, "count": )" + std::to_string(indices.size()) + R"(, "type": "SCALAR"}]})";
-  return test::writeFile(dir, name, json);
-}
-
 TEST_F(RenderInstances, MirroredInstancesLookLikeTheirMirrorImage) {
   // CGAL's cow (not symmetric in any plane) as triangles and, after one round, close up as patches.
   writeVgeo(test::build(test::cgalMesh("cow.off"), 0), *dir + "/cow0.vgeo");
@@ -168,8 +122,8 @@ TEST_F(RenderInstances, MirroredInstancesLookLikeTheirMirrorImage) {
 
   // The same through a glTF node: the builder keeps the mirrored node's transform.
   SourceScene cow = loadMeshFile(test::cgalMesh("cow.off"));
-  writeVgeo(test::build(gltfOf(*dir, "plain.gltf", cow.meshes[0], ""), 0), *dir + "/plain_gltf.vgeo");
-  writeVgeo(test::build(gltfOf(*dir, "mirrored.gltf", cow.meshes[0], R"(, "scale": [-1, 1, 1])"), 0), *dir + "/mirrored_gltf.vgeo");
+  writeVgeo(test::build(test::gltfOf(*dir, "plain.gltf", cow.meshes[0], ""), 0), *dir + "/plain_gltf.vgeo");
+  writeVgeo(test::build(test::gltfOf(*dir, "mirrored.gltf", cow.meshes[0], R"(, "scale": [-1, 1, 1])"), 0), *dir + "/mirrored_gltf.vgeo");
   FrameResult plain = render(*dir + "/plain_gltf.vgeo", onMirrorPlane(0.0f, 0.0f, 1.3f), 1.0f, false);
   FrameResult mirrored = render(*dir + "/mirrored_gltf.vgeo", onMirrorPlane(0.0f, 0.0f, 1.3f), 1.0f, false);
   EXPECT_LT(mirrorDifference(mirrored, plain, 0.01), 4.0) << "glTF node scale [-1, 1, 1]";
