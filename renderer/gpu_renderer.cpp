@@ -44,6 +44,11 @@ constexpr uint32_t kMaxPersistentWorkgroups = 4096;
 // VGEO_CULL_SPREAD_INSTANCES), four above (measured at 10,000 and 100,000 instances; the switch sits
 // between them).
 constexpr size_t kFewWorkgroupsInstances = 32768;
+// The patch draw as instances of this many patches. lavapipe tessellates each instance in one run whose
+// output is indexed with 16 bits: 15 patches at factor 64 (4,225 vertices each) stay under 65,536,
+// where one instance of all patches joined unrelated vertices in close-ups. GPUs: one instance holds
+// many (the count has no effect on the picture).
+constexpr uint32_t kLavapipePatchesPerInstance = 15, kPatchesPerInstance = 4096;
 // Frame start, then the end of instance culling, traversal, triangle culling and the draw.
 constexpr uint32_t kTimestamps = 5;
 
@@ -403,6 +408,7 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
   frame.viewportHeight = float(height_);
   const bool patches = drawsPatches(settings);
   frame.patches = patches ? 1u : 0u;
+  frame.patchesPerInstance = vk_.isLavapipe() ? kLavapipePatchesPerInstance : kPatchesPerInstance;
   frame.patchCapacity = patchCapacity_;
   std::memcpy(frameData_.mapped, &frame, sizeof(frame));
   const bool profile = settings.profileWorkers && persistentProfile_ && settings.traversal == Traversal::Persistent;

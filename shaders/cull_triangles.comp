@@ -8,14 +8,18 @@
 // A leaf cluster flagged for patches (VGEO_DRAW_PATCHES_BIT) lists its cage faces instead, one thread a
 // face, in the patch list of the tessellated draw (patch.tesc), unless the face's bounding sphere (its
 // corners, grown by its chord error: the surface is that close to its triangles) is outside the frustum.
+// A face whose tessellation factors are all 1 (patch_factors.glsl: small on screen, or flat enough)
+// would be drawn as its two corner triangles anyway: its leaf triangles join the triangle list instead,
+// so the patch list holds only faces that gain from tessellation (about one a few pixels at most).
 // None of these changes the picture: they keep the rasterizer from setting up triangles that make no
 // fragment, which is where the time of a virtual-geometry frame goes once clusters are small on
 // screen (GPU-NOTES 6 and 8). The cut itself (the draw list) is untouched.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
+#include "patch_factors.glsl"
 layout(local_size_x = VGEO_MAX_CLUSTER_TRIANGLES) in;
 
-shared uint sKept, sBase;
+shared uint sKept, sBase, sKeptTriangles, sBaseTriangles;
 
 // Rasterizers snap corners to 1/256 pixel or finer; this slack keeps every triangle the snapped
 // corners could make cover a pixel centre.
@@ -67,27 +71,53 @@ bool faceVisible(Instance inst, uint face) {
   return sphereInFrustum(vec4(centre, radius + patches[face].faceError * inst.maxScale));
 }
 
-// The faces of a patch-drawn cluster that may be seen join the patch list.
+// The faces of a patch-drawn cluster that may be seen join the patch list, or, when they need no
+// tessellation, their triangles join the triangle list.
 void listPatches(uint entry, Instance inst, Cluster c) {
   uint local = gl_LocalInvocationIndex;
-  bool keep = local < clusterCageFaceCount(c.counts) && faceVisible(inst, c.cageFaceOffset + local);
-  uint slot = keep ? atomicAdd(sKept, 1u) : 0u;
+  bool seen = local < clusterCageFaceCount(c.counts) && faceVisible(inst, c.cageFaceOffset + local);
+  bool tessellate = false;
+  uint firstTriangle = 0u, triangles = 0u;
+  if (seen) {
+    float edge[4], inner[2];
+    patchFactors(inst, c.cageFaceOffset + local, edge, inner);
+    tessellate = max(max(edge[0], edge[1]), max(edge[2], edge[3])) > 1.0 || max(inner[0], inner[1]) > 1.0;
+    CageFace f = cageFaces[c.cageFaceOffset + local];
+    firstTriangle = f.firstTriangle;
+    triangles = tessellate ? 0u : f.vertexCount - 2u;
+  }
+  uint slot = tessellate ? atomicAdd(sKept, 1u) : 0u;
+  bool keepTriangle[2] = bool[2](triangles > 0u && visible(inst, c, firstTriangle), triangles > 1u && visible(inst, c, firstTriangle + 1u));
+  uint kept = uint(keepTriangle[0]) + uint(keepTriangle[1]);
+  uint triangleSlot = kept > 0u ? atomicAdd(sKeptTriangles, kept) : 0u;
   barrier();
   if (gl_LocalInvocationIndex == 0u) {
     sBase = sKept == 0u ? 0u : atomicAdd(counters.patchesDrawn, sKept);
     uint end = sBase + sKept;
     if (end > frame.patchCapacity) atomicAdd(counters.patchOverflow, min(sKept, end - frame.patchCapacity));
-    atomicAdd(counters.patchClusters, 1u);
+    if (sKept > 0u) atomicAdd(counters.patchClusters, 1u);
+    sBaseTriangles = sKeptTriangles == 0u ? 0u : atomicAdd(counters.trianglesDrawn, sKeptTriangles);
+    end = sBaseTriangles + sKeptTriangles;
+    if (end > frame.triangleCapacity) atomicAdd(counters.triangleOverflow, min(sKeptTriangles, end - frame.triangleCapacity));
   }
   barrier();
   slot += sBase;
-  if (keep && slot < frame.patchCapacity) patchList[slot] = entry << VGEO_TRIANGLE_BITS | local;
+  if (tessellate && slot < frame.patchCapacity) patchList[slot] = entry << VGEO_TRIANGLE_BITS | local;
+  triangleSlot += sBaseTriangles;
+  for (uint k = 0u; k < 2u; k++) {
+    if (!keepTriangle[k]) continue;
+    if (triangleSlot < frame.triangleCapacity) triangleList[triangleSlot] = entry << VGEO_TRIANGLE_BITS | (firstTriangle + k);
+    triangleSlot++;
+  }
 }
 
 void main() {
   uint entry = gl_WorkGroupID.y * 65535u + gl_WorkGroupID.x;
   if (entry >= min(counters.drawCount, frame.drawCapacity)) return;  // the whole workgroup
-  if (gl_LocalInvocationIndex == 0u) sKept = 0u;
+  if (gl_LocalInvocationIndex == 0u) {
+    sKept = 0u;
+    sKeptTriangles = 0u;
+  }
   barrier();
   uint instance = drawList[2u * entry], cluster = drawList[2u * entry + 1u];
   Cluster c = clusters[cluster & ~VGEO_DRAW_PATCHES_BIT];

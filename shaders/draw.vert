@@ -27,7 +27,8 @@ void main() {
     triangle = packed & ((1u << VGEO_TRIANGLE_BITS) - 1u);
   }
   uint instance = drawList[2 * entry];
-  uint cluster = drawList[2 * entry + 1];  // never VGEO_DRAW_PATCHES_BIT: patch-drawn clusters list no triangles
+  // A patch-drawn cluster lists the triangles of its faces that need no tessellation (cull_triangles.comp).
+  uint cluster = drawList[2 * entry + 1] & ~VGEO_DRAW_PATCHES_BIT;
   Cluster c = clusters[cluster];
   outBarycentric = vec3(corner == 0u ? 1.0 : 0.0, corner == 1u ? 1.0 : 0.0, corner == 2u ? 1.0 : 0.0);
   outIds = uvec4(cluster, c.group, instance, clusterLevel(c.counts));

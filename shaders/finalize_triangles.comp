@@ -13,8 +13,8 @@ void main() {
   counters.draw[2] = 0u;
   counters.draw[3] = 0u;
   uint patchCount = min(counters.patchesDrawn, frame.patchCapacity);
-  counters.patchDraw[0] = patchCount;
-  counters.patchDraw[1] = patchCount == 0u ? 0u : 1u;
+  counters.patchDraw[0] = frame.patchesPerInstance;
+  counters.patchDraw[1] = (patchCount + frame.patchesPerInstance - 1u) / frame.patchesPerInstance;
   counters.patchDraw[2] = 0u;
   counters.patchDraw[3] = 0u;
 }

@@ -1,7 +1,10 @@
 #version 450
 // patch.vert: each vertex of the tessellated draw is one listed patch; it hands its index in the patch
-// list to patch.tesc. gl_PrimitiveID in the control shader would name the same patch on paper, but
-// lavapipe restarts it between the batches it splits a large draw into (thousands of patches), so
-// patches were drawn twice or not at all; the vertex index is right on every device.
+// list to patch.tesc. The draw is instances of frame.patchesPerInstance patches: lavapipe runs each
+// instance through its tessellator on its own, whose output of one run must stay under 65,536 vertices
+// (16-bit indices; past that, triangles joined unrelated vertices), and it restarts gl_PrimitiveID
+// between the batches it splits a draw into, so the index is made here, right on every device.
+#extension GL_GOOGLE_include_directive : require
+#include "common.glsl"
 layout(location = 0) out uint vPatch;
-void main() { vPatch = uint(gl_VertexIndex); }
+void main() { vPatch = uint(gl_InstanceIndex) * frame.patchesPerInstance + uint(gl_VertexIndex); }

@@ -273,6 +273,9 @@ struct FrameData {
   uint cullInTraversal;  // persistent traversal: its workers cull the instances first (worker w: instances w,
                          // w + workers, ...) instead of cull_instances.comp; the host starts
                          // counters.nodesPending at frame.instanceCount
+  uint patchesPerInstance; // the patch draw: instances of this many patches (patch.vert), so that no run of
+                           // lavapipe's tessellator outputs more vertices than its 16-bit indices address
+  uint framePad[3];
 };
 
 // GPU counters of one frame, and the indirect arguments built from them. The counters the persistent
@@ -383,7 +386,7 @@ static_assert(sizeof(Instance) == 64, "Instance layout");
 static_assert(sizeof(CageFace) == 16, "CageFace layout");
 static_assert(sizeof(ClusterCone) == 32, "ClusterCone layout");
 static_assert(sizeof(Patch) == 48, "Patch layout");
-static_assert(sizeof(FrameData) == 64 + 96 + 32 + 80, "FrameData layout");
+static_assert(sizeof(FrameData) == 64 + 96 + 32 + 96, "FrameData layout");
 static_assert(sizeof(Counters) == 5 * 128, "Counters layout");
 static_assert(offsetof(Counters, itemsDone) == 4 * 128, "Counters: the hot words on lines of their own");
 }  // namespace shaderio

@@ -88,18 +88,18 @@ TEST_F(RenderPatches, NoCracksCloseUpAndAtTheTransition) {
 }
 
 TEST_F(RenderPatches, ThousandsOfPatchesCoverWhatTheTrianglesCover) {
-  // A close-up of CGAL's cow after one round with over 10,000 patches drawn at 1280x720: the patches
+  // A close-up of CGAL's cow after one round with over 10,000 patches drawn at 1920x1080: the patches
   // are the surface the leaf triangles sample, so they cover the same pixels (within 0.1%: silhouettes
   // move by under a pixel), and the same frame twice is the same image. A patch list indexed wrongly
   // (lavapipe splits large tessellated draws into batches) drops or repeats patches past a few thousand.
-  constexpr uint32_t w = 1280, h = 720;
+  constexpr uint32_t w = 1920, h = 1080;
   writeVgeo(test::build(test::cgalMesh("cow.off"), 1), *dir + "/cow1.vgeo");
   RenderScene cow = loadRenderScene(*dir + "/cow1.vgeo");
   GpuRenderer renderer(*vk, cow, w, h);
   Camera camera;
   camera.eye = {0.2f, 0.2f, 0.4f};
   camera.target = {0.0f, 0.0f, 0.0f};
-  FrameSettings s = test::frameSettings(cow, camera, 0.5f, w, h);
+  FrameSettings s = test::frameSettings(cow, camera, 0.25f, w, h);
   s.patches = true;
   FrameResult with = renderer.renderFrame(s), again = renderer.renderFrame(s);
   s.patches = false;
@@ -115,14 +115,40 @@ TEST_F(RenderPatches, ThousandsOfPatchesCoverWhatTheTrianglesCover) {
   EXPECT_TRUE(with.rgba == again.rgba) << "the same frame twice gave different images";
 }
 
+TEST_F(RenderPatches, ATauFarBelowTheLeavesCostsAboutThePixels) {
+  // tau = 1e-9 asks every leaf for more detail than any tessellation gives. No segment is made shorter
+  // than two pixels (by an estimate that ignores foreshortening), so patches and their triangles stay a
+  // few a covered pixel, front and back sides together (at factor 64 everywhere they were 8,192 a
+  // patch), faces smaller than that are drawn as their leaf triangles, and the picture covers what a
+  // sane tau covers: with thousands of patches at high factors, also a test of lavapipe's tessellator
+  // runs (16-bit indices), which joined unrelated vertices when one run held too many patches.
+  GpuRenderer renderer(*vk, *horned, kW, kH);
+  for (float distance : {0.75f, 1.6f, 4.0f}) {
+    Camera camera = test::orbit(*horned, 0.3f, 0.5f, distance);
+    FrameResult tiny = renderer.renderFrame(settings(*horned, camera, 1e-9f, true));
+    for (int i = 0; i < 4 && !tiny.complete; i++) tiny = renderer.renderFrame(settings(*horned, camera, 1e-9f, true));
+    ASSERT_TRUE(tiny.complete);
+    FrameResult sane = renderer.renderFrame(settings(*horned, camera, 0.5f, true));
+    std::vector<uint8_t> a = test::coverage(tiny), b = test::coverage(sane);
+    const int64_t covered = std::count(a.begin(), a.end(), uint8_t(1));
+    ASSERT_GT(covered, 1000);
+    EXPECT_LE(int64_t(tiny.patchesDrawn), covered) << "at " << distance << " radii";
+    if (tiny.patchTriangles >= 0) {
+      EXPECT_LE(tiny.patchTriangles, 6 * covered) << "at " << distance << " radii";
+    }
+    EXPECT_EQ(farFrom(a, b, 1, true), 0) << "at " << distance << " radii";
+    EXPECT_EQ(farFrom(a, b, 1, false), 0) << "at " << distance << " radii";
+  }
+}
+
 TEST_F(RenderPatches, ShadingMatchesTheTriangles) {
   // The same close view with and without patches: patches are the surface the leaf triangles sample,
   // with the same normals at the corners, so the lit pictures differ little (a flipped winding or normal
   // would darken every patch).
   GpuRenderer renderer(*vk, *horned, kW, kH);
   Camera camera = test::orbit(*horned, 0.9f, 0.4f, 0.75f);
-  FrameResult with = renderer.renderFrame(settings(*horned, camera, 1.0f, true));
-  FrameResult without = renderer.renderFrame(settings(*horned, camera, 1.0f, false));
+  FrameResult with = renderer.renderFrame(settings(*horned, camera, 0.25f, true));
+  FrameResult without = renderer.renderFrame(settings(*horned, camera, 0.25f, false));
   ASSERT_GT(with.patchesDrawn, 100u);
   EXPECT_EQ(without.patchesDrawn, 0u);
   EXPECT_EQ(without.patchTriangles, 0);
@@ -139,7 +165,7 @@ TEST_F(RenderPatches, ShadingMatchesTheTriangles) {
   ASSERT_GT(both, kW * kH / 4);
   EXPECT_LT(difference / double(3 * both), 4.0) << "mean channel difference of the covered pixels";
   // The patch debug view colours patches (by factor) apart from triangles (grey).
-  FrameSettings s = settings(*horned, camera, 1.0f, true);
+  FrameSettings s = settings(*horned, camera, 0.25f, true);
   s.mode = VGEO_MODE_PATCH;
   FrameResult colours = renderer.renderFrame(s);
   uint64_t tinted = 0;
