@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "../common/atomic_file.h"
 #include "../renderer/gpu_renderer.h"
 
 namespace vgeo {
@@ -17,11 +18,9 @@ inline bool parseSize(const std::string& text, uint32_t& width, uint32_t& height
   return std::sscanf(text.c_str(), "%ux%u", &width, &height) == 2 && width > 0 && height > 0 && width <= 16384 && height <= 16384;
 }
 
-// Writes JSON (stats, benchmark records) to `path`; throws std::runtime_error("path: cannot write ...").
+// Writes JSON (stats, benchmark records) to `path`, atomically; throws OutputError("path: cause").
 inline void writeJson(const std::string& path, const nlohmann::ordered_json& j, int indent) {
-  std::ofstream out(path);
-  out << j.dump(indent) << "\n";
-  if (!out) throw std::runtime_error(path + ": cannot write the file");
+  writeFileAtomically(path, j.dump(indent) + "\n");
 }
 
 // --instance-culling auto|pass|traversal (render and bench cut), for FrameSettings::instanceCulling.

@@ -1,15 +1,26 @@
-// main.cpp: the `vgeo` executable: `vgeo build`, `vgeo check`, `vgeo render`, `vgeo bench` (later `view`).
-// Every error ends here as one line on stderr and a non-zero exit.
+// main.cpp: the `vgeo` executable: `vgeo build`, `vgeo check`, `vgeo render`, `vgeo bench`.
+// Every error ends here as one line on stderr and an exit code of options.h's ExitCode: the cause
+// decides the code, so scripts can tell a bad command line from a bad file from a machine limit.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
 
+#include "../common/atomic_file.h"
+#include "../common/input_error.h"
 #include "commands.h"
+#include "options.h"
+#include "vgeo_commit.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"vgeo: a virtual-geometry builder and renderer"};
   app.require_subcommand(1);
-  int exitCode = 1;
+  app.set_version_flag("--version", std::string("vgeo " VGEO_VERSION " (commit " VGEO_COMMIT ")"));
+  app.footer("Exit codes: 0 done; 1 a bad or unreadable input file, an output that could not be written, or a failed check; "
+             "2 a bad command line; 3 validation messages (--validate); 4 the GPU cut differs from the CPU's (--compare-cpu); "
+             "5 no usable device, out of memory, or a frame past its memory limit.");
+  // CLI11's own errors as one line too, like every other error.
+  app.failure_message([](const CLI::App*, const CLI::Error& e) { return std::string("vgeo: ") + e.what() + " (see --help)\n"; });
+  int exitCode = vgeo::kExitBadFile;
   vgeo::addBuildCommand(app, exitCode);
   vgeo::addCheckCommand(app, exitCode);
   vgeo::addRenderCommand(app, exitCode);
@@ -17,13 +28,24 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version are "errors" of code 0; every other parse error is a usage error.
+    const int code = app.exit(e);
+    return code == 0 ? vgeo::kExitOk : vgeo::kExitUsage;
+  } catch (const vgeo::UsageError& e) {
+    std::fprintf(stderr, "vgeo: %s\n", e.what());
+    return vgeo::kExitUsage;
+  } catch (const vgeo::InputError& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return vgeo::kExitBadFile;
+  } catch (const vgeo::OutputError& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return vgeo::kExitBadFile;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "vgeo: out of memory\n");
-    return 1;
+    return vgeo::kExitResources;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "%s\n", e.what());
-    return 1;
+    std::fprintf(stderr, "vgeo: %s\n", e.what());
+    return vgeo::kExitResources;
   }
   return exitCode;
 }

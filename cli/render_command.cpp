@@ -2,7 +2,9 @@
 // optionally the comparison with the CPU reference cut.
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <cmath>
 #include <map>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -10,6 +12,7 @@
 #include "../renderer/gpu_renderer.h"
 #include "../renderer/image.h"
 #include "commands.h"
+#include "options.h"
 
 namespace vgeo {
 namespace {
@@ -20,59 +23,41 @@ const std::map<std::string, uint32_t> kModes = {
     {"wire", VGEO_MODE_WIRE},       {"overdraw", VGEO_MODE_OVERDRAW}, {"frozen-diff", VGEO_MODE_FROZEN_DIFF},
     {"patch", VGEO_MODE_PATCH}};
 
-bool parseCamera(const std::string& text, Camera& camera) {
-  std::vector<float> v;
-  std::stringstream s(text);
-  std::string item;
-  while (std::getline(s, item, ',')) {
-    try {
-      v.push_back(std::stof(item));
-    } catch (...) {
-      return false;
-    }
-  }
-  if (v.size() != 6) return false;
-  camera.eye = {v[0], v[1], v[2]};
-  camera.target = {v[3], v[4], v[5]};
-  return camera.eye != camera.target;
-}
-
 struct RenderArgs {
   std::string input, output, stats, camera, freezeCamera, mode = "lit", traversal = "persistent", size = "1280x720", device;
   float fov = 60.0f, tau = 1.0f;
   uint32_t grid = 1, frames = 2, queueCapacity = 0, drawCapacity = 0, triangleCapacity = 0, workgroups = 0, cullLanes = 0;
-  uint32_t sweepBudget = kDefaultSweepBudget;
+  uint32_t sweepBudget = kDefaultSweepBudget, maxFrameMemoryMiB = kDefaultFrameMemoryMiB;
   std::string instanceCulling = "auto";
   bool compareCpu = false, validate = false, noTriangleCull = false, noPatches = false;
 };
 
 int runRender(const RenderArgs& a) {
+  // The command line first, all of it, before anything is loaded or drawn.
   uint32_t width = 0, height = 0;
-  if (!parseSize(a.size, width, height))
-    throw std::runtime_error("--size: expected WxH, e.g. 1280x720");
-  if (!kModes.count(a.mode)) throw std::runtime_error("--mode: unknown mode '" + a.mode + "'");
+  if (!parseSize(a.size, width, height)) throw UsageError("--size", "expected WxH with both in 1..16384, e.g. 1280x720 (got '" + a.size + "')");
   Traversal traversal = a.traversal == "persistent" ? Traversal::Persistent : a.traversal == "levels" ? Traversal::Levels : Traversal::Flat;
-  if (a.traversal != "persistent" && a.traversal != "levels" && a.traversal != "flat")
-    throw std::runtime_error("--traversal: expected persistent, levels or flat");
-  if (!(a.tau > 0.0f)) throw std::runtime_error("--tau must be > 0");
+  checkOutputPath("--output", a.output, {a.input}, ".png");
+  if (!a.stats.empty()) checkOutputPath("--stats", a.stats, {a.input, a.output});
+  std::optional<Camera> camera, cullCamera;
+  if (!a.camera.empty()) camera = parseCameraOption("--camera", a.camera, a.fov);
+  if (!a.freezeCamera.empty()) cullCamera = parseCameraOption("--freeze-camera", a.freezeCamera, a.fov);
 
   RenderScene scene = loadRenderScene(a.input, a.grid);
-  Camera camera = defaultCamera(scene.bounds, scene.boxMin, scene.boxMax, a.fov);
-  if (!a.camera.empty() && !parseCamera(a.camera, camera)) throw std::runtime_error("--camera: expected eye_x,eye_y,eye_z,target_x,target_y,target_z");
-  camera.fovYDegrees = a.fov;
-  Camera cullCamera = camera;
-  if (!a.freezeCamera.empty() && !parseCamera(a.freezeCamera, cullCamera)) throw std::runtime_error("--freeze-camera: expected six numbers");
-  cullCamera.fovYDegrees = a.fov;
+  if (!camera) camera = defaultCamera(scene.bounds, scene.boxMin, scene.boxMax, a.fov);
+  camera->fovYDegrees = a.fov;
+  if (!cullCamera) cullCamera = camera;
 
   VulkanContext vk({a.device, a.validate});
   GpuRenderer renderer(vk, scene, width, height);
+  renderer.setFrameMemoryLimit(uint64_t(a.maxFrameMemoryMiB) << 20);
   if (a.workgroups) renderer.setPersistentWorkgroups(a.workgroups);
   if (a.queueCapacity || a.drawCapacity || a.triangleCapacity)
     renderer.setCapacities(a.queueCapacity ? a.queueCapacity : renderer.queueCapacity(), a.drawCapacity ? a.drawCapacity : renderer.drawCapacity(),
                            a.triangleCapacity ? a.triangleCapacity : renderer.triangleCapacity(), renderer.patchCapacity());
   FrameSettings settings;
-  settings.drawView = makeView(camera, width, height, scene.bounds);
-  settings.cullView = makeView(cullCamera, width, height, scene.bounds);
+  settings.drawView = makeView(*camera, width, height, scene.bounds);
+  settings.cullView = makeView(*cullCamera, width, height, scene.bounds);
   settings.tau = a.tau;
   settings.mode = kModes.at(a.mode);
   settings.sweepBudget = a.sweepBudget;
@@ -83,9 +68,9 @@ int runRender(const RenderArgs& a) {
   settings.triangleCull = !a.noTriangleCull;
   settings.patches = !a.noPatches;
   if (settings.instanceCulling == InstanceCulling::InTraversal && !renderer.cullsInTraversal(settings))
-    throw std::runtime_error("--instance-culling traversal needs the persistent traversal, culling lanes " + std::to_string(VGEO_CULL_INSTANCE_LANES) +
-                             " and at most " + std::to_string(GpuRenderer::kCullInTraversalMaxPerWorker) + " instances a worker (" +
-                             std::to_string(renderer.persistentWorkgroups()) + " workers)");
+    throw UsageError("--instance-culling", "traversal needs the persistent traversal, culling lanes " + std::to_string(VGEO_CULL_INSTANCE_LANES) +
+                                               " and at most " + std::to_string(GpuRenderer::kCullInTraversalMaxPerWorker) +
+                                               " instances a worker (" + std::to_string(renderer.persistentWorkgroups()) + " workers)");
 
   // Frames until one is complete (an overflow grows the buffers for the next); the first frames warm
   // the shader cache (GPU-NOTES 4), the last one is reported.
@@ -169,6 +154,7 @@ int runRender(const RenderArgs& a) {
     j["borderline_clusters"] = reference.borderline.size();
     if (!equal) j["cpu_cut_difference"] = difference;
   }
+  if (!a.stats.empty()) writeJson(a.stats, j, 2);  // before the summary: a failed write is the one line printed
   std::printf("%s: %ux%u on %s, %s traversal, tau %g: %u of %zu instances visible, %u clusters, %u triangles in the cut of %llu virtual, "
               "%u drawn (%.2f a covered pixel); instance culling %.2f ms, traversal %.2f ms, triangle culling %.2f ms, draw %.2f ms, frame %.2f ms (%s)\n",
               a.output.c_str(), width, height, vk.deviceName().c_str(), a.traversal.c_str(), a.tau, c.visibleInstances,
@@ -178,15 +164,12 @@ int runRender(const RenderArgs& a) {
   if (a.compareCpu)
     std::printf("cpu cut: %s (%zu clusters, %zu borderline)%s\n", j["cpu_cut_equal"].get<bool>() ? "equal" : "DIFFERENT",
                 size_t(j["cpu_clusters"]), size_t(j["borderline_clusters"]), j.contains("cpu_cut_difference") ? (": " + j["cpu_cut_difference"].get<std::string>()).c_str() : "");
-  if (!a.stats.empty()) {
-    writeJson(a.stats, j, 2);
-  }
   if (vk.validationMessages() > 0) {
     std::fprintf(stderr, "validation: %u messages\n", vk.validationMessages());
-    return 3;
+    return kExitValidation;
   }
-  if (a.compareCpu && !j["cpu_cut_equal"].get<bool>()) return 2;
-  return 0;
+  if (a.compareCpu && !j["cpu_cut_equal"].get<bool>()) return kExitCutDiffers;
+  return kExitOk;
 }
 
 }  // namespace
@@ -198,17 +181,27 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("-o,--output", a->output, "Output PNG")->required();
   cmd->add_option("--size", a->size, "Image size WxH")->capture_default_str();
   cmd->add_option("--camera", a->camera, "eye_x,eye_y,eye_z,target_x,target_y,target_z (default: frames the scene)");
-  cmd->add_option("--fov", a->fov, "Vertical field of view, degrees")->capture_default_str();
-  cmd->add_option("--tau", a->tau, "Allowed projected error, pixels")->capture_default_str();
-  cmd->add_option("--mode", a->mode, "lit, normal, cluster, group, lod, triangle, instance, error, wire, overdraw, frozen-diff, patch")->capture_default_str();
+  cmd->add_option("--fov", a->fov, "Vertical field of view, degrees")->capture_default_str()->check(finiteBetween(0.0, 180.0));
+  cmd->add_option("--tau", a->tau, "Allowed projected error, pixels (a tau below what the leaves reach draws the leaves)")
+      ->capture_default_str()
+      ->check(finiteBetween(0.0, INFINITY));
+  std::vector<std::string> modes;
+  for (const auto& [name, value] : kModes) modes.push_back(name);
+  cmd->add_option("--mode", a->mode, "Debug view")->capture_default_str()->check(CLI::IsMember(modes));
   cmd->add_option("--grid", a->grid, "N x N instances of the input")->capture_default_str()->check(CLI::Range(1u, 4096u));
-  cmd->add_option("--traversal", a->traversal, "persistent, levels or flat")->capture_default_str();
+  cmd->add_option("--traversal", a->traversal, "Cut selection")->capture_default_str()->check(CLI::IsMember({"persistent", "levels", "flat"}));
   cmd->add_option("--freeze-camera", a->freezeCamera, "Select and cull with this camera (six numbers), draw from --camera");
-  cmd->add_flag("--compare-cpu", a->compareCpu, "Compare the GPU draw list with the CPU reference cut (exit 2 if they differ)");
+  cmd->add_flag("--compare-cpu", a->compareCpu, "Compare the GPU draw list with the CPU reference cut (exit 4 if they differ)");
   cmd->add_option("--stats", a->stats, "Write frame statistics as JSON to this file");
   cmd->add_option("--device", a->device, "Use the first Vulkan device whose name contains this");
   cmd->add_flag("--validate", a->validate, "Khronos validation layer with synchronization validation (exit 3 on any message)");
-  cmd->add_option("--frames", a->frames, "Frames to render; the last is reported (the first warms shader caches)")->capture_default_str();
+  cmd->add_option("--frames", a->frames, "Frames to render; the last is reported (the first warms shader caches)")
+      ->capture_default_str()
+      ->check(CLI::Range(1u, 100000u));
+  cmd->add_option("--max-frame-memory", a->maxFrameMemoryMiB,
+                  "MiB the frame's growing lists (queue, draw, triangle, patch) may take; a cut that needs more stops with exit 5")
+      ->capture_default_str()
+      ->check(CLI::Range(1u, 1u << 20));
   cmd->add_option("--queue-capacity", a->queueCapacity, "Initial traversal queue capacity, items (debugging overflow)");
   cmd->add_option("--draw-capacity", a->drawCapacity, "Initial draw list capacity, clusters (debugging overflow)");
   cmd->add_option("--triangle-capacity", a->triangleCapacity, "Initial triangle list capacity, triangles (debugging overflow)");
@@ -223,15 +216,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
                                                   " (default: the renderer's; sweeps need " + std::to_string(VGEO_CULL_INSTANCE_LANES) + ")")
       ->check(CLI::IsMember({1u, uint32_t(VGEO_CULL_INSTANCE_LANES)}));
   addInstanceCullingOption(cmd, a->instanceCulling);
-  cmd->callback([a, &exitCode] {
-    try {
-      exitCode = runRender(*a);
-    } catch (const InputError&) {
-      throw;
-    } catch (const std::exception& e) {
-      throw std::runtime_error(a->input + ": " + e.what());
-    }
-  });
+  cmd->callback([a, &exitCode] { exitCode = runRender(*a); });
 }
 
 }  // namespace vgeo

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "atomic_file.h"
 #include "input_error.h"
 
 namespace vgeo {
@@ -318,21 +319,9 @@ glm::vec3 VgeoData::evaluatePatch(uint32_t face, float s, float t, glm::vec3* no
 }
 
 void writeVgeo(const VgeoData& data, const std::string& path) {
-  std::string temp = path + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error(path + ": cannot write: " + std::strerror(errno));
-    emitVgeo(data, [&](const uint8_t* p, size_t n) { out.write(reinterpret_cast<const char*>(p), std::streamsize(n)); });
-    out.close();
-    if (!out) {
-      std::remove(temp.c_str());
-      throw std::runtime_error(path + ": write failed (disk full?)");
-    }
-  }
-  if (std::rename(temp.c_str(), path.c_str()) != 0) {
-    std::remove(temp.c_str());
-    throw std::runtime_error(path + ": cannot rename the finished file into place: " + std::strerror(errno));
-  }
+  AtomicFile out(path);
+  emitVgeo(data, [&](const uint8_t* p, size_t n) { out.write(p, n); });
+  out.commit();
 }
 
 VgeoData readVgeo(const std::string& path) {

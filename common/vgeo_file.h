@@ -72,7 +72,7 @@ std::vector<uint8_t> serializeVgeo(const VgeoData& data);
 // Parses and checks a .vgeo image; throws InputError("name: cause") for anything wrong with it.
 VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name);
 // Writes to a temporary file beside `path` and renames it, so no half-written file is ever left.
-// Throws std::runtime_error("path: cause") when that fails.
+// Throws OutputError("path: cause") when that fails (atomic_file.h).
 void writeVgeo(const VgeoData& data, const std::string& path);
 VgeoData readVgeo(const std::string& path);
 

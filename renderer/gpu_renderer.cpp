@@ -19,6 +19,7 @@
 #include "gpu_renderer.h"
 
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 
@@ -515,14 +516,39 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
     throw std::runtime_error("traversal did not drain its queue (" + std::to_string(c.itemsDone) + " of " + std::to_string(c.queueWrite) +
                              " items done, " + std::to_string(c.queueRead) + " claimed; " + std::to_string(c.workgroupsExited) + " of " +
                              std::to_string(persistentWorkgroups_) + " workers left, " + std::to_string(c.budgetExits) + " on their budget)");
-  // Grow what overflowed, for the next frame.
+  // Grow what overflowed, for the next frame: to at least what this frame asked for, within what one
+  // storage buffer can address and the frame memory limit; a cut that cannot fit stops here.
   if (c.queueOverflow || c.drawOverflow || c.triangleOverflow || c.patchOverflow) {
-    auto grown = [](bool overflowed, uint32_t capacity, uint32_t needed) {
-      uint64_t want = overflowed ? std::max<uint64_t>(uint64_t(capacity) * 2, uint64_t(needed) * 5 / 4) : capacity;
-      return uint32_t(std::min<uint64_t>(want, UINT32_MAX / 2));
-    };
-    setCapacities(grown(c.queueOverflow, queueCapacity_, c.queueHighWater), grown(c.drawOverflow, drawCapacity_, c.drawCount),
-                  grown(c.triangleOverflow, triangleCapacity_, c.trianglesDrawn), grown(c.patchOverflow, patchCapacity_, c.patchesDrawn));
+    const uint64_t range = vk_.properties().limits.maxStorageBufferRange;
+    struct List {
+      const char* name;
+      bool overflowed;
+      uint32_t capacity;
+      uint64_t needed, bytesEach, most;
+    } lists[4] = {{"queue items", c.queueOverflow != 0, queueCapacity_, c.queueHighWater, 8, range / 8},
+                  {"draw-list entries", c.drawOverflow != 0, drawCapacity_, c.drawCount, 8, std::min<uint64_t>(range / 8, VGEO_MAX_DRAW_ENTRIES)},
+                  {"triangles", c.triangleOverflow != 0, triangleCapacity_, c.trianglesDrawn, 4, range / 4},
+                  {"patches", c.patchOverflow != 0, patchCapacity_, c.patchesDrawn, 4, range / 4}};
+    char tauText[32];
+    std::snprintf(tauText, sizeof tauText, "%g", double(settings.tau));
+    uint64_t neededBytes = 0, wantedBytes = 0, want[4];
+    for (int i = 0; i < 4; i++) {
+      const List& l = lists[i];
+      const uint64_t needed = l.overflowed ? std::max<uint64_t>(l.needed, uint64_t(l.capacity) + 1) : l.capacity;
+      if (needed > l.most)
+        throw FrameMemoryError(std::string("the cut at tau ") + tauText + " needs " + std::to_string(needed) + " " + l.name + ", more than one buffer of " +
+                               std::to_string(range >> 20) + " MiB (maxStorageBufferRange) holds on this device: raise --tau or render a smaller view");
+      want[i] = std::min<uint64_t>(l.overflowed ? std::max<uint64_t>(uint64_t(l.capacity) * 2, needed * 5 / 4) : l.capacity, std::min<uint64_t>(l.most, UINT32_MAX / 2));
+      neededBytes += needed * l.bytesEach;
+      wantedBytes += want[i] * l.bytesEach;
+    }
+    if (neededBytes > frameMemoryLimit_)
+      throw FrameMemoryError(std::string("the cut at tau ") + tauText + " needs " + std::to_string(neededBytes >> 20) + " MiB of frame lists (" +
+                             std::to_string(c.drawCount) + " clusters, " + std::to_string(c.trianglesDrawn) + " triangles), past the limit of " +
+                             std::to_string(frameMemoryLimit_ >> 20) + " MiB (--max-frame-memory): raise --tau or the limit");
+    if (wantedBytes > frameMemoryLimit_)  // room to grow is a nicety: just what was asked for then
+      for (int i = 0; i < 4; i++) want[i] = lists[i].overflowed ? std::max<uint64_t>(lists[i].needed, uint64_t(lists[i].capacity) + 1) : lists[i].capacity;
+    setCapacities(uint32_t(want[0]), uint32_t(want[1]), uint32_t(want[2]), uint32_t(want[3]));
   }
   return result;
 }

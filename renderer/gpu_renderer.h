@@ -3,6 +3,7 @@
 // frame is done. Targets and pipelines: gpu_pipelines.cpp.
 #pragma once
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,14 @@ enum class Traversal { Persistent, Levels, Flat };
 constexpr uint32_t kDefaultSweepBudget = 1u << 18;
 
 enum class InstanceCulling { Auto, Pass, InTraversal };
+
+// What a frame's growing lists (queue, draw list, triangle list, patch list) may take together unless
+// set otherwise (GpuRenderer::setFrameMemoryLimit): a cut that needs more stops the frame with a
+// FrameMemoryError instead of growing without end (a tau of 1e-9 over a large scene asks for every leaf).
+constexpr uint32_t kDefaultFrameMemoryMiB = 2048;
+struct FrameMemoryError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 struct FrameSettings {
   View drawView;             // the picture
@@ -78,6 +87,7 @@ class GpuRenderer {
   // Sets the capacities (tests use tiny ones to provoke overflow).
   void setCapacities(uint32_t queueItems, uint32_t drawEntries, uint32_t triangles, uint32_t patches);
   uint32_t persistentWorkgroups() const { return persistentWorkgroups_; }
+  void setFrameMemoryLimit(uint64_t bytes) { frameMemoryLimit_ = bytes; }
   bool canProfileWorkers() const { return persistentProfile_ != VK_NULL_HANDLE; }
   // Overrides the persistent traversal's workgroup count (benchmarks; the default is what the device
   // runs at once).
@@ -130,7 +140,8 @@ class GpuRenderer {
   uint32_t width_, height_;
   uint32_t queueCapacity_ = 1u << 20, drawCapacity_ = 1u << 20, triangleCapacity_ = 1u << 22, patchCapacity_ = 1u << 18;
   uint32_t persistentWorkgroups_ = 0, iterationBudget_ = 0, claimMode_ = 0;
-  uint32_t lastCullItems_ = 0;  // the last frame's counters.cullItems: sizes the persistent traversal's first claim
+  uint32_t lastCullItems_ = 0;
+  uint64_t frameMemoryLimit_ = uint64_t(kDefaultFrameMemoryMiB) << 20;  // the last frame's counters.cullItems: sizes the persistent traversal's first claim
 
   Buffer frameData_, counters_, countersReadback_, queue_, drawList_, drawListReadback_, imageReadback_, triangleList_, patchList_,
       workerProfile_;  // host-visible; a placeholder until a frame is profiled

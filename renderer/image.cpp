@@ -2,23 +2,18 @@
 #include "image.h"
 
 #include <stb/stb_image_write.h>
-#include <unistd.h>
 
-#include <cstdio>
-#include <stdexcept>
+#include "../common/atomic_file.h"
 
 namespace vgeo {
 
 void writePng(const std::string& path, uint32_t width, uint32_t height, const std::vector<uint8_t>& rgba) {
-  std::string temp = path + ".tmp." + std::to_string(::getpid()) + ".png";
-  if (!stbi_write_png(temp.c_str(), int(width), int(height), 4, rgba.data(), int(width * 4))) {
-    std::remove(temp.c_str());
-    throw std::runtime_error(path + ": cannot write the PNG");
-  }
-  if (std::rename(temp.c_str(), path.c_str()) != 0) {
-    std::remove(temp.c_str());
-    throw std::runtime_error(path + ": cannot rename the finished PNG into place");
-  }
+  // Encoded in memory, then written as one checked, atomic file: stb's own file writer does not check
+  // its writes, and left a truncated PNG on a full disk.
+  std::string png;
+  auto append = [](void* context, void* data, int size) { static_cast<std::string*>(context)->append(static_cast<const char*>(data), size_t(size)); };
+  if (!stbi_write_png_to_func(append, &png, int(width), int(height), 4, rgba.data(), int(width * 4))) throw OutputError(path, "cannot encode the PNG");
+  writeFileAtomically(path, png);
 }
 
 }  // namespace vgeo

@@ -4,8 +4,10 @@
 //   { "geometries": ["a.vgeo", {"path": "b.vgeo"}],
 //     "instances": [ {"geometry": 0, "translation": [x, y, z], "rotation": [x, y, z, w], "scale": s | [sx, sy, sz]},
 //                    {"geometry": 1, "matrix": [16 numbers, column-major]} ] }
-// Paths are relative to the scene file. An instance places all of its file's instances (a glTF scene
-// built into one .vgeo keeps its own layout); without "instances", each file is placed once as it is.
+// Paths are relative to the scene file and stay in its folder. An instance places all of its file's
+// instances (a glTF scene built into one .vgeo keeps its own layout); without "instances", each file
+// is placed once as it is. Unknown keys, values of the wrong kind, 'matrix' beside the other transform
+// keys and a zero quaternion are errors.
 #include "scene.h"
 
 #include <algorithm>
@@ -94,53 +96,120 @@ glm::mat4 instanceMatrix(const shaderio::Instance& inst) {
   return m;
 }
 
-glm::mat4 parseTransform(const nlohmann::json& j, const std::string& path, size_t index) {
-  auto numbers = [&](const char* key, size_t count) {
-    const auto& a = j.at(key);
-    if (!a.is_array() || a.size() != count) throw InputError(path, "instance " + std::to_string(index) + ": '" + key + "' needs " + std::to_string(count) + " numbers");
-    std::vector<float> v;
-    for (const auto& x : a) v.push_back(x.get<float>());
-    return v;
-  };
-  if (j.contains("matrix")) return glm::make_mat4(numbers("matrix", 16).data());
+// Scene files are read strictly: a typo ("tranlsation") or a value of the wrong kind is an error that
+// names the instance and the key, not a silently different scene.
+[[noreturn]] void sceneError(const std::string& path, const std::string& where, const std::string& cause) {
+  throw InputError(path, where + ": " + cause);
+}
+
+void onlyKeys(const nlohmann::json& j, std::initializer_list<const char*> allowed, const std::string& path, const std::string& where) {
+  if (!j.is_object()) sceneError(path, where, "expected an object");
+  for (const auto& [key, value] : j.items()) {
+    bool known = false;
+    for (const char* a : allowed) known |= key == a;
+    if (!known) {
+      std::string list;
+      for (const char* a : allowed) {
+        if (!list.empty()) list += ", ";
+        list.append("'").append(a).append("'");
+      }
+      sceneError(path, where, "unknown key '" + key + "' (expected " + list + ")");
+    }
+  }
+}
+
+std::vector<float> numbers(const nlohmann::json& j, const char* key, size_t count, const std::string& path, const std::string& where) {
+  const auto& a = j.at(key);
+  const std::string name = std::string("'").append(key).append("'");
+  if (!a.is_array() || a.size() != count) sceneError(path, where, name + " needs " + std::to_string(count) + " numbers");
+  std::vector<float> v;
+  for (const auto& x : a) {
+    if (!x.is_number() || !std::isfinite(x.get<double>()) || std::abs(x.get<double>()) > 1e30)
+      sceneError(path, where, name + " needs finite numbers");
+    v.push_back(x.get<float>());
+  }
+  return v;
+}
+
+glm::mat4 parseTransform(const nlohmann::json& j, const std::string& path, const std::string& where) {
+  if (j.contains("matrix")) {
+    if (j.contains("translation") || j.contains("rotation") || j.contains("scale"))
+      sceneError(path, where, "'matrix' and 'translation', 'rotation' or 'scale' together: give one or the other");
+    std::vector<float> m = numbers(j, "matrix", 16, path, where);
+    if (m[3] != 0.0f || m[7] != 0.0f || m[11] != 0.0f || m[15] != 1.0f)
+      sceneError(path, where, "'matrix' (column-major) must end each column with 0, 0, 0 and the last with 1: no projection");
+    return glm::make_mat4(m.data());
+  }
   glm::mat4 t(1.0f), r(1.0f), s(1.0f);
   if (j.contains("translation")) {
-    auto v = numbers("translation", 3);
+    auto v = numbers(j, "translation", 3, path, where);
     t = glm::translate(glm::mat4(1.0f), {v[0], v[1], v[2]});
   }
   if (j.contains("rotation")) {
-    auto v = numbers("rotation", 4);
-    r = glm::mat4_cast(glm::normalize(glm::quat(v[3], v[0], v[1], v[2])));
+    auto v = numbers(j, "rotation", 4, path, where);
+    glm::quat q(v[3], v[0], v[1], v[2]);
+    if (!(glm::length(q) > 1e-6f)) sceneError(path, where, "'rotation' is a zero quaternion (x, y, z, w)");
+    r = glm::mat4_cast(glm::normalize(q));
   }
   if (j.contains("scale")) {
-    if (j.at("scale").is_number()) s = glm::scale(glm::mat4(1.0f), glm::vec3(j.at("scale").get<float>()));
-    else {
-      auto v = numbers("scale", 3);
+    if (j.at("scale").is_number()) {
+      auto v = numbers(nlohmann::json{{"scale", nlohmann::json::array({j.at("scale")})}}, "scale", 1, path, where);
+      s = glm::scale(glm::mat4(1.0f), glm::vec3(v[0]));
+    } else {
+      auto v = numbers(j, "scale", 3, path, where);
       s = glm::scale(glm::mat4(1.0f), {v[0], v[1], v[2]});
     }
   }
   return t * r * s;
 }
 
+// A geometry's path: relative, inside the scene file's folder (no absolute path, no '..' out of it),
+// naming a regular file. Nothing outside the scene's folder is read.
+std::string geometryPath(const std::filesystem::path& folder, const std::string& name, const std::string& path, const std::string& where) {
+  namespace fs = std::filesystem;
+  fs::path p(name);
+  if (name.empty() || p.is_absolute() || p.has_root_name()) sceneError(path, where, "'" + name + "' must be a path relative to the scene file");
+  fs::path normal = p.lexically_normal();
+  if (normal.empty() || *normal.begin() == "..") sceneError(path, where, "'" + name + "' leaves the scene file's folder");
+  std::error_code ec;
+  const fs::path root = folder.empty() ? fs::path(".") : folder, full = root / normal;
+  const fs::path base = fs::weakly_canonical(root, ec), resolved = fs::weakly_canonical(full, ec);
+  auto rel = resolved.lexically_relative(base);
+  if (ec || rel.empty() || *rel.begin() == "..") sceneError(path, where, "'" + name + "' leaves the scene file's folder (through a link)");
+  if (!fs::is_regular_file(resolved, ec)) sceneError(path, where, "'" + name + "' is not a file");
+  return full.string();
+}
+
 RenderScene loadSceneFile(const std::string& path) {
+  constexpr uintmax_t kMaxSceneFileBytes = 64u << 20;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "cannot open: not a file");
+  if (std::filesystem::file_size(path, ec) > kMaxSceneFileBytes) throw InputError(path, "larger than the 64 MiB a scene file may be");
   std::ifstream in(path);
   if (!in) throw InputError(path, "cannot open");
   RenderScene scene;
   try {
     nlohmann::json j = nlohmann::json::parse(in);
+    onlyKeys(j, {"geometries", "instances"}, path, "the scene");
+    if (!j.contains("geometries") || !j.at("geometries").is_array() || j.at("geometries").empty())
+      throw InputError(path, "'geometries' must be a non-empty array of paths");
     std::filesystem::path dir = std::filesystem::path(path).parent_path();
     std::vector<VgeoData> files;
-    for (const auto& g : j.at("geometries")) {
-      std::string file = g.is_string() ? g.get<std::string>() : g.at("path").get<std::string>();
-      std::filesystem::path p(file);
-      if (p.is_relative()) p = dir / p;
-      files.push_back(readVgeo(p.string()));
+    for (size_t g = 0; g < j.at("geometries").size(); g++) {
+      const auto& entry = j.at("geometries")[g];
+      const std::string where = "geometry " + std::to_string(g);
+      if (entry.is_object()) onlyKeys(entry, {"path"}, path, where);
+      const nlohmann::json& name = entry.is_object() && entry.contains("path") ? entry.at("path") : entry;
+      if (!name.is_string()) sceneError(path, where, "expected a path or {\"path\": ...}");
+      files.push_back(readVgeo(geometryPath(dir, name.get<std::string>(), path, where)));
     }
-    if (files.empty()) throw InputError(path, "no geometries");
     std::vector<nlohmann::json> placements;
-    if (j.contains("instances")) placements.assign(j.at("instances").begin(), j.at("instances").end());
-    else
+    if (j.contains("instances")) {
+      if (!j.at("instances").is_array()) throw InputError(path, "'instances' must be an array");
+      placements.assign(j.at("instances").begin(), j.at("instances").end());
+    } else {
       for (size_t i = 0; i < files.size(); i++) placements.push_back({{"geometry", i}});
+    }
     std::vector<uint32_t> base(files.size());
     VgeoData merged;
     for (size_t i = 0; i < files.size(); i++) {
@@ -149,13 +218,21 @@ RenderScene loadSceneFile(const std::string& path) {
       base[i] = appendVgeo(merged, copy);
     }
     for (size_t k = 0; k < placements.size(); k++) {
-      size_t file = placements[k].at("geometry").get<size_t>();
-      if (file >= files.size()) throw InputError(path, "instance " + std::to_string(k) + " uses geometry " + std::to_string(file) + ", which is not listed");
-      glm::mat4 m = parseTransform(placements[k], path, k);
+      const std::string where = "instance " + std::to_string(k);
+      onlyKeys(placements[k], {"geometry", "translation", "rotation", "scale", "matrix"}, path, where);
+      if (!placements[k].contains("geometry")) sceneError(path, where, "no 'geometry'");
+      const auto& g = placements[k].at("geometry");
+      if (!g.is_number_integer() || g.get<int64_t>() < 0 || uint64_t(g.get<int64_t>()) >= files.size())
+        sceneError(path, where, "'geometry' must be an index into 'geometries' (0.." + std::to_string(files.size() - 1) + "), got " + g.dump());
+      const size_t file = size_t(g.get<int64_t>());
+      glm::mat4 m = parseTransform(placements[k], path, where);
       for (const auto& inst : files[file].instances) {
         uint32_t geometry = base[file] + inst.geometry;
         shaderio::Instance placed = makeInstance(m * instanceMatrix(inst), geometry, merged.geometries[geometry].flags & VGEO_GEOMETRY_CLOSED);
-        if (!(placed.maxScale > 0.0f) || !std::isfinite(placed.maxScale)) throw InputError(path, "instance " + std::to_string(k) + " has a degenerate transform");
+        const glm::mat3 linear(m * instanceMatrix(inst));
+        if (!(placed.maxScale > 0.0f) || !std::isfinite(placed.maxScale) ||
+            !(std::abs(glm::determinant(linear)) > 1e-9f * placed.maxScale * placed.maxScale * placed.maxScale))
+          sceneError(path, where, "has a degenerate transform (it flattens the geometry)");
         merged.instances.push_back(placed);
       }
     }

@@ -361,6 +361,27 @@ TEST_F(Render, OverflowIsReportedAndTheNextFrameIsComplete) {
   }
 }
 
+TEST_F(Render, AFrameMemoryLimitStopsGrowthWithAClearError) {
+  // Lists that overflow grow for the next frame, but never past the frame memory limit: a cut that
+  // needs more stops with FrameMemoryError naming the need, the limit and the way out.
+  GpuRenderer renderer(*vk, *grid, kW, kH);
+  renderer.setCapacities(16, 16, 64, 16);
+  renderer.setFrameMemoryLimit(4096);
+  FrameSettings s = settingsFor(*grid, test::orbit(*grid, 0.5f, 0.4f, 1.2f), 1.0f);
+  try {
+    for (int i = 0; i < 4; i++) renderer.renderFrame(s);
+    FAIL() << "no error";
+  } catch (const FrameMemoryError& e) {
+    EXPECT_NE(std::string(e.what()).find("past the limit of"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("--max-frame-memory"), std::string::npos) << e.what();
+  }
+  // With room, the same frame completes after growing.
+  renderer.setFrameMemoryLimit(uint64_t(kDefaultFrameMemoryMiB) << 20);
+  FrameResult r = renderer.renderFrame(s);
+  for (int i = 0; i < 8 && !r.complete; i++) r = renderer.renderFrame(s);
+  EXPECT_TRUE(r.complete);
+}
+
 TEST_F(Render, EveryDebugModeRenders) {
   GpuRenderer renderer(*vk, *grid, kW, kH);
   FrameSettings s = settingsFor(*grid, test::orbit(*grid, 0.3f, 0.5f, 1.2f), 1.0f);

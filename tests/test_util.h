@@ -29,9 +29,9 @@ struct RunResult {
   int exitCode;
   std::string output;  // stdout and stderr together
 };
-// Runs the vgeo binary with `args` (a shell-quoted string).
-inline RunResult runVgeo(const std::string& args) {
-  std::string command = std::string(VGEO_BINARY) + " " + args + " 2>&1";
+// Runs a shell command line, stdout and stderr together.
+inline RunResult runShell(const std::string& commandLine) {
+  std::string command = "{ " + commandLine + "; } 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   RunResult r{-1, {}};
   char buffer[4096];
@@ -41,6 +41,8 @@ inline RunResult runVgeo(const std::string& args) {
   r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
 }
+// Runs the vgeo binary with `args` (a shell-quoted string).
+inline RunResult runVgeo(const std::string& args) { return runShell(std::string(VGEO_BINARY) + " " + args); }
 
 inline VgeoData build(const std::string& path, int subdiv, int threads = 2, SceneBuildStats* statsOut = nullptr) {
   SceneBuildOptions options;

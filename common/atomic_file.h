@@ -1,0 +1,37 @@
+// atomic_file.h: output files that are either whole or absent (atomic_file.cpp).
+#pragma once
+
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+
+namespace vgeo {
+
+// A failed write of an output file: one line, "FILE: cause".
+struct OutputError : std::runtime_error {
+  OutputError(const std::string& file, const std::string& cause) : std::runtime_error(file + ": " + cause) {}
+};
+
+// Writes go to a temporary file beside `path`; commit() flushes it to disk and renames it over `path`.
+// Every write is checked (a full disk, a file size limit), so a failure throws OutputError at commit
+// and removes the temporary file; so does destruction without commit. Nothing half-written is left.
+class AtomicFile {
+ public:
+  explicit AtomicFile(std::string path);
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+
+  void write(const void* data, size_t size);
+  void commit();
+
+ private:
+  std::string path_, temp_;
+  std::FILE* file_ = nullptr;
+  int error_ = 0;  // errno of the first failed write
+};
+
+// The whole of `bytes` to `path`, atomically.
+void writeFileAtomically(const std::string& path, const std::string& bytes);
+
+}  // namespace vgeo
