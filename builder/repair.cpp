@@ -15,19 +15,10 @@
 #include <numeric>
 
 #include "builder.h"
+#include "union_find.h"
 
 namespace vgeo {
 namespace {
-
-uint32_t findRoot(std::vector<uint32_t>& parent, uint32_t x) {
-  while (parent[x] != x) x = parent[x] = parent[parent[x]];
-  return x;
-}
-void unite(std::vector<uint32_t>& parent, uint32_t a, uint32_t b) {
-  a = findRoot(parent, a);
-  b = findRoot(parent, b);
-  if (a != b) parent[std::max(a, b)] = std::min(a, b);  // smaller root wins: deterministic
-}
 
 struct EdgeCorner {
   uint64_t key;     // (min vertex, max vertex)
@@ -163,8 +154,7 @@ RepairReport repairMesh(PolygonMesh& mesh, const std::string& file) {
   }
   std::sort(edges.begin(), edges.end(), [](const EdgeCorner& x, const EdgeCorner& y) { return x.key != y.key ? x.key < y.key : x.corner < y.corner; });
 
-  std::vector<uint32_t> wedgeParent(cornerCount);
-  std::iota(wedgeParent.begin(), wedgeParent.end(), 0u);
+  UnionFind wedges(cornerCount);
   std::vector<bool> isolated(cornerCount, false);  // wedges that get a vertex of their own
   std::vector<std::pair<uint32_t, uint32_t>> pairs;  // the two corners of each manifold edge
   for (size_t i = 0; i < edges.size();) {
@@ -193,10 +183,10 @@ RepairReport repairMesh(PolygonMesh& mesh, const std::string& file) {
   for (auto [c0, c1] : pairs) {
     uint32_t pairsOfWedges[2][2] = {{c0, nextCorner(c1)}, {nextCorner(c0), c1}};
     for (auto& w : pairsOfWedges)
-      if (!isolated[w[0]] && !isolated[w[1]]) unite(wedgeParent, w[0], w[1]);
+      if (!isolated[w[0]] && !isolated[w[1]]) wedges.unite(w[0], w[1]);
   }
   std::vector<uint32_t> root(cornerCount);
-  for (uint32_t c = 0; c < cornerCount; c++) root[c] = findRoot(wedgeParent, c);
+  for (uint32_t c = 0; c < cornerCount; c++) root[c] = wedges.find(c);
   for (uint32_t c = 0; c < cornerCount; c++)
     if (isolated[c]) root[c] = UINT32_MAX;  // decided below, per wedge
 

@@ -14,19 +14,10 @@
 
 #include "../common/vgeo_file.h"
 #include "builder.h"
+#include "union_find.h"
 
 namespace vgeo {
 namespace {
-
-uint32_t findRoot(std::vector<uint32_t>& parent, uint32_t x) {
-  while (parent[x] != x) x = parent[x] = parent[parent[x]];
-  return x;
-}
-void unite(std::vector<uint32_t>& parent, uint32_t a, uint32_t b) {
-  a = findRoot(parent, a);
-  b = findRoot(parent, b);
-  if (a != b) parent[std::max(a, b)] = std::min(a, b);
-}
 
 // Area vector of face f (twice its area along its normal; Newell's sum for any polygon).
 glm::dvec3 areaVector(const PolygonMesh& mesh, size_t f) {
@@ -73,9 +64,8 @@ ShadingNormals shadingNormals(const PolygonMesh& mesh, const std::vector<glm::ve
   std::vector<glm::dvec3> faceArea(mesh.faceCount());
   for (size_t f = 0; f < mesh.faceCount(); f++) faceArea[f] = areaVector(mesh, f);
 
-  // Corners joined into wedges (union-find over corners, smaller root wins: deterministic).
-  std::vector<uint32_t> parent(cornerCount);
-  std::iota(parent.begin(), parent.end(), 0u);
+  // Corners joined into wedges.
+  UnionFind wedges(cornerCount);
   if (fromInput) {
     // Equal encoded normals at one vertex share a wedge; an unusable normal takes its face's.
     std::vector<std::pair<uint64_t, uint32_t>> keys(cornerCount);
@@ -87,7 +77,7 @@ ShadingNormals shadingNormals(const PolygonMesh& mesh, const std::vector<glm::ve
     }
     std::sort(keys.begin(), keys.end());
     for (size_t i = 1; i < keys.size(); i++)
-      if (keys[i].first == keys[i - 1].first) unite(parent, keys[i - 1].second, keys[i].second);
+      if (keys[i].first == keys[i - 1].first) wedges.unite(keys[i - 1].second, keys[i].second);
   } else {
     // Across each edge v -> w of a face, the face holding w -> v joins its corner at v when the faces
     // meet at no more than the crease angle (and likewise at w, from that face's side).
@@ -104,7 +94,7 @@ ShadingNormals shadingNormals(const PolygonMesh& mesh, const std::vector<glm::ve
       const glm::dvec3 a = faceArea[cornerFace[c]], b = faceArea[cornerFace[other]];
       const double la = glm::length(a), lb = glm::length(b);
       if (la > 0.0 && lb > 0.0 && glm::dot(a, b) < cosCrease * la * lb) continue;  // a crease
-      unite(parent, c, nextCorner(other));
+      wedges.unite(c, nextCorner(other));
     }
   }
 
@@ -112,7 +102,7 @@ ShadingNormals shadingNormals(const PolygonMesh& mesh, const std::vector<glm::ve
   std::vector<uint32_t> order(cornerCount);
   std::iota(order.begin(), order.end(), 0u);
   std::vector<uint32_t> root(cornerCount);
-  for (uint32_t c = 0; c < cornerCount; c++) root[c] = findRoot(parent, c);
+  for (uint32_t c = 0; c < cornerCount; c++) root[c] = wedges.find(c);
   std::sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) {
     uint32_t vx = mesh.faceVertices[x], vy = mesh.faceVertices[y];
     return vx != vy ? vx < vy : root[x] != root[y] ? root[x] < root[y] : x < y;

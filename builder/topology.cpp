@@ -7,17 +7,9 @@
 #include <numeric>
 
 #include "builder.h"
+#include "union_find.h"
 
 namespace vgeo {
-namespace {
-
-uint32_t findRoot(std::vector<uint32_t>& parent, uint32_t x) {
-  while (parent[x] != x) x = parent[x] = parent[parent[x]];
-  return x;
-}
-
-}  // namespace
-
 SurfaceTopology surfaceTopology(const std::vector<uint32_t>& indices) {
   SurfaceTopology t;
   t.triangles = indices.size() / 3;
@@ -26,21 +18,18 @@ SurfaceTopology surfaceTopology(const std::vector<uint32_t>& indices) {
   std::sort(vertices.begin(), vertices.end());
   vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
   auto id = [&](uint32_t v) { return uint32_t(std::lower_bound(vertices.begin(), vertices.end(), v) - vertices.begin()); };
-  std::vector<uint32_t> parent(vertices.size());
-  std::iota(parent.begin(), parent.end(), 0u);
+  UnionFind components(vertices.size());
   std::vector<uint64_t> edges;
   edges.reserve(indices.size());
   for (size_t i = 0; i + 2 < indices.size(); i += 3)
     for (int k = 0; k < 3; k++) {
       uint32_t a = id(indices[i + size_t(k)]), b = id(indices[i + size_t((k + 1) % 3)]);
       edges.push_back(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
-      uint32_t ra = findRoot(parent, a), rb = findRoot(parent, b);
-      if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
+      components.unite(a, b);
     }
   std::sort(edges.begin(), edges.end());
   // Boundary edges (one triangle) joined into loops by their shared vertices.
-  std::vector<uint32_t> loopParent(vertices.size());
-  std::iota(loopParent.begin(), loopParent.end(), 0u);
+  UnionFind loops(vertices.size());
   std::vector<uint8_t> onBoundary(vertices.size(), 0);
   size_t uniqueEdges = 0;
   for (size_t i = 0; i < edges.size();) {
@@ -50,14 +39,13 @@ SurfaceTopology surfaceTopology(const std::vector<uint32_t>& indices) {
     if (j - i == 1) {
       uint32_t a = uint32_t(edges[i] >> 32), b = uint32_t(edges[i]);
       onBoundary[a] = onBoundary[b] = 1;
-      uint32_t ra = findRoot(loopParent, a), rb = findRoot(loopParent, b);
-      if (ra != rb) loopParent[std::max(ra, rb)] = std::min(ra, rb);
+      loops.unite(a, b);
     }
     i = j;
   }
   for (uint32_t v = 0; v < vertices.size(); v++) {
-    if (findRoot(parent, v) == v) t.components++;
-    if (onBoundary[v] && findRoot(loopParent, v) == v) t.boundaryLoops++;
+    if (components.find(v) == v) t.components++;
+    if (onBoundary[v] && loops.find(v) == v) t.boundaryLoops++;
   }
   // Sum over components of (2 - b_i - chi_i) / 2 = (2 C - b - chi) / 2.
   const int64_t chi = int64_t(vertices.size()) - int64_t(uniqueEdges) + int64_t(t.triangles);
