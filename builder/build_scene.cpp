@@ -25,6 +25,7 @@ void add(RepairReport& sum, const RepairReport& r) {
   sum.boundaryEdges += r.boundaryEdges;
   sum.unusedVertices += r.unusedVertices;
   sum.flippedFaces += r.flippedFaces;
+  sum.dissolvedVertices += r.dissolvedVertices;
   sum.components += r.components;
   sum.nonOrientableComponents += r.nonOrientableComponents;
 }
@@ -123,7 +124,13 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
       bo.progress = [&, m](double f, const char* stage) { options.progress((double(m) + f) / double(leaves.size()), stage); };
     const ShadingNormals shading = shadingNormals(leaves[m], leafNormals[m], options.creaseAngleDegrees);
     bo.shading = &shading;
-    Dag dag = buildDag(leaves[m], bo);
+    const std::string where = scene.meshes.size() > 1 ? path + " (mesh '" + scene.meshNames[m] + "')" : path;
+    Dag dag;
+    try {
+      dag = buildDag(leaves[m], bo);
+    } catch (const SurfaceError& e) {
+      throw InputError(where, e.what());
+    }
     appendGeometry(data, dag, leaves[m], shading, std::move(patches[m]), patchErrors[m], closed[m]);
     patches[m] = MeshPatches();  // what the layout did not move into the file
     stats.clusters += dag.clusters.size();

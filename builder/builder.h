@@ -37,8 +37,12 @@ struct PolygonMesh {
     if (normals) cornerNormals.insert(cornerNormals.end(), normals, normals + count);
     faceStart.push_back(uint32_t(faceVertices.size()));
   }
-  // Triangles when every face is fanned: sum of (corners - 2).
-  size_t triangleCount() const { return faceVertices.size() - 2 * faceCount(); }
+  // Triangles when every face is fanned: sum of (corners - 2), faces of fewer than 3 corners counting 0.
+  size_t triangleCount() const {
+    size_t n = 0;
+    for (size_t f = 0; f < faceCount(); f++) n += faceSize(f) > 2 ? faceSize(f) - 2 : 0;
+    return n;
+  }
 };
 
 struct SourceInstance {
@@ -74,6 +78,7 @@ struct RepairReport {
   size_t splitVertices = 0;         // vertex copies added to make every edge and vertex manifold
   size_t boundaryEdges = 0;         // edges with one face after repair (0 means closed)
   size_t unusedVertices = 0;        // dropped: referenced by no face
+  size_t dissolvedVertices = 0;     // taken out of the two faces that fold through them (valence 2)
   size_t flippedFaces = 0;          // turned to agree with their component (orientFaces)
   size_t components = 0;            // of faces joined through two-face edges
   size_t nonOrientableComponents = 0;
@@ -348,7 +353,13 @@ struct Dag {
   uint32_t rootClusters = 0;
   SurfaceTopology roots;                 // of the root clusters' triangles together
 };
-// Builds the DAG of a repaired mesh whose faces are the leaf faces (the level-N cage).
+// A surface the DAG cannot be built on (it folds onto itself: two leaf triangles hold the same edge in
+// the same direction, so no cut of it is watertight); buildScene reports it as an InputError.
+struct SurfaceError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+// Builds the DAG of a repaired mesh whose faces are the leaf faces (the level-N cage). Throws
+// SurfaceError when the leaf triangles fold onto themselves.
 Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options);
 
 // ---- bvh.cpp ----------------------------------------------------------------------------------------

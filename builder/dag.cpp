@@ -104,6 +104,25 @@ class EdgeSet {
 
 constexpr uint64_t kSmallestRoot = 16;  // triangles
 
+// Repair leaves every edge with at most two faces of opposite orientation, but a face's triangulation
+// may still fold onto a neighbour (a quad's diagonal running along another face's edge, faces meeting
+// at a sliver): a directed edge held by two leaf triangles could never be covered once by a cut.
+void checkNoFold(const std::vector<BuildCluster>& clusters, const std::vector<glm::vec3>& positions, int threads) {
+  std::vector<uint64_t> directed;
+  for (const BuildCluster& c : clusters)
+    for (size_t t = 0; t + 2 < c.indices.size(); t += 3)
+      for (size_t k = 0; k < 3; k++) directed.push_back(uint64_t(c.indices[t + k]) << 32 | c.indices[t + (k + 1) % 3]);
+  parallelSort(directed, threads);
+  for (size_t i = 1; i < directed.size(); i++)
+    if (directed[i] == directed[i - 1]) {
+      const glm::vec3 a = positions[directed[i] >> 32], b = positions[directed[i] & 0xffffffffu];
+      char text[320];
+      std::snprintf(text, sizeof text, "the surface folds onto itself: two triangles run the same way along the edge (%g, %g, %g)-(%g, %g, %g)",
+                    double(a.x), double(a.y), double(a.z), double(b.x), double(b.y), double(b.z));
+      throw SurfaceError(text);
+    }
+}
+
 }  // namespace
 
 Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
@@ -114,6 +133,7 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
   };
   report(0.0, "clustering");
   dag.clusters = buildLeafClusters(mesh, options.threads, options.shading);
+  checkNoFold(dag.clusters, positions, options.threads);
   parallelFor(dag.clusters.size(), options.threads, [&](size_t i) {
     BuildCluster& c = dag.clusters[i];
     c.selfSphere = sphereOfClusterVertices(c, positions);

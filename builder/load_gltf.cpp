@@ -1,19 +1,37 @@
 // load_gltf.cpp: glTF 2.0 reader (.gltf with external or embedded buffers, .glb) through tinygltf.
 // Every triangle primitive of every mesh reached from the default scene is read; a mesh used by several
 // nodes is read once and instanced, each node's world transform becoming an instance. Images are not
-// decoded (the builder needs geometry and shading normals only). Accessors are checked against their buffers before any
-// read, so a bad file is an error, never an out-of-bounds read.
+// decoded (the builder needs geometry and shading normals only).
+//
+// A glTF file names other files and nests JSON freely, so it is read defensively, before and around
+// tinygltf:
+// - the file is at most kMaxFileBytes, its JSON nested at most kMaxJsonDepth deep (tinygltf converts
+//   `extras` recursively: a deep nest overflowed the stack);
+// - a buffer or image URI is a data URI or a relative path to a regular file inside the glTF's folder
+//   (no absolute path, no '..' or link out of it, no folder or device; tinygltf also looks in the
+//   current folder, which the file system callbacks refuse), at most kMaxFileBytes;
+// - the node graph is walked without recursion; a cycle, or more than kMaxInstances instances (a graph
+//   that shares children level by level has 2^levels paths), is an error before anything is expanded;
+// - every accessor is checked against its view and buffer with overflow-checked arithmetic before a
+//   byte is read.
 #include <tiny_gltf.h>
 
+#include <filesystem>
 #include <map>
 
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "builder.h"
+#include "text_reader.h"
 
 namespace vgeo {
 namespace {
+
+constexpr uint64_t kMaxFileBytes = uint64_t(2) << 30;  // the glTF, the GLB, each buffer file
+constexpr int kMaxJsonDepth = 64;                       // a glTF's own structure is under 10 deep
+constexpr uint64_t kMaxInstances = uint64_t(1) << 18;   // node instances of meshes, from one file
+constexpr uint64_t kMaxNodeVisits = 4 * kMaxInstances;  // node paths walked, meshes or not
 
 bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
   return true;
@@ -24,6 +42,72 @@ std::string firstLine(const std::string& text) {
   if (start == std::string::npos) return "unknown error";
   size_t end = text.find_first_of("\n\r", start);
   return text.substr(start, end == std::string::npos ? std::string::npos : end - start);
+}
+
+// The deepest nesting of objects and arrays in JSON text (strings skipped); stops counting past `limit`.
+int jsonDepth(const char* text, size_t size, int limit) {
+  int depth = 0, deepest = 0;
+  bool inString = false;
+  for (size_t i = 0; i < size; i++) {
+    const char c = text[i];
+    if (inString) {
+      if (c == '\\') i++;
+      else if (c == '"') inString = false;
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '{' || c == '[') {
+      deepest = std::max(deepest, ++depth);
+      if (deepest > limit) return deepest;
+    } else if (c == '}' || c == ']') {
+      depth--;
+    }
+  }
+  return deepest;
+}
+
+// File system callbacks that keep tinygltf inside the glTF's folder.
+struct Folder {
+  std::filesystem::path root;  // canonical
+  std::string file;            // the glTF, for messages
+};
+
+// The canonical path of `path` when it is a regular file inside the folder, else empty.
+std::filesystem::path inside(const Folder& folder, const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path p(path);
+  const fs::path resolved = fs::weakly_canonical(p.is_absolute() ? p : fs::current_path(ec) / p, ec);
+  if (ec) return {};
+  const fs::path rel = resolved.lexically_relative(folder.root);
+  if (rel.empty() || *rel.begin() == ".." || rel.is_absolute()) return {};
+  if (!fs::is_regular_file(resolved, ec)) return {};
+  return resolved;
+}
+
+bool fileExists(const std::string& path, void* user) { return !inside(*static_cast<Folder*>(user), path).empty(); }
+
+std::string expandFilePath(const std::string& path, void*) { return path; }  // no shell expansion
+
+bool readFileInside(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+  const Folder& folder = *static_cast<Folder*>(user);
+  const std::filesystem::path p = inside(folder, path);
+  if (p.empty()) {
+    *err = "not a file inside the glTF's folder";
+    return false;
+  }
+  std::error_code ec;
+  if (std::filesystem::file_size(p, ec) > kMaxFileBytes) {
+    *err = "larger than " + std::to_string(kMaxFileBytes >> 30) + " GiB";
+    return false;
+  }
+  std::string bytes = vgeo::readWholeFile(p.string());
+  out->assign(bytes.begin(), bytes.end());
+  return true;
+}
+
+bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+  *err = "the builder writes no glTF files";
+  return false;
 }
 
 class GltfReader {
@@ -46,20 +130,77 @@ class GltfReader {
       for (size_t i = 0; i < model_.nodes.size(); i++)
         if (!isChild[i]) roots.push_back(int(i));
     }
-    onPath_.assign(model_.nodes.size(), false);
-    for (int r : roots) visit(r, glm::mat4(1.0f), scene);
+    for (int r : roots) checkNode(r, "scene");
+    countPaths(roots);
     if (model_.meshes.empty()) fail("empty mesh: no meshes (the 'meshes' array is missing, empty or not an array)");
-    if (scene.instances.empty()) fail("empty mesh: the default scene shows no triangle mesh");
+    // Depth first, with an explicit stack of (node, parent transform).
+    std::vector<std::pair<int, glm::mat4>> stack;
+    for (auto r = roots.rbegin(); r != roots.rend(); ++r) stack.push_back({*r, glm::mat4(1.0f)});
+    bool sawPrimitives = false;
+    while (!stack.empty()) {
+      auto [nodeIndex, parent] = stack.back();
+      stack.pop_back();
+      const tinygltf::Node& node = model_.nodes[size_t(nodeIndex)];
+      const glm::mat4 world = parent * localTransform(node, nodeIndex);
+      if (node.mesh >= 0) {
+        if (size_t(node.mesh) >= model_.meshes.size())
+          fail("node " + std::to_string(nodeIndex) + " uses mesh " + std::to_string(node.mesh) + ", which does not exist");
+        uint32_t id = meshId(node.mesh, scene, sawPrimitives);
+        if (id != UINT32_MAX) scene.instances.push_back({world, id});
+      }
+      for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) stack.push_back({*c, world});
+    }
+    if (scene.instances.empty())
+      fail(sawPrimitives ? "empty mesh: the default scene shows points and lines only, no triangles"
+                         : "empty mesh: the default scene shows no triangle mesh");
     return scene;
   }
 
  private:
   [[noreturn]] void fail(const std::string& cause) const { throw InputError(path_, cause); }
 
-  void visit(int nodeIndex, const glm::mat4& parent, SourceScene& scene) {
-    if (nodeIndex < 0 || size_t(nodeIndex) >= model_.nodes.size()) fail("node index " + std::to_string(nodeIndex) + " is out of range");
-    if (onPath_[size_t(nodeIndex)]) fail("node " + std::to_string(nodeIndex) + " is its own ancestor (cyclic node graph)");
-    const tinygltf::Node& node = model_.nodes[size_t(nodeIndex)];
+  void checkNode(int index, const std::string& from) const {
+    if (index < 0 || size_t(index) >= model_.nodes.size()) fail(from + " names node " + std::to_string(index) + ", which does not exist");
+  }
+
+  // Refuses cycles and graphs of more paths than kMaxInstances allows, before any is walked: nodes in
+  // topological order (Kahn), then the paths reaching each node, saturating.
+  void countPaths(const std::vector<int>& roots) const {
+    const size_t n = model_.nodes.size();
+    std::vector<uint32_t> parents(n, 0);
+    for (size_t i = 0; i < n; i++)
+      for (int c : model_.nodes[i].children) {
+        checkNode(c, "node " + std::to_string(i));
+        parents[size_t(c)]++;
+      }
+    std::vector<uint64_t> paths(n, 0);
+    for (int r : roots) paths[size_t(r)] = std::min(paths[size_t(r)] + 1, kMaxNodeVisits + 1);
+    std::vector<size_t> ready;
+    for (size_t i = 0; i < n; i++)
+      if (parents[i] == 0) ready.push_back(i);
+    size_t ordered = 0;
+    uint64_t visits = 0, instances = 0;
+    while (!ready.empty()) {
+      const size_t i = ready.back();
+      ready.pop_back();
+      ordered++;
+      visits = std::min(visits + paths[i], kMaxNodeVisits + 1);
+      if (model_.nodes[i].mesh >= 0) instances = std::min(instances + paths[i], kMaxInstances + 1);
+      for (int c : model_.nodes[i].children) {
+        paths[size_t(c)] = std::min(paths[size_t(c)] + paths[i], kMaxNodeVisits + 1);
+        if (--parents[size_t(c)] == 0) ready.push_back(size_t(c));
+      }
+    }
+    if (ordered < n) {
+      for (size_t i = 0; i < n; i++)
+        if (parents[i] > 0) fail("node " + std::to_string(i) + " is its own ancestor (cyclic node graph)");
+    }
+    if (instances > kMaxInstances)
+      fail("the node graph places meshes more than " + std::to_string(kMaxInstances) + " times (the limit of instances from one file)");
+    if (visits > kMaxNodeVisits) fail("the node graph reaches nodes by more than " + std::to_string(kMaxNodeVisits) + " paths");
+  }
+
+  glm::mat4 localTransform(const tinygltf::Node& node, int nodeIndex) const {
     glm::mat4 local(1.0f);
     if (node.matrix.size() == 16) {
       for (int i = 0; i < 16; i++) glm::value_ptr(local)[i] = float(node.matrix[size_t(i)]);
@@ -71,36 +212,31 @@ class GltfReader {
       if (node.scale.size() == 3) s = glm::scale(glm::mat4(1.0f), glm::vec3(node.scale[0], node.scale[1], node.scale[2]));
       local = t * r * s;
     }
-    glm::mat4 world = parent * local;
     for (int i = 0; i < 16; i++)
-      if (!std::isfinite(glm::value_ptr(world)[i])) fail("node " + std::to_string(nodeIndex) + " has a non-finite transform");
-    if (node.mesh >= 0) {
-      if (size_t(node.mesh) >= model_.meshes.size()) fail("node " + std::to_string(nodeIndex) + " uses mesh " + std::to_string(node.mesh) + ", which does not exist");
-      auto found = meshIds_.find(node.mesh);
-      uint32_t id;
-      if (found != meshIds_.end()) {
-        id = found->second;
-      } else {
-        PolygonMesh mesh = readMesh(model_.meshes[size_t(node.mesh)], node.mesh);
-        id = uint32_t(scene.meshes.size());
-        meshIds_[node.mesh] = id;
-        if (mesh.faceCount() > 0) {
-          scene.meshes.push_back(std::move(mesh));
-          std::string name = model_.meshes[size_t(node.mesh)].name;
-          scene.meshNames.push_back(name.empty() ? "mesh" + std::to_string(node.mesh) : name);
-        } else {
-          id = UINT32_MAX;  // points or lines only: nothing to build
-          meshIds_[node.mesh] = id;
-        }
-      }
-      if (id != UINT32_MAX) scene.instances.push_back({world, id});
-    }
-    onPath_[size_t(nodeIndex)] = true;
-    for (int c : node.children) visit(c, world, scene);
-    onPath_[size_t(nodeIndex)] = false;
+      if (!std::isfinite(glm::value_ptr(local)[i]) || std::abs(glm::value_ptr(local)[i]) > 1e30f)
+        fail("node " + std::to_string(nodeIndex) + " has a non-finite or huge transform");
+    return local;
   }
 
-  // Checks an accessor against its view and buffer; returns a pointer to element 0 and the stride.
+  // The scene's id of glTF mesh `index`, reading it the first time; UINT32_MAX when it has no triangles.
+  uint32_t meshId(int index, SourceScene& scene, bool& sawPrimitives) {
+    auto found = meshIds_.find(index);
+    if (found != meshIds_.end()) return found->second;
+    PolygonMesh mesh = readMesh(model_.meshes[size_t(index)], index);
+    sawPrimitives |= !model_.meshes[size_t(index)].primitives.empty();
+    uint32_t id = UINT32_MAX;
+    if (mesh.faceCount() > 0) {
+      id = uint32_t(scene.meshes.size());
+      scene.meshes.push_back(std::move(mesh));
+      std::string name = model_.meshes[size_t(index)].name;
+      scene.meshNames.push_back(name.empty() ? "mesh" + std::to_string(index) : name);
+    }
+    meshIds_[index] = id;
+    return id;
+  }
+
+  // Checks an accessor against its view and buffer (every sum and product overflow-checked); returns a
+  // pointer to element 0 and the stride.
   const unsigned char* accessorData(int index, int type, const std::vector<int>& componentTypes, size_t& stride,
                                     size_t& count, const char* what) const {
     if (index < 0 || size_t(index) >= model_.accessors.size()) fail(std::string(what) + " accessor " + std::to_string(index) + " does not exist");
@@ -115,12 +251,17 @@ class GltfReader {
     const tinygltf::BufferView& view = model_.bufferViews[size_t(a.bufferView)];
     if (view.buffer < 0 || size_t(view.buffer) >= model_.buffers.size()) fail(name + " refers to a missing buffer");
     const tinygltf::Buffer& buffer = model_.buffers[size_t(view.buffer)];
-    size_t elementSize = size_t(tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType)) * tinygltf::GetNumComponentsInType(uint32_t(a.type)));
+    const size_t elementSize = size_t(tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType)) * tinygltf::GetNumComponentsInType(uint32_t(a.type)));
     stride = view.byteStride ? view.byteStride : elementSize;
     count = a.count;
-    uint64_t end = uint64_t(a.byteOffset) + (count ? uint64_t(stride) * (count - 1) + elementSize : 0);
-    if (end > view.byteLength) fail(name + " reads past the end of bufferView " + std::to_string(a.bufferView));
-    if (uint64_t(view.byteOffset) + view.byteLength > buffer.data.size())
+    if (stride < elementSize) fail("bufferView " + std::to_string(a.bufferView) + " has a stride smaller than " + name + "'s elements");
+    uint64_t span = 0, end = 0, viewEnd = 0;
+    const bool overflow = count > 0 && (__builtin_mul_overflow(uint64_t(stride), uint64_t(count - 1), &span) ||
+                                        __builtin_add_overflow(span, uint64_t(elementSize), &span));
+    if (overflow || __builtin_add_overflow(uint64_t(a.byteOffset), span, &end) || end > view.byteLength)
+      fail(name + " (" + std::to_string(count) + " elements from byte " + std::to_string(a.byteOffset) + ") reads past the end of bufferView " +
+           std::to_string(a.bufferView));
+    if (__builtin_add_overflow(uint64_t(view.byteOffset), uint64_t(view.byteLength), &viewEnd) || viewEnd > buffer.data.size())
       fail("bufferView " + std::to_string(a.bufferView) + " reads past the end of buffer " + std::to_string(view.buffer) +
            (buffer.data.empty() ? " (the buffer is missing or empty)" : ""));
     return buffer.data.data() + view.byteOffset + a.byteOffset;
@@ -161,7 +302,7 @@ class GltfReader {
             {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
             istride, icount, "index");
         int ct = model_.accessors[size_t(prim.indices)].componentType;
-        indices.resize(icount);
+        indices.resize(icount);  // bounded by the buffer, checked above
         for (size_t i = 0; i < icount; i++) {
           const unsigned char* e = idata + i * istride;
           uint32_t v = ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ? *e
@@ -201,26 +342,54 @@ class GltfReader {
 
   const tinygltf::Model& model_;
   std::string path_;
-  std::vector<bool> onPath_;
   std::map<int, uint32_t> meshIds_;
 };
 
 }  // namespace
 
 SourceScene loadGltf(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw InputError(path, "cannot open: not a regular file");
+  if (fs::file_size(path, ec) > kMaxFileBytes) throw InputError(path, "larger than the " + std::to_string(kMaxFileBytes >> 30) + " GiB a glTF file may be");
+  const std::string bytes = vgeo::readWholeFile(path);
+  const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
+  // The JSON's nesting, before tinygltf walks it recursively (a GLB's JSON chunk follows its 20-byte
+  // headers, its length in bytes 12..15).
+  const char* json = bytes.data();
+  size_t jsonSize = bytes.size();
+  if (binary) {
+    if (bytes.size() < 20) throw InputError(path, "truncated GLB: no JSON chunk");
+    uint32_t chunk = 0;
+    std::memcpy(&chunk, bytes.data() + 12, 4);
+    json = bytes.data() + 20;
+    jsonSize = std::min<size_t>(chunk, bytes.size() - 20);
+  }
+  if (jsonDepth(json, jsonSize, kMaxJsonDepth) > kMaxJsonDepth)
+    throw InputError(path, "its JSON nests deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+
+  Folder folder{fs::weakly_canonical(fs::absolute(fs::path(path)).parent_path(), ec), path};
+  tinygltf::FsCallbacks callbacks{fileExists, expandFilePath, readFileInside, writeWholeFile, &folder};
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(skipImage, nullptr);
+  loader.SetFsCallbacks(callbacks);
   tinygltf::Model model;
   std::string err, warn;
-  bool binary = path.size() >= 4 && (path.substr(path.size() - 4) == ".glb" || path.substr(path.size() - 4) == ".GLB");
-  {
-    // Fail early with a clear message when the file itself cannot be read.
-    FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
-    std::fclose(f);
+  const std::string base = folder.root.string();
+  bool ok = false;
+  try {
+    ok = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                              unsigned(bytes.size()), base)
+                : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), base);
+  } catch (const std::exception& e) {
+    throw InputError(path, std::string("not a valid glTF file (") + e.what() + ")");
   }
-  bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path) : loader.LoadASCIIFromFile(&model, &err, &warn, path);
-  if (!ok || !err.empty()) throw InputError(path, firstLine(err.empty() ? "not a valid glTF file" : err));
+  if (!ok || !err.empty()) {
+    std::string cause = firstLine(err.empty() ? "not a valid glTF file" : err);
+    if (cause.rfind("File not found", 0) == 0 || cause.rfind("File read error", 0) == 0)
+      cause += " (a buffer is a data URI or a relative path to a regular file inside the glTF's folder)";
+    throw InputError(path, cause);
+  }
   return GltfReader(model, path).read();
 }
 

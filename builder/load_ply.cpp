@@ -2,6 +2,7 @@
 // x, y, z (and nx, ny, nz, the shading normals, when all three are there) and the face element's
 // vertex_indices (or vertex_index) list; every other element and property is skipped by its declared
 // type, so files with colours or extra elements load.
+#include <cmath>
 #include <cstring>
 
 #include "text_reader.h"
@@ -128,12 +129,18 @@ SourceScene loadPly(const std::string& path) {
   std::vector<glm::vec3> vertexNormals;
   bool sawVertices = false;
   std::vector<uint32_t> corners;
+  bool sawFaces = false;
   for (const Element& e : elements) {
-    // Every element takes at least one byte an item: larger counts are lies, not allocations.
-    if (e.count > in.bytesLeft() && !(e.count > 0 && e.properties.empty()))
+    // An element without properties holds nothing to read, whatever its count (a count of 2^63 with
+    // nothing to read made the loop below spin for ever).
+    if (e.properties.empty()) continue;
+    // Every item of any other element takes at least one byte: larger counts are lies, not allocations.
+    if (e.count > in.bytesLeft())
       throw InputError(path, "truncated: element '" + e.name + "' declares " + std::to_string(e.count) +
                                  " items, more than the file holds");
     bool isVertex = e.name == "vertex", isFace = e.name == "face";
+    if ((isVertex && sawVertices) || (isFace && sawFaces)) throw InputError(path, "a second '" + e.name + "' element");
+    sawFaces |= isFace;
     int xyz[3] = {-1, -1, -1}, nxyz[3] = {-1, -1, -1};
     int indexList = -1;
     for (size_t i = 0; i < e.properties.size(); i++) {
@@ -162,7 +169,8 @@ SourceScene loadPly(const std::string& path) {
           continue;
         }
         double n = in.read(p.countType);
-        if (n < 0 || n > 1 << 20) throw InputError(path, "bad list size " + std::to_string(n) + " in element '" + e.name + "'");
+        if (!(n >= 0 && n <= double(1 << 20) && n == std::floor(n)))  // NaN fails every comparison
+          throw InputError(path, "bad list size " + std::to_string(n) + " in element '" + e.name + "'");
         if (isFace && int(i) == indexList) corners.resize(size_t(n));
         for (size_t k = 0; k < size_t(n); k++) {
           double v = in.read(p.type);

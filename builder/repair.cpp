@@ -1,8 +1,9 @@
 // repair.cpp: turns a polygon soup into a manifold mesh the later steps can trust.
-// 1. Positions must be finite (else an error). 2. Bit-identical positions are welded, so that meshes
+// 1. Positions must be finite and within +-1e12 (else an error). 2. Bit-identical positions are welded, so that meshes
 // split for texture seams (glTF) become connected. 3. Faces with fewer than 3 distinct corners are
-// dropped, as are faces with the corner set of an earlier face. 4. Faces are turned to agree with their
-// neighbours (orient.cpp). 5. Non-manifold edges and vertices are
+// dropped, as are faces with the corner set of an earlier face; a vertex that two faces fold through
+// (valence 2) is taken out of them. 4. Faces are turned to agree with their neighbours (orient.cpp).
+// 5. Non-manifold edges and vertices are
 // split by wedges: every face corner is a wedge; the wedges of a vertex that are joined through manifold
 // edges (two faces, opposite orientations) form one fan and share one output vertex, every other fan gets
 // its own copy. At an edge with more than two faces, or two of one orientation, the first face and the
@@ -27,6 +28,67 @@ struct EdgeCorner {
   bool forward;     // from min to max in face order
 };
 
+// Products of three coordinates (volumes, squared lengths times a length) stay inside float.
+constexpr float kMaxCoordinate = 1e12f;
+
+// A vertex with two faces that share both of its edges (valence 2, nothing between the faces there)
+// folds the surface: both faces run through it, and once triangulated or subdivided they hold the same
+// triangle edge twice. Such a vertex is taken out of both faces (a face left with fewer than three
+// corners is dropped, counted with `degenerate`), until none is left. Returns the vertices taken out.
+size_t dissolveFolds(PolygonMesh& mesh, size_t& degenerate) {
+  size_t dissolved = 0;
+  for (bool changed = true; changed;) {
+    changed = false;
+    const size_t vertexCount = mesh.positions.size();
+    std::vector<uint32_t> count(vertexCount, 0), cornerOf(2 * vertexCount, UINT32_MAX);
+    for (uint32_t c = 0; c < mesh.faceVertices.size(); c++) {
+      uint32_t v = mesh.faceVertices[c];
+      if (count[v] < 2) cornerOf[2 * v + count[v]] = c;
+      count[v]++;
+    }
+    std::vector<uint32_t> cornerFace(mesh.faceVertices.size());
+    for (size_t f = 0; f < mesh.faceCount(); f++)
+      for (uint32_t c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; c++) cornerFace[c] = uint32_t(f);
+    auto around = [&](uint32_t c, int step) {
+      const uint32_t f = cornerFace[c], n = mesh.faceSize(f), k = c - mesh.faceStart[f];
+      return mesh.face(f)[(k + n + uint32_t(step)) % n];
+    };
+    std::vector<uint8_t> drop(mesh.faceVertices.size(), 0), touched(mesh.faceCount(), 0);
+    for (uint32_t v = 0; v < vertexCount; v++) {
+      if (count[v] != 2) continue;
+      const uint32_t a = cornerOf[2 * v], b = cornerOf[2 * v + 1];
+      if (cornerFace[a] == cornerFace[b] || touched[cornerFace[a]] || touched[cornerFace[b]]) continue;
+      const uint32_t pa = around(a, -1), na = around(a, 1), pb = around(b, -1), nb = around(b, 1);
+      if (!((pa == pb && na == nb) || (pa == nb && na == pb))) continue;
+      drop[a] = drop[b] = 1;
+      touched[cornerFace[a]] = touched[cornerFace[b]] = 1;  // one vertex a face a pass: neighbours stay valid
+      dissolved++;
+      changed = true;
+    }
+    if (!changed) break;
+    PolygonMesh kept;
+    kept.positions = std::move(mesh.positions);
+    std::vector<uint32_t> corners;
+    std::vector<glm::vec3> normals;
+    for (size_t f = 0; f < mesh.faceCount(); f++) {
+      corners.clear();
+      normals.clear();
+      for (uint32_t c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; c++) {
+        if (drop[c]) continue;
+        corners.push_back(mesh.faceVertices[c]);
+        if (!mesh.cornerNormals.empty()) normals.push_back(mesh.cornerNormals[c]);
+      }
+      if (corners.size() < 3) {
+        degenerate++;
+        continue;
+      }
+      kept.addFace(corners.data(), corners.size(), mesh.cornerNormals.empty() ? nullptr : normals.data());
+    }
+    mesh = std::move(kept);
+  }
+  return dissolved;
+}
+
 }  // namespace
 
 RepairReport repairMesh(PolygonMesh& mesh, const std::string& file) {
@@ -41,6 +103,16 @@ RepairReport repairMesh(PolygonMesh& mesh, const std::string& file) {
     if (used[v] && !(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)))
       throw InputError(file, "vertex " + std::to_string(v) + " has a non-finite position (" + std::to_string(p.x) + ", " +
                                  std::to_string(p.y) + ", " + std::to_string(p.z) + ")");
+  }
+  for (size_t v = 0; v < vertexCount; v++) {
+    const glm::vec3& p = mesh.positions[v];
+    if (used[v] && std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) > kMaxCoordinate)
+    {
+      char where[256];
+      std::snprintf(where, sizeof where, "vertex %zu lies beyond +-1e12 (%g, %g, %g), past what the LOD build's float arithmetic holds: scale the model down",
+                    v, double(p.x), double(p.y), double(p.z));
+      throw InputError(file, where);
+    }
   }
   if (mesh.faceCount() == 0) throw InputError(file, "empty mesh: no faces");
 
@@ -130,6 +202,8 @@ RepairReport repairMesh(PolygonMesh& mesh, const std::string& file) {
     }
     faces = std::move(kept);
   }
+  if (faces.faceCount() == 0) throw InputError(file, "empty mesh: every face is degenerate or a duplicate");
+  report.dissolvedVertices = dissolveFolds(faces, report.degenerateFaces);
   if (faces.faceCount() == 0) throw InputError(file, "empty mesh: every face is degenerate or a duplicate");
   {
     OrientReport orient = orientFaces(faces);

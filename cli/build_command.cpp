@@ -85,6 +85,7 @@ void addBuildCommand(CLI::App& app, int& exitCode) {
                      {"duplicate_faces", s.repair.duplicateFaces},  {"non_manifold_edges", s.repair.nonManifoldEdges},
                      {"split_vertices", s.repair.splitVertices},    {"boundary_edges", s.repair.boundaryEdges},
                      {"flipped_faces", s.repair.flippedFaces},      {"components", s.repair.components},
+                     {"dissolved_vertices", s.repair.dissolvedVertices},
                      {"non_orientable_components", s.repair.nonOrientableComponents}};
       j["load_seconds"] = s.loadSeconds;
       j["subdivide_seconds"] = s.subdivideSeconds;
@@ -103,10 +104,12 @@ void addBuildCommand(CLI::App& app, int& exitCode) {
     std::printf("time: DAG %.2f s (%.2f M leaf triangles/s on %d threads), total %.2f s; peak memory %.1f MB (%.0f bytes per leaf triangle)\n",
                 s.buildSeconds, double(s.leafTriangles) / 1e6 / std::max(s.buildSeconds, 1e-9), args->threads, total, double(rss) / 1e6,
                 double(rss) / double(std::max<uint64_t>(s.leafTriangles, 1)));
-    if (s.repair.degenerateFaces || s.repair.duplicateFaces || s.repair.nonManifoldEdges || s.repair.splitVertices || s.repair.flippedFaces)
-      std::printf("repaired: %zu degenerate and %zu duplicate faces dropped, %zu faces turned to agree with their neighbours, "
-                  "%zu non-manifold edges, %zu vertices split\n",
-                  s.repair.degenerateFaces, s.repair.duplicateFaces, s.repair.flippedFaces, s.repair.nonManifoldEdges, s.repair.splitVertices);
+    if (s.repair.degenerateFaces || s.repair.duplicateFaces || s.repair.nonManifoldEdges || s.repair.splitVertices || s.repair.flippedFaces ||
+        s.repair.dissolvedVertices)
+      std::printf("repaired: %zu degenerate and %zu duplicate faces dropped, %zu folding vertices taken out, %zu faces turned to agree "
+                  "with their neighbours, %zu non-manifold edges, %zu vertices split\n",
+                  s.repair.degenerateFaces, s.repair.duplicateFaces, s.repair.dissolvedVertices, s.repair.flippedFaces, s.repair.nonManifoldEdges,
+                  s.repair.splitVertices);
     for (const UnreducedMesh& u : s.unreduced)
       std::printf("note: %s keeps %llu root clusters for %llu connected component%s (%llu triangles): %s\n", u.mesh.c_str(),
                   (unsigned long long)u.rootClusters, (unsigned long long)u.roots.components, u.roots.components == 1 ? "" : "s",

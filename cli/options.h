@@ -78,8 +78,9 @@ inline Camera parseCameraOption(const std::string& option, const std::string& te
   return c;
 }
 
-// An output path that can be written: its folder exists, it is not a folder, it is none of the inputs,
-// and it ends in `extension` (case-insensitive) when one is given.
+// An output path that can be written: its folder exists, it is new or a regular file (not a folder,
+// link or device, which the atomic rename would replace), it is none of the inputs, and it ends in
+// `extension` (case-insensitive) when one is given.
 inline void checkOutputPath(const std::string& option, const std::string& path, const std::vector<std::string>& inputs,
                             const std::string& extension = "") {
   namespace fs = std::filesystem;
@@ -94,7 +95,9 @@ inline void checkOutputPath(const std::string& option, const std::string& path, 
   if (folder.empty()) folder = ".";
   if (!fs::is_directory(folder, ec)) throw UsageError(option, path + ": the folder " + folder.string() + " does not exist");
   if (::access(folder.c_str(), W_OK) != 0) throw UsageError(option, path + ": the folder " + folder.string() + " is not writable");
-  if (fs::is_directory(path, ec)) throw UsageError(option, path + " is a folder");
+  const fs::file_status status = fs::symlink_status(path, ec);
+  if (fs::exists(status) && !fs::is_regular_file(status))
+    throw UsageError(option, path + (fs::is_directory(status) ? " is a folder" : " is not a regular file (a link or a device): it would be replaced"));
   for (const std::string& input : inputs)
     if (fs::exists(path, ec) && fs::exists(input, ec) && fs::equivalent(path, input, ec))
       throw UsageError(option, path + " is an input of this command; it would be overwritten");

@@ -1,19 +1,54 @@
 // atomic_file.cpp: write to a temporary file beside the target, check every write, fsync, rename.
 // The rename is atomic within a file system, so a reader sees the old file or the whole new one; the
-// temporary file lives in the target's folder to stay on its file system.
+// temporary file lives in the target's folder to stay on its file system. SIGINT and SIGTERM remove it
+// before the process ends.
 #include "atomic_file.h"
 
 #include <unistd.h>
 
 #include <cerrno>
+#include <csignal>
+#include <cstdio>
 #include <cstring>
 
 namespace vgeo {
+namespace {
+
+// The temporary file being written, for the SIGINT/SIGTERM handler (one at a time: outputs are written
+// one after another). A SIGKILL cannot be caught and may leave one behind.
+char gTempPath[4096];
+volatile sig_atomic_t gTempActive = 0;
+
+void removeTempAndDie(int signal) {
+  if (gTempActive) ::unlink(gTempPath);
+  std::signal(signal, SIG_DFL);
+  std::raise(signal);
+}
+
+void track(const std::string& temp) {
+  static bool installed = false;
+  if (!installed) {
+    std::signal(SIGINT, removeTempAndDie);
+    std::signal(SIGTERM, removeTempAndDie);
+    installed = true;
+  }
+  gTempActive = 0;
+  std::snprintf(gTempPath, sizeof gTempPath, "%s", temp.c_str());
+  gTempActive = temp.size() < sizeof gTempPath ? 1 : 0;
+}
+
+void untrack() { gTempActive = 0; }
+
+}  // namespace
 
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   temp_ = path_ + ".tmp." + std::to_string(::getpid());
+  track(temp_);
   file_ = std::fopen(temp_.c_str(), "wb");
-  if (!file_) throw OutputError(path_, std::string("cannot write: ") + std::strerror(errno));
+  if (!file_) {
+    untrack();
+    throw OutputError(path_, std::string("cannot write: ") + std::strerror(errno));
+  }
 }
 
 AtomicFile::~AtomicFile() {
@@ -21,6 +56,7 @@ AtomicFile::~AtomicFile() {
     std::fclose(file_);
     std::remove(temp_.c_str());
   }
+  untrack();
 }
 
 void AtomicFile::write(const void* data, size_t size) {
@@ -36,13 +72,16 @@ void AtomicFile::commit() {
   if (!error_ && closed != 0) error_ = errno;
   if (error_) {
     std::remove(temp_.c_str());
+    untrack();
     throw OutputError(path_, std::string("write failed: ") + std::strerror(error_));
   }
   if (std::rename(temp_.c_str(), path_.c_str()) != 0) {
     const int e = errno;
     std::remove(temp_.c_str());
+    untrack();
     throw OutputError(path_, std::string("cannot move the finished file into place: ") + std::strerror(e));
   }
+  untrack();
 }
 
 void writeFileAtomically(const std::string& path, const std::string& bytes) {

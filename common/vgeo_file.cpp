@@ -36,7 +36,7 @@ uint64_t checksum(const uint8_t* p, size_t n) {
     h ^= h >> 31;
   }
   uint64_t tail = 0;
-  std::memcpy(&tail, p + i, n - i);
+  if (n > i) std::memcpy(&tail, p + i, n - i);  // never with a null p (an empty section)
   h = (h ^ tail) * 0x100000001b3ull;
   return h ^ (h >> 29);
 }
@@ -249,23 +249,66 @@ VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name) {
       fail("group " + std::to_string(i) + " refers outside the cluster array");
     else if (data.groups[i].clusterCount > VGEO_MAX_GROUP_CLUSTERS)
       fail("group " + std::to_string(i) + " has more than " + std::to_string(VGEO_MAX_GROUP_CLUSTERS) + " clusters");
-  // Nodes: children in range, and every node reached once from its geometry's root (no cycles).
+  // Nodes: children in range, and every node reached once from its geometry's root (no cycles), no
+  // deeper than kMaxBvhDepth (the walks that follow may then keep their stacks small).
   std::vector<uint8_t> reached(data.nodes.size(), 0);
   for (const auto& g : data.geometries) {
-    std::vector<uint32_t> stack{g.nodeOffset};
+    std::vector<std::pair<uint32_t, uint32_t>> stack{{g.nodeOffset, 1u}};
     while (!stack.empty()) {
-      uint32_t n = stack.back();
+      auto [n, depth] = stack.back();
       stack.pop_back();
+      if (n < g.nodeOffset || n - g.nodeOffset >= g.nodeCount) fail("BVH node " + std::to_string(n) + " belongs to another geometry");
       if (reached[n]++) fail("BVH node " + std::to_string(n) + " is reached twice (the hierarchy is not a tree)");
+      if (depth > kMaxBvhDepth) fail("the BVH is deeper than " + std::to_string(kMaxBvhDepth) + " levels");
       const auto& node = data.nodes[n];
       uint32_t children = node.childCountAndFlags & ~VGEO_NODE_LEAF_BIT;
       if (children > (n == g.nodeOffset ? VGEO_BVH_ROOT_WIDTH : VGEO_BVH_WIDTH)) fail("BVH node " + std::to_string(n) + " has too many children");
       if (node.childCountAndFlags & VGEO_NODE_LEAF_BIT) {
-        if (!within(node.childOffset, children, data.groups.size())) fail("BVH node " + std::to_string(n) + " refers to missing groups");
+        if (!within(node.childOffset, children, data.groups.size()) || node.childOffset < g.groupOffset ||
+            node.childOffset + children > g.groupOffset + g.groupCount)
+          fail("BVH node " + std::to_string(n) + " refers to groups outside its geometry");
       } else {
         if (!within(node.childOffset, children, data.nodes.size())) fail("BVH node " + std::to_string(n) + " refers to missing nodes");
-        for (uint32_t k = 0; k < children; k++) stack.push_back(node.childOffset + k);
+        for (uint32_t k = 0; k < children; k++) stack.push_back({node.childOffset + k, depth + 1});
       }
+    }
+  }
+  // Each geometry's clusters, groups and cage faces refer only to its own vertices, groups, clusters
+  // and faces (a cluster naming another geometry's vertices would draw them with its instances).
+  for (size_t i = 0; i < data.geometries.size(); i++) {
+    const auto& g = data.geometries[i];
+    auto in = [](uint64_t x, uint64_t offset, uint64_t count) { return x >= offset && x - offset < count; };
+    const std::string what = "geometry " + std::to_string(i);
+    for (uint32_t ci = g.clusterOffset; ci < g.clusterOffset + g.clusterCount; ci++) {
+      const auto& c = data.clusters[ci];
+      for (uint32_t k = 0; k < shaderio::clusterVertexCount(c.counts); k++)
+        if (!in(data.clusterVertices[c.vertexOffset + k], g.vertexOffset, g.vertexCount))
+          fail(what + ": cluster " + std::to_string(ci) + " uses a vertex of another geometry");
+      if (!in(c.group, g.groupOffset, g.groupCount) || (c.producer != VGEO_NO_GROUP && !in(c.producer, g.groupOffset, g.groupCount)))
+        fail(what + ": cluster " + std::to_string(ci) + " refers to a group of another geometry");
+      // Coarser toward the root: the walks from a group up through its products end (no cycle).
+      if (c.producer != VGEO_NO_GROUP && !(data.groups[c.producer].level < data.groups[c.group].level))
+        fail(what + ": cluster " + std::to_string(ci) + " is produced by a group no finer than its own");
+      const uint32_t faces = shaderio::clusterCageFaceCount(c.counts);
+      if (faces && (!in(c.cageFaceOffset, g.cageFaceOffset, g.cageFaceCount) || c.cageFaceOffset + faces > g.cageFaceOffset + g.cageFaceCount))
+        fail(what + ": cluster " + std::to_string(ci) + " refers to cage faces of another geometry");
+    }
+    for (uint32_t gi = g.groupOffset; gi < g.groupOffset + g.groupCount; gi++) {
+      const auto& grp = data.groups[gi];
+      if (grp.clusterCount && (!in(grp.clusterOffset, g.clusterOffset, g.clusterCount) || grp.clusterOffset + grp.clusterCount > g.clusterOffset + g.clusterCount))
+        fail(what + ": group " + std::to_string(gi) + " refers to clusters of another geometry");
+    }
+    for (uint32_t fi = g.cageFaceOffset; fi < g.cageFaceOffset + g.cageFaceCount; fi++) {
+      const auto& f = data.cageFaces[fi];
+      if (!within(f.firstVertex, f.vertexCount, data.cageFaceVertices.size()) || !in(f.leafCluster, g.clusterOffset, g.clusterCount))
+        fail(what + ": cage face " + std::to_string(fi) + " refers outside its geometry");
+      for (uint32_t k = 0; k < f.vertexCount; k++)
+        if (!in(data.cageFaceVertices[f.firstVertex + k], g.vertexOffset, g.vertexCount))
+          fail(what + ": cage face " + std::to_string(fi) + " uses a vertex of another geometry");
+      if (fi < data.patches.size())
+        for (uint32_t n : data.patches[fi].neighbours)
+          if (n != VGEO_INVALID && !in(n >> 2, g.cageFaceOffset, g.cageFaceCount))
+            fail(what + ": the patch of cage face " + std::to_string(fi) + " names a neighbour of another geometry");
     }
   }
   for (size_t i = 0; i < data.cageFaces.size(); i++) {

@@ -69,6 +69,8 @@ struct VgeoData {
 
 // The bytes of a .vgeo file for `data`. Deterministic: equal data give equal bytes.
 std::vector<uint8_t> serializeVgeo(const VgeoData& data);
+// The deepest BVH a file may hold (the builder's are ~10 levels): what walks it may keep on a stack.
+constexpr uint32_t kMaxBvhDepth = 64;
 // Parses and checks a .vgeo image; throws InputError("name: cause") for anything wrong with it.
 VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name);
 // Writes to a temporary file beside `path` and renames it, so no half-written file is ever left.

@@ -9,8 +9,32 @@
 
 namespace vgeo {
 
+namespace {
+
+const char* resultName(VkResult r) {
+  switch (r) {
+    case VK_ERROR_OUT_OF_HOST_MEMORY: return "out of host memory";
+    case VK_ERROR_OUT_OF_DEVICE_MEMORY: return "out of device memory";
+    case VK_ERROR_DEVICE_LOST: return "the device was lost (a GPU fault or a reset)";
+    case VK_ERROR_INITIALIZATION_FAILED: return "initialization failed";
+    case VK_ERROR_LAYER_NOT_PRESENT: return "a layer is missing";
+    case VK_ERROR_EXTENSION_NOT_PRESENT: return "an extension is missing";
+    case VK_ERROR_FEATURE_NOT_PRESENT: return "a feature is missing";
+    case VK_ERROR_INCOMPATIBLE_DRIVER: return "no compatible driver";
+    case VK_TIMEOUT: return "timed out";
+    default: return "failed";
+  }
+}
+
+// How long one submission may run before the program gives up on the device. lavapipe's slowest
+// frames (tau 1e-9 over the default scene) take ~30 s; a fence not signalled in this time is a hang.
+constexpr uint64_t kSubmitTimeoutNs = uint64_t(600) * 1000000000ull;
+
+}  // namespace
+
 void vkCheck(VkResult result, const char* what) {
-  if (result != VK_SUCCESS) throw std::runtime_error(std::string("vulkan: ") + what + " failed (VkResult " + std::to_string(int(result)) + ")");
+  if (result != VK_SUCCESS)
+    throw std::runtime_error(std::string("vulkan: ") + what + ": " + resultName(result) + " (VkResult " + std::to_string(int(result)) + ")");
 }
 
 VKAPI_ATTR VkBool32 VKAPI_CALL VulkanContext::debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT,
@@ -260,7 +284,11 @@ void VulkanContext::submitAndWait(VkCommandBuffer cmd) {
   submit.commandBufferCount = 1;
   submit.pCommandBuffers = &cmd;
   vkCheck(vkQueueSubmit(queue_, 1, &submit, fence), "vkQueueSubmit");
-  vkCheck(vkWaitForFences(device_, 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+  const VkResult waited = vkWaitForFences(device_, 1, &fence, VK_TRUE, kSubmitTimeoutNs);
+  if (waited == VK_TIMEOUT)
+    throw std::runtime_error("vulkan: a submission did not finish within " + std::to_string(kSubmitTimeoutNs / 1000000000ull) +
+                             " s: the device hangs");
+  vkCheck(waited, "vkWaitForFences");
   vkDestroyFence(device_, fence, nullptr);
   vkFreeCommandBuffers(device_, pool_, 1, &cmd);
 }

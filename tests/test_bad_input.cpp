@@ -69,7 +69,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"GltfIncorrectVertexArrays", test::assimpModel("IncorrectVertexArrays/Cube.gltf"), "", "not a whole number of triangles"},
         BadCase{"GltfNoScene", test::assimpModel("TestNoRootNode/NoScene.gltf"), "", "no meshes"},
         BadCase{"GltfBadJson", "bad.gltf", "{ \"asset\": { \"version\": \"2.0\" }, \"meshes\": [ { ", "parse error"},
-        BadCase{"GltfTruncatedGlb", "t.glb", std::string("glTF\x02\0\0\0", 8), "Too short"},
+        BadCase{"GltfTruncatedGlb", "t.glb", std::string("glTF\x02\0\0\0", 8), "truncated GLB"},
         BadCase{"GltfMeshesNotAnArray", test::assimpModel("wrongTypes/badArray.gltf"), "", "shows no triangle mesh"}),
     [](const ::testing::TestParamInfo<BadCase>& info) { return info.param.name; });
 

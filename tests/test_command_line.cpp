@@ -68,6 +68,35 @@ TEST_F(CommandLine, BadValuesAreUsageErrorsBeforeAnyWork) {
   expectOneLine("render " + *dir + "/nothing.vgeo -o " + *dir + "/out.png", 1, *dir + "/nothing.vgeo: ");
 }
 
+TEST_F(CommandLine, OutputsAreNeverLinksOrDevicesAndInterruptionsLeaveNothing) {
+  // An existing output that is not a regular file would be replaced by the atomic rename: refused.
+  std::filesystem::remove(*dir + "/link.png");
+  std::filesystem::create_symlink(*dir + "/cow.vgeo", *dir + "/link.png");
+  expectOneLine("render " + *dir + "/cow.vgeo -o " + *dir + "/link.png", 2, "not a regular file");
+  std::filesystem::remove(*dir + "/fifo.vgeo");
+  test::runShell("mkfifo " + *dir + "/fifo.vgeo");
+  expectOneLine("build " + test::cgalMesh("cow.off") + " -o " + *dir + "/fifo.vgeo", 2, "not a regular file");
+  EXPECT_TRUE(std::filesystem::is_symlink(*dir + "/link.png"));
+  // SIGINT and SIGTERM at any moment of a build: the output is absent or whole, never a temporary file.
+  const std::string out = *dir + "/interrupted.vgeo";
+  for (int i = 0; i < 12; i++) {
+    std::filesystem::remove(out);
+    const std::string sig = i % 2 ? "TERM" : "INT";
+    test::runShell(std::string(VGEO_BINARY) + " build " + test::cgalMesh("armadillo.off") + " -q -o " + out + " & pid=$!; sleep " +
+                   std::to_string(0.04 * i) + "; kill -" + sig + " $pid; wait $pid");
+    for (const auto& entry : std::filesystem::directory_iterator(*dir))
+      EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << "after SIG" << sig << " at " << 0.04 * i << " s: " << entry.path();
+    if (std::filesystem::exists(out)) {
+      EXPECT_EQ(test::runVgeo("check " + out + " --cuts 2").exitCode, 0);
+    }
+  }
+  // Two builds of one output at once leave one whole file.
+  std::filesystem::remove(out);
+  test::runShell(std::string(VGEO_BINARY) + " build " + test::cgalMesh("cow.off") + " -q -o " + out + " & " + std::string(VGEO_BINARY) + " build " +
+                 test::cgalMesh("cow.off") + " -q -o " + out + " & wait");
+  EXPECT_EQ(test::runVgeo("check " + out).exitCode, 0);
+}
+
 TEST_F(CommandLine, VersionAndHelpShowWhatTheyShould) {
   test::RunResult v = test::runVgeo("--version");
   EXPECT_EQ(v.exitCode, 0);

@@ -5,6 +5,8 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "../builder/build_scene.h"
@@ -52,6 +54,12 @@ inline VgeoData build(const std::string& path, int subdiv, int threads = 2, Scen
   VgeoData data = buildScene(path, options, stats);
   if (statsOut) *statsOut = stats;
   return data;
+}
+
+// The whole of a file.
+inline std::string readFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
 // Writes text to a file in `dir` and returns its path.
