@@ -175,9 +175,10 @@ SourceScene loadPly(const std::string& path) {
         for (size_t k = 0; k < size_t(n); k++) {
           double v = in.read(p.type);
           if (isFace && int(i) == indexList) {
-            if (!sawVertices || v < 0 || v >= double(mesh.positions.size()) || v != double(int64_t(v)))
-              throw InputError(path, "face " + std::to_string(item) + " has vertex index " + std::to_string(int64_t(v)) +
-                                         ", out of range (" + std::to_string(mesh.positions.size()) + " vertices)");
+            // In range first (NaN fails it), so that the casts below are defined.
+            if (!sawVertices || !(v >= 0 && v < double(mesh.positions.size())) || v != std::floor(v))
+              throw InputError(path, "face " + std::to_string(item) + " has vertex index " + std::to_string(v) + ", out of range (" +
+                                         std::to_string(mesh.positions.size()) + " vertices)");
             corners[k] = uint32_t(v);
           }
         }

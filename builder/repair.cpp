@@ -253,11 +253,13 @@ RepairReport repairMesh(PolygonMesh& mesh, const std::string& file) {
   }
   // Join the wedges across manifold edges; c0 runs a->b in its face, c1 b->a in its. An isolated wedge
   // (at an endpoint of an edge where its face was detached) joins nothing: it gets a vertex of its own,
-  // which may also open its face's other edge at that corner into a boundary, never into anything worse.
+  // which opens its face's other edge at that corner into a boundary. Such an edge joins nothing at
+  // either end: joined at its other end only, the two faces would meet at a vertex without an edge
+  // (a bowtie the fuzzer found: a face on a three-face edge that also shared a good edge).
   for (auto [c0, c1] : pairs) {
-    uint32_t pairsOfWedges[2][2] = {{c0, nextCorner(c1)}, {nextCorner(c0), c1}};
-    for (auto& w : pairsOfWedges)
-      if (!isolated[w[0]] && !isolated[w[1]]) wedges.unite(w[0], w[1]);
+    if (isolated[c0] || isolated[nextCorner(c0)] || isolated[c1] || isolated[nextCorner(c1)]) continue;
+    wedges.unite(c0, nextCorner(c1));
+    wedges.unite(nextCorner(c0), c1);
   }
   std::vector<uint32_t> root(cornerCount);
   for (uint32_t c = 0; c < cornerCount; c++) root[c] = wedges.find(c);

@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
-# Set up, build, and run every test (ctest).
+# Set up, build, and run every test (ctest); then the suite again under AddressSanitizer and
+# UndefinedBehaviorSanitizer with a minute of each fuzz target (scripts/sanitize.sh). VGEO_QUICK=1
+# stops after the first suite.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
 ctest --test-dir build -j "$(nproc)" --output-on-failure
+[ -n "${VGEO_QUICK:-}" ] || bash scripts/sanitize.sh

@@ -124,7 +124,8 @@ TEST(HostileInputs, EveryFileTheBuilderWritesPassesItsCheck) {
   const std::string dir = test::tempDir();
   for (const std::string name : {"build_output_fails_check_huge_coords.obj", "build_output_fails_check_overlap.obj",
                                  "build_output_fails_check_patch_corner.obj", "build_output_unloadable_nonfinite_error.obj",
-                                 "build_pipeline_fuzz_1.obj", "build_pipeline_fuzz_2.obj", "build_pipeline_fuzz_3.obj"}) {
+                                 "build_pipeline_fuzz_1.obj", "build_pipeline_fuzz_2.obj", "build_pipeline_fuzz_3.obj",
+                                 "build_pipeline_fuzz_bowtie.off"}) {
     // The fuzzed files name normals they lack; without those references they reach the later steps.
     std::string text = test::readFile(input(name)), stripped;
     for (size_t i = 0; i < text.size(); i++) {

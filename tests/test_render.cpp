@@ -143,7 +143,8 @@ TEST_F(Render, CullingInsideTheTraversalGivesTheSameCut) {
   // instances counted as the culling pass counts them: with a worker for each instance and with 3 workers
   // for 16 instances. On lavapipe the workers run a few at a time, so one waiting on a later culling worker
   // leaves on its iteration budget (made small here) and a later one carries on.
-  for (auto [scene, fewWorkers] : {std::pair(single, false), std::pair(grid, false), std::pair(grid, true)}) {
+  for (auto [sceneOf, fewWorkers] : {std::pair(single, false), std::pair(grid, false), std::pair(grid, true)}) {
+    const RenderScene* scene = sceneOf;  // a plain variable: lambdas below capture it (C++20 lambdas may not capture bindings in clang 14)
     GpuRenderer renderer(*vk, *scene, kW, kH);
     renderer.setPersistentWorkgroups(fewWorkers ? 3 : uint32_t(scene->data.instances.size()) + 3);
     renderer.setIterationBudget(2000);
