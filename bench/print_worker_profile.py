@@ -18,6 +18,6 @@ for r in json.load(open(sys.argv[1])):
         step = p["timeline_step_ticks"]
         print("   workers started a %d ticks:" % step, p["workers_started"])
         print("   items taken a %d ticks:    " % step, p["items_taken"])
-    elif "items_taken_per_1000_ticks" in p:  # results of before 2026-11-21's session 8
+    elif "items_taken_per_1000_ticks" in p:  # the older record form (steps of 1,000 ticks)
         print("   workers started a 1000 ticks:", p["workers_started_per_1000_ticks"])
         print("   items taken a 1000 ticks:    ", p["items_taken_per_1000_ticks"])

@@ -1,4 +1,4 @@
-// build_scene.cpp: the builder's data flow for one input file (DESIGN.md):
+// build_scene.cpp: the builder's data flow for one input file (docs/design.md):
 // load + validate -> repair -> Catmull-Clark N levels -> DAG -> layout. Sizes are checked before any
 // subdivision so that a request too large for 32-bit indices is an error, not an out-of-memory.
 #include "build_scene.h"

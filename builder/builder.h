@@ -1,4 +1,4 @@
-// builder.h: the offline builder's contracts, one function per step of DESIGN.md's data flow:
+// builder.h: the offline builder's contracts, one function per step of docs/design.md's data flow:
 //   load -> repair -> subdivide -> cluster -> (group -> simplify -> split)* -> bounds -> BVH -> .vgeo
 // Every function here is deterministic: the same input and options give the same output, whatever the
 // thread count. Errors in the input are thrown as InputError with one line "FILE: cause".

@@ -1,6 +1,6 @@
 // dag.cpp: the LOD DAG (Nanite's scheme, Karis 2021): leaf clusters, then rounds of
 // group -> simplify to half with the group border locked -> split into new clusters, until one cluster is
-// left or no group can be halved. Errors and spheres follow DESIGN.md: a group's error is the largest
+// left or no group can be halved. Errors and spheres follow docs/design.md: a group's error is the largest
 // of its members' self errors and its own simplification error, and its sphere encloses the members'
 // self spheres, so both only grow toward the root (monotonic), and the clusters a group produces take
 // the group's (error, sphere) as their self pair.

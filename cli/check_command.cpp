@@ -8,7 +8,7 @@
 namespace vgeo {
 
 void addCheckCommand(CLI::App& app, int& exitCode) {
-  auto* cmd = app.add_subcommand("check", "Load a .vgeo and verify the invariants of DESIGN.md on random LOD cuts");
+  auto* cmd = app.add_subcommand("check", "Load a .vgeo and verify the invariants of docs/design.md on random LOD cuts");
   auto path = std::make_shared<std::string>();
   auto options = std::make_shared<CheckOptions>();
   cmd->add_option("file", *path, ".vgeo file")->required();

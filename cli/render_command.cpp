@@ -73,7 +73,7 @@ int runRender(const RenderArgs& a) {
                                                " instances a worker (" + std::to_string(renderer.persistentWorkgroups()) + " workers)");
 
   // Frames until one is complete (an overflow grows the buffers for the next); the first frames warm
-  // the shader cache (GPU-NOTES 4), the last one is reported.
+  // the shader cache (docs/gpu-notes.md, 4), the last one is reported.
   FrameResult result;
   uint32_t queueOverflows = 0, drawOverflows = 0, triangleOverflows = 0, patchOverflows = 0, frames = 0;
   for (uint32_t f = 0; f < std::max(a.frames, 1u) || !result.complete; f++) {

@@ -1,4 +1,4 @@
-// check.cpp: verifies the invariants of DESIGN.md on a loaded .vgeo (see cut.h for the list).
+// check.cpp: verifies the invariants of docs/design.md on a loaded .vgeo (see cut.h for the list).
 // Coverage is checked through the groups, where the DAG decides it: a group is "coarse" for a view when
 // its (error, sphere) projects to <= tau; then its members are not drawn and its products stand in for
 // them, each of which must in turn be drawn or be replaced by a coarse group of its own, exactly once.

@@ -1,4 +1,4 @@
-// cut.h: the CPU reference LOD cut and the invariant checker of DESIGN.md (cut.cpp, check.cpp).
+// cut.h: the CPU reference LOD cut and the invariant checker of docs/design.md (cut.cpp, check.cpp).
 // The renderer's GPU draw list is tested against selectCut; `vgeo check` runs checkVgeo.
 #pragma once
 
@@ -35,7 +35,7 @@ struct CheckResult {
   uint32_t rootClusters = 0;
   uint64_t checkedPatches = 0;  // patches (regular and ring) checked to pass through their leaf vertices
 };
-// Checks invariants 1-5 of DESIGN.md on every geometry: cluster sizes; shared self per producing group
+// Checks invariants 1-5 of docs/design.md on every geometry: cluster sizes; shared self per producing group
 // and shared parent per group; monotonic errors and enclosing spheres (self spheres also enclose their
 // cluster's vertices); the BVH encloses and bounds its groups and reaches each once; every B-spline patch
 // passes through its face's leaf vertices (leaves on the limit surface); and for `cuts`

@@ -29,21 +29,18 @@ namespace {
 
 constexpr uint32_t kSceneBindings = 16;  // bindings 1..9: geometries .. BVH nodes; 13: cluster cones; 15..19: patches;
                                          // 22: level subtrees' cluster runs
-// lavapipe ends every loop after 65,535 iterations per invocation (GPU-NOTES 1): persistent workers
+// lavapipe ends every loop after 65,535 iterations per invocation (docs/gpu-notes.md, 1): persistent workers
 // leave on their own well before, holding nothing, and enough of them are dispatched to carry on.
 constexpr uint32_t kLavapipeIterationBudget = 50000;
-// lavapipe starts the workgroups one after another, each for ~14 us even when the queue is already
-// empty: 128 of them made the traversal of 100 instances 2-3x slower than 16 (a worker profile there
-// showed the work done after 0.4 ms and 1.7 ms of late workers). 4 rather than 16 (alternated, 3 repeats,
-// the cut benchmark's 24 records a size summed): 1 instance 11 / 20 ms, 100 instances 21-25 / 29-51,
-// 1,000 and 10,000 within the noise (4 slightly ahead), 100,000 and the main job's traversal the same;
-// 4 carried 100,000 instances of the shipped cage. A frame whose workers all run out of budget is
-// reported incomplete and the next one runs twice as many (renderFrame).
+// lavapipe starts the workgroups one after another, each for some microseconds even when the queue is
+// already empty, so late workers are pure cost: few of them (bench/README.md, cut selection). A frame
+// whose workers all run out of budget is reported incomplete and the next one runs twice as many
+// (renderFrame).
 constexpr uint32_t kLavapipeWorkgroups = 4;
 constexpr uint32_t kMaxPersistentWorkgroups = 4096;
 // Up to this many instances the persistent traversal runs two workgroups an SM (three up to
-// VGEO_CULL_SPREAD_INSTANCES), four above (measured at 10,000 and 100,000 instances; the switch sits
-// between them).
+// VGEO_CULL_SPREAD_INSTANCES), four above: larger scenes keep more workers busy, smaller ones only poll
+// more empty slots (bench/README.md, cut selection).
 constexpr size_t kFewWorkgroupsInstances = 32768;
 // The patch draw as instances of this many patches. lavapipe tessellates each instance in one run whose
 // output is indexed with 16 bits: 15 patches at factor 64 (4,225 vertices each) stay under 65,536,
@@ -129,13 +126,8 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
     persistentWorkgroups_ = kLavapipeWorkgroups;
   } else {
     // Four workgroups an SM where NVIDIA tells the SM count, two in scenes of up to
-    // kFewWorkgroupsInstances instances, three in those of up to VGEO_CULL_SPREAD_INSTANCES. Measured on an
-    // H100 (132 SMs), armadillo --subdiv 2 at 1920x1080: 10k instances 0.24 ms with 4,224 workgroups (all
-    // the device holds), 0.09 ms with 528, 0.08 with 264; 100k instances 0.29 / 0.11 / 0.15 ms. Claiming
-    // past the frontier makes every extra workgroup a poller of empty slots. The cut benchmark over every
-    // camera (bench/README.md): 264 against 528 workgroups 6% faster at 10,000 instances, 3% at 1,000, even
-    // at 100; 66 and 132 slower everywhere. Since the preloading rounds (session 11), 396 against 264: 100
-    // instances 2% and 1,000 4% faster in sum (a close view's runs over more workers), 10,000 2% slower.
+    // kFewWorkgroupsInstances instances, three in those of up to VGEO_CULL_SPREAD_INSTANCES; never all
+    // the device holds: claiming past the frontier makes every extra workgroup a poller of empty slots.
     const size_t instances = scene_.data.instances.size();
     const uint32_t perSm = instances <= VGEO_CULL_SPREAD_INSTANCES ? 3u : instances <= kFewWorkgroupsInstances ? 2u : 4u;
     persistentWorkgroups_ = 128 * perSm;
@@ -433,7 +425,7 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
   double period = vk_.timestampPeriod();
   auto start = std::chrono::steady_clock::now();
   if (vk_.isLavapipe() || period == 0.0) {
-    // lavapipe's compute timestamps are wrong after the first submission (GPU-NOTES 3): one submission
+    // lavapipe's compute timestamps are wrong after the first submission (docs/gpu-notes.md, 3): one submission
     // a stage, timed on the host.
     result.timing = "host-per-submission";
     auto timed = [&](auto record) {

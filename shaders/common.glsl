@@ -1,4 +1,4 @@
-// common.glsl: the bindings every renderer pass shares, and the tests of the cut (DESIGN.md, invariant 4)
+// common.glsl: the bindings every renderer pass shares, and the tests of the cut (docs/design.md, invariant 4)
 // in world space. Included by the compute passes and the draw shaders.
 #extension GL_GOOGLE_include_directive : require
 #include "shaderio.h"
@@ -70,7 +70,7 @@ vec4 worldSphere(Instance inst, vec4 sphere) {
 }
 
 // Outside when wholly behind one plane of the cull camera's frustum (conservative). Written without a
-// loop: lavapipe counts every loop iteration against its per-invocation limit (GPU-NOTES 1).
+// loop: lavapipe counts every loop iteration against its per-invocation limit (docs/gpu-notes.md, 1).
 bool sphereInFrustum(vec4 s) {
   return dot(frame.frustum[0].xyz, s.xyz) + frame.frustum[0].w >= -s.w && dot(frame.frustum[1].xyz, s.xyz) + frame.frustum[1].w >= -s.w &&
          dot(frame.frustum[2].xyz, s.xyz) + frame.frustum[2].w >= -s.w && dot(frame.frustum[3].xyz, s.xyz) + frame.frustum[3].w >= -s.w &&

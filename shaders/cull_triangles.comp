@@ -13,7 +13,7 @@
 // so the patch list holds only faces that gain from tessellation (about one a few pixels at most).
 // None of these changes the picture: they keep the rasterizer from setting up triangles that make no
 // fragment, which is where the time of a virtual-geometry frame goes once clusters are small on
-// screen (GPU-NOTES 6 and 8). The cut itself (the draw list) is untouched.
+// screen (docs/gpu-notes.md, 6 and 10). The cut itself (the draw list) is untouched.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 #include "patch_factors.glsl"

@@ -2,7 +2,7 @@
 // cull_triangles.comp draws a face whose factors are all 1 as its leaf triangles instead).
 // Each edge's factor comes from that edge alone: its two corners (leaf vertices, world space, taken in
 // the order of their vertex ids), its chord error (the same value in both faces' records) and the cull
-// eye, so the two faces of an edge compute the same bits and no crack opens (design notes, "Leaves"). The error
+// eye, so the two faces of an edge compute the same bits and no crack opens (docs/design.md, "Leaves"). The error
 // is projected from the point of the edge's segment nearest the eye: a close camera may face the middle
 // of a long edge, far nearer than its corners. The chord error of a curve falls with the square of the
 // segments it is cut into, so an edge needs ceil(sqrt(projected error / tau)) segments; but no segment

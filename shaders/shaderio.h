@@ -33,7 +33,7 @@ using glm::dot;
 // One cluster: <= 128 triangles over <= 256 vertices (8-bit local indices).
 // self   = (error, sphere) of the group that produced it (leaves: error 0, the cluster's own sphere);
 // parent = (error, sphere) of the group it belongs to (clusters of the last level: error = +inf).
-// Draw iff project(self) <= tau < project(parent) (DESIGN.md, invariant 4).
+// Draw iff project(self) <= tau < project(parent) (docs/design.md, invariant 4).
 struct Cluster {
   vec4 selfSphere;      // xyz centre, w radius; encloses the cluster's triangles
   vec4 parentSphere;
@@ -232,13 +232,11 @@ uint patchWordCount(uint info) {
 #define VGEO_PROFILE_ITERATION_WORDS 12
 #define VGEO_PROFILE_HEADER_WORDS 8
 #define VGEO_PROFILE_WORKER_WORDS (VGEO_PROFILE_HEADER_WORDS + VGEO_PROFILE_ITERATIONS * VGEO_PROFILE_ITERATION_WORDS)
-// cull_instances.comp: lanes an instance in scenes of up to VGEO_CULL_SPREAD_INSTANCES instances, in
-// workgroups of VGEO_CULL_SPREAD_WORKGROUP (2 instances each); one lane an instance (workgroups of 64) in
-// larger ones. Measured on an H100: 32 lanes in workgroups of 64 rather than 8 (the runs of a close view's
-// few instances written by more workgroups side by side): 100 instances 4.5% and 1,000 2% faster in sum;
-// 64 lanes in workgroups of 64 made far views of 1,000 instances ~5% slower (1,000 workgroups); 64 lanes
-// in workgroups of 128 (twice the lanes for each workgroup's runs): culling of a close view of 100
-// instances ~0.8 us faster, 100 instances 0.8% and 1,000 0.3% faster in sum.
+// cull_instances.comp: VGEO_CULL_INSTANCE_LANES lanes an instance in scenes of up to
+// VGEO_CULL_SPREAD_INSTANCES instances, in workgroups of VGEO_CULL_SPREAD_WORKGROUP (2 instances each), so
+// that the runs of a close view's few instances are written by many lanes side by side; one lane an
+// instance (workgroups of 64) in larger ones, where thousands of workgroups reserving queue slots on one
+// counter cost more (bench/README.md, cut selection).
 #define VGEO_CULL_INSTANCE_LANES 64
 #define VGEO_CULL_SPREAD_WORKGROUP 128
 #define VGEO_CULL_SPREAD_INSTANCES 4096
@@ -352,7 +350,7 @@ uint clusterCageFaceCount(uint counts) { return counts >> 24; }
 // the sphere, with projScale = viewport height / (2 tan(fovY / 2)). A camera within znear of the sphere
 // sees an unbounded error (it needs the finest level there); zero error projects to zero. The same
 // function decides the cut on the GPU and in the CPU reference, so the two agree up to rounding.
-// Monotonic: a larger error in an enclosing sphere never projects smaller (DESIGN.md, invariant 3).
+// Monotonic: a larger error in an enclosing sphere never projects smaller (docs/design.md, invariant 3).
 #ifdef __cplusplus
 inline float uintBitsToFloat(uint bits) {
   float f;
@@ -371,7 +369,7 @@ float projectedError(vec4 sphere, float error, vec3 eye, float projScale, float 
 
 // The cut rule (invariant 4) with its one exception: a leaf (no producer) has nothing finer below it, so
 // it is drawn whenever its parent is too coarse, whatever its own error (its chord error against the limit
-// surface); with self > tau the renderer draws its patches instead of its triangles (DESIGN.md, leaves).
+// surface); with self > tau the renderer draws its patches instead of its triangles (docs/design.md, leaves).
 #ifdef __cplusplus
 inline
 #endif

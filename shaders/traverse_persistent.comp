@@ -1,5 +1,5 @@
 #version 450
-// traverse_persistent.comp: persistent-thread traversal (DESIGN.md, "Persistent threads without
+// traverse_persistent.comp: persistent-thread traversal (docs/design.md, "Persistent threads without
 // deadlock"). A fixed set of workgroups drains one global queue until it is empty and no item is in
 // flight. Control flow around the queue is uniform: lane 0 claims for the workgroup and broadcasts
 // through shared memory; no lane ever spins on a flag another lane of its workgroup must set.
@@ -15,7 +15,7 @@
 //   1  written items only (lavapipe): the lanes find the written prefix after the read position and
 //      lane 0 claims it by compare-and-swap; nobody waits on a slot, a workgroup holds nothing between
 //      iterations, so it can leave on the iteration budget (lavapipe ends loops silently after 65,535
-//      iterations per invocation, all loops counted, GPU-NOTES 1: every loop here counts into gLoops).
+//      iterations per invocation, all loops counted, docs/gpu-notes.md, 1: every loop here counts into gLoops).
 // Termination: only node items (and workers culling instances, frame.cullInTraversal) produce items, and
 // counters.nodesPending counts those queued or culling and not yet finished (a producer adds its children
 // before it takes itself off, on the same counter). At 0 nothing more will be written: every slot below the
@@ -228,12 +228,10 @@ void runRound(uint round, uint lane) {
 }
 
 // runRound for a round of cluster entries only (sweep runs, groups' clusters): a lane loads the records
-// of all its tests (instance, cluster, cone) before the first, so that they go out together; runRound's
-// tests of a lane run one after another (a pass of 4 ~6 us against ~3 us for 1 in a close view of 100
-// instances on an H100). Only where some lane has more than one test and batches are small (see main):
-// loading every round this way made far views of 10,000 and 100,000 instances 3% slower. Its own function
-// rather than a uniform flag of runRound: the merged version measured 0.4% (100 instances) and 0.8%
-// (1,000) slower in sum on an H100 (session 11's review, variants.txt).
+// of all its tests (instance, cluster, cone) before the first, so that they go out together, where
+// runRound's tests of a lane run one after another. Only where some lane has more than one test and
+// batches are small (see main): in rounds of one test a lane the extra registers cost more than the
+// overlap gains. Its own function rather than a uniform flag of runRound, which measured slower.
 void runClusterRound(uint round, uint lane) {
   const uint base = round == 0u ? 0u : kRound2;
   const uint entries = sEntryCounts[round] >> kTestBits;

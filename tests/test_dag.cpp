@@ -1,4 +1,4 @@
-// test_dag.cpp: the invariants of DESIGN.md on real meshes (CGAL's demo data, the shipped cage, a
+// test_dag.cpp: the invariants of docs/design.md on real meshes (CGAL's demo data, the shipped cage, a
 // multi-mesh glTF), through the same checker as `vgeo check`, plus the builder's promises on sizes.
 #include <fstream>
 #include <set>

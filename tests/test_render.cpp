@@ -239,7 +239,7 @@ TEST_F(Render, WorkerProfileAccountsForEveryItem) {
 }
 
 TEST_F(Render, WorkersThatRunOutOfBudgetAreDoubled) {
-  // lavapipe's workers leave after an iteration budget (GPU-NOTES 1). When all of them left before the
+  // lavapipe's workers leave after an iteration budget (docs/gpu-notes.md, 1). When all of them left before the
   // queue drained, the frame is reported incomplete (no exception), and the next frames run twice as
   // many workers on a fresh queue until one drains it: the same cut as the CPU's.
   if (!vk->isLavapipe()) GTEST_SKIP() << "the iteration budget applies on lavapipe only";
