@@ -60,30 +60,17 @@ struct SectionView {
 };
 
 std::vector<SectionView> views(const VgeoData& d) {
-  return {
-      {d.geometries.data(), sizeof(shaderio::Geometry), d.geometries.size()},
-      {d.instances.data(), sizeof(shaderio::Instance), d.instances.size()},
-      {d.positions.data(), 12, d.positions.size() / 3},
-      {d.normals.data(), 4, d.normals.size()},
-      {d.clusters.data(), sizeof(shaderio::Cluster), d.clusters.size()},
-      {d.clusterVertices.data(), 4, d.clusterVertices.size()},
-      {d.clusterTriangles.data(), 4, d.clusterTriangles.size()},
-      {d.groups.data(), sizeof(shaderio::Group), d.groups.size()},
-      {d.nodes.data(), sizeof(shaderio::BvhNode), d.nodes.size()},
-      {d.cageFaces.data(), sizeof(shaderio::CageFace), d.cageFaces.size()},
-      {d.cageFaceVertices.data(), 4, d.cageFaceVertices.size()},
-      {d.clusterCones.data(), sizeof(shaderio::ClusterCone), d.clusterCones.size()},
-      {d.controlPoints.data(), 12, d.controlPoints.size() / 3},
-      {d.patches.data(), sizeof(shaderio::Patch), d.patches.size()},
-      {d.patchPoints.data(), 4, d.patchPoints.size()},
-  };
+#define VGEO_SECTION_VIEW(id, member, type, values, name) {d.member.data(), uint32_t(sizeof(type) * values), d.member.size() / values},
+  return {VGEO_SECTIONS(VGEO_SECTION_VIEW)};
+#undef VGEO_SECTION_VIEW
 }
 
 }  // namespace
 
 const char* sectionName(Section s) {
-  static const char* names[] = {"?", "geometries", "instances", "positions", "normals", "clusters", "cluster vertices",
-                                "cluster triangles", "groups", "BVH nodes", "cage faces", "cage face vertices", "cluster cones", "control points", "patches", "patch points"};
+#define VGEO_SECTION_NAME(id, member, type, values, name) name,
+  static const char* names[] = {"?", VGEO_SECTIONS(VGEO_SECTION_NAME)};
+#undef VGEO_SECTION_NAME
   uint32_t i = uint32_t(s);
   return i < uint32_t(Section::Count_) ? names[i] : "?";
 }
@@ -178,21 +165,12 @@ VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name) {
       if (n) std::memcpy(vec.data(), src, n);
     };
     switch (Section(e.id)) {
-      case Section::Geometries: copy(data.geometries, e.count); break;
-      case Section::Instances: copy(data.instances, e.count); break;
-      case Section::Positions: copy(data.positions, e.count * 3); break;
-      case Section::Normals: copy(data.normals, e.count); break;
-      case Section::Clusters: copy(data.clusters, e.count); break;
-      case Section::ClusterVertices: copy(data.clusterVertices, e.count); break;
-      case Section::ClusterTriangles: copy(data.clusterTriangles, e.count); break;
-      case Section::Groups: copy(data.groups, e.count); break;
-      case Section::BvhNodes: copy(data.nodes, e.count); break;
-      case Section::CageFaces: copy(data.cageFaces, e.count); break;
-      case Section::CageFaceVertices: copy(data.cageFaceVertices, e.count); break;
-      case Section::ClusterCones: copy(data.clusterCones, e.count); break;
-      case Section::ControlPoints: copy(data.controlPoints, e.count * 3); break;
-      case Section::Patches: copy(data.patches, e.count); break;
-      case Section::PatchPoints: copy(data.patchPoints, e.count); break;
+#define VGEO_SECTION_COPY(id, member, type, values, name) \
+  case Section::id:                                       \
+    copy(data.member, size_t(e.count) * values);          \
+    break;
+      VGEO_SECTIONS(VGEO_SECTION_COPY)
+#undef VGEO_SECTION_COPY
       default: break;
     }
   }

@@ -23,42 +23,48 @@ constexpr uint32_t kVgeoVersion = 6;  // 2: cluster normal cones; 3: leaves on t
                                       // 5: boundary and tree patches, control points apart from vertices;
                                       // 6: the BVH root has up to VGEO_BVH_ROOT_WIDTH children (the level roots)
 
+// The file's sections in file order, declared once: X(id, VgeoData member, value type, values an element,
+// name). This table makes the Section ids, VgeoData's arrays, the writer's section views and the loader's
+// copies; a new section is one line here (and its checks in parseVgeo).
+//   positions        float x, y, z a vertex
+//   normals          octahedral unit normal a vertex, 2 x snorm16 (encodeNormal)
+//   clusterVertices  absolute vertex index a cluster vertex
+//   clusterTriangles 3 x 8-bit local vertex index a triangle (bits 0-7, 8-15, 16-23)
+//   cageFaceVertices absolute vertex index a cage face corner
+//   clusterCones     normal cone and tight sphere a cluster
+//   controlPoints    float x, y, z: each subdivided geometry's level-N cage, then its phantom and tree points
+//   patches          a patch a cage face; patchPoints their words (shaderio.h, Patch)
+#define VGEO_SECTIONS(X)                                             \
+  X(Geometries, geometries, shaderio::Geometry, 1, "geometries")     \
+  X(Instances, instances, shaderio::Instance, 1, "instances")        \
+  X(Positions, positions, float, 3, "positions")                     \
+  X(Normals, normals, uint32_t, 1, "normals")                        \
+  X(Clusters, clusters, shaderio::Cluster, 1, "clusters")            \
+  X(ClusterVertices, clusterVertices, uint32_t, 1, "cluster vertices") \
+  X(ClusterTriangles, clusterTriangles, uint32_t, 1, "cluster triangles") \
+  X(Groups, groups, shaderio::Group, 1, "groups")                    \
+  X(BvhNodes, nodes, shaderio::BvhNode, 1, "BVH nodes")              \
+  X(CageFaces, cageFaces, shaderio::CageFace, 1, "cage faces")       \
+  X(CageFaceVertices, cageFaceVertices, uint32_t, 1, "cage face vertices") \
+  X(ClusterCones, clusterCones, shaderio::ClusterCone, 1, "cluster cones") \
+  X(ControlPoints, controlPoints, float, 3, "control points")         \
+  X(Patches, patches, shaderio::Patch, 1, "patches")                 \
+  X(PatchPoints, patchPoints, uint32_t, 1, "patch points")
+
 enum class Section : uint32_t {
-  Geometries = 1,
-  Instances,
-  Positions,         // float x, y, z per vertex
-  Normals,           // octahedral unit normals, 2 x snorm16 per vertex
-  Clusters,
-  ClusterVertices,   // absolute vertex index per cluster vertex
-  ClusterTriangles,  // 3 x 8-bit local vertex index per triangle (bits 0-7, 8-15, 16-23)
-  Groups,
-  BvhNodes,
-  CageFaces,
-  CageFaceVertices,  // absolute vertex index per cage face corner
-  ClusterCones,      // shaderio::ClusterCone per cluster (normal cone and tight sphere)
-  ControlPoints,     // float x, y, z: each subdivided geometry's level-N cage, then its phantom and tree points
-  Patches,           // shaderio::Patch per cage face
-  PatchPoints,       // the patches' words (shaderio.h): control-point indices relative to Patch.pointBase, tree nodes
+  None_ = 0,
+#define VGEO_SECTION_ID(id, member, type, values, name) id,
+  VGEO_SECTIONS(VGEO_SECTION_ID)
+#undef VGEO_SECTION_ID
   Count_
 };
 const char* sectionName(Section s);
 
 struct VgeoData {
-  std::vector<shaderio::Geometry> geometries;
-  std::vector<shaderio::Instance> instances;
-  std::vector<float> positions;
-  std::vector<uint32_t> normals;
-  std::vector<shaderio::Cluster> clusters;
-  std::vector<uint32_t> clusterVertices;
-  std::vector<uint32_t> clusterTriangles;
-  std::vector<shaderio::Group> groups;
-  std::vector<shaderio::BvhNode> nodes;
-  std::vector<shaderio::CageFace> cageFaces;
-  std::vector<uint32_t> cageFaceVertices;
-  std::vector<shaderio::ClusterCone> clusterCones;
-  std::vector<float> controlPoints;  // x, y, z each
-  std::vector<shaderio::Patch> patches;
-  std::vector<uint32_t> patchPoints;
+  // One array a section (VGEO_SECTIONS): geometries, instances, positions, ..., patchPoints.
+#define VGEO_SECTION_MEMBER(id, member, type, values, name) std::vector<type> member;
+  VGEO_SECTIONS(VGEO_SECTION_MEMBER)
+#undef VGEO_SECTION_MEMBER
 
   size_t vertexCount() const { return positions.size() / 3; }
   // Cage face `face`'s patch at face parameters (s, t) (shaderio.h, Patch), with its unit normal, as

@@ -116,7 +116,7 @@ void GpuRenderer::createPipelines() {
   VkDevice dev = vk_.device();
   VkDescriptorSetLayoutBinding bindings[kRendererBindings];
   for (uint32_t i = 0; i < kRendererBindings; i++) {
-    bindings[i] = {i, i == 0 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+    bindings[i] = {i, i == VGEO_BINDING_FRAME ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
                    VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT |
                        (vk_.tessellation() ? VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT | VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT : 0u),
                    nullptr};

@@ -27,8 +27,6 @@
 namespace vgeo {
 namespace {
 
-constexpr uint32_t kSceneBindings = 16;  // bindings 1..9: geometries .. BVH nodes; 13: cluster cones; 15..19: patches;
-                                         // 22: level subtrees' cluster runs
 // lavapipe ends every loop after 65,535 iterations per invocation (docs/gpu-notes.md, 1): persistent workers
 // leave on their own well before, holding nothing, and enough of them are dispatched to carry on.
 constexpr uint32_t kLavapipeIterationBudget = 50000;
@@ -82,26 +80,29 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
     : vk_(context), scene_(scene), width_(width), height_(height) {
   const VgeoData& d = scene.data;
   VkDeviceSize range = vk_.properties().limits.maxStorageBufferRange;
-  struct Section {
+  // The scene's arrays, each uploaded once to its binding (shaderio.h, VGEO_BINDING_*).
+  auto bytes = [](const auto& v) { return v.size() * sizeof(v[0]); };
+  struct SceneArray {
+    uint32_t binding;
     const void* data;
     size_t bytes;
-  } sections[kSceneBindings] = {
-      {d.geometries.data(), d.geometries.size() * sizeof(shaderio::Geometry)},
-      {d.instances.data(), d.instances.size() * sizeof(shaderio::Instance)},
-      {d.positions.data(), d.positions.size() * sizeof(float)},
-      {d.normals.data(), d.normals.size() * sizeof(uint32_t)},
-      {d.clusters.data(), d.clusters.size() * sizeof(shaderio::Cluster)},
-      {d.clusterVertices.data(), d.clusterVertices.size() * sizeof(uint32_t)},
-      {d.clusterTriangles.data(), d.clusterTriangles.size() * sizeof(uint32_t)},
-      {d.groups.data(), d.groups.size() * sizeof(shaderio::Group)},
-      {d.nodes.data(), d.nodes.size() * sizeof(shaderio::BvhNode)},
-      {d.clusterCones.data(), d.clusterCones.size() * sizeof(shaderio::ClusterCone)},
-      {d.controlPoints.data(), d.controlPoints.size() * sizeof(float)},
-      {d.cageFaces.data(), d.cageFaces.size() * sizeof(shaderio::CageFace)},
-      {d.cageFaceVertices.data(), d.cageFaceVertices.size() * sizeof(uint32_t)},
-      {d.patches.data(), d.patches.size() * sizeof(shaderio::Patch)},
-      {d.patchPoints.data(), d.patchPoints.size() * sizeof(uint32_t)},
-      {scene.levelClusterRuns.data(), scene.levelClusterRuns.size() * sizeof(glm::uvec2)},
+  } sections[] = {
+      {VGEO_BINDING_GEOMETRIES, d.geometries.data(), bytes(d.geometries)},
+      {VGEO_BINDING_INSTANCES, d.instances.data(), bytes(d.instances)},
+      {VGEO_BINDING_POSITIONS, d.positions.data(), bytes(d.positions)},
+      {VGEO_BINDING_NORMALS, d.normals.data(), bytes(d.normals)},
+      {VGEO_BINDING_CLUSTERS, d.clusters.data(), bytes(d.clusters)},
+      {VGEO_BINDING_CLUSTER_VERTICES, d.clusterVertices.data(), bytes(d.clusterVertices)},
+      {VGEO_BINDING_CLUSTER_TRIANGLES, d.clusterTriangles.data(), bytes(d.clusterTriangles)},
+      {VGEO_BINDING_GROUPS, d.groups.data(), bytes(d.groups)},
+      {VGEO_BINDING_NODES, d.nodes.data(), bytes(d.nodes)},
+      {VGEO_BINDING_CLUSTER_CONES, d.clusterCones.data(), bytes(d.clusterCones)},
+      {VGEO_BINDING_CONTROL_POINTS, d.controlPoints.data(), bytes(d.controlPoints)},
+      {VGEO_BINDING_CAGE_FACES, d.cageFaces.data(), bytes(d.cageFaces)},
+      {VGEO_BINDING_CAGE_FACE_VERTICES, d.cageFaceVertices.data(), bytes(d.cageFaceVertices)},
+      {VGEO_BINDING_PATCHES, d.patches.data(), bytes(d.patches)},
+      {VGEO_BINDING_PATCH_POINTS, d.patchPoints.data(), bytes(d.patchPoints)},
+      {VGEO_BINDING_LEVEL_CLUSTER_RUNS, scene.levelClusterRuns.data(), bytes(scene.levelClusterRuns)},
   };
   // Sweep runs carry their length above the instance index (shaderio.h, VGEO_ITEM_RUN_BIT).
   if (d.instances.size() >= (size_t(1) << VGEO_RUN_INSTANCE_BITS))
@@ -112,6 +113,7 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
       throw std::runtime_error("scene too large for this device: a buffer of " + std::to_string(s.bytes >> 20) +
                                " MiB exceeds maxStorageBufferRange (" + std::to_string(range >> 20) + " MiB)");
     sceneBuffers_.push_back(vk_.createBuffer(s.bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT));
+    sceneBindings_.push_back(s.binding);
     vk_.upload(sceneBuffers_.back(), s.data, s.bytes);
   }
   frameData_ = vk_.createBuffer(sizeof(shaderio::FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
@@ -228,17 +230,17 @@ void GpuRenderer::setCapacities(uint32_t queueItems, uint32_t drawEntries, uint3
 }
 
 void GpuRenderer::writeDescriptors() {
-  std::vector<const Buffer*> buffers{&frameData_};
-  for (uint32_t i = 0; i < 9; i++) buffers.push_back(&sceneBuffers_[i]);
-  buffers.push_back(&counters_);
-  buffers.push_back(&queue_);
-  buffers.push_back(&drawList_);
-  buffers.push_back(&sceneBuffers_[9]);
-  buffers.push_back(&triangleList_);
-  for (uint32_t i = 10; i < 15; i++) buffers.push_back(&sceneBuffers_[i]);
-  buffers.push_back(&patchList_);
-  buffers.push_back(&workerProfile_);
-  buffers.push_back(&sceneBuffers_[15]);
+  const Buffer* buffers[kRendererBindings] = {};
+  buffers[VGEO_BINDING_FRAME] = &frameData_;
+  buffers[VGEO_BINDING_COUNTERS] = &counters_;
+  buffers[VGEO_BINDING_QUEUE] = &queue_;
+  buffers[VGEO_BINDING_DRAW_LIST] = &drawList_;
+  buffers[VGEO_BINDING_TRIANGLE_LIST] = &triangleList_;
+  buffers[VGEO_BINDING_PATCH_LIST] = &patchList_;
+  buffers[VGEO_BINDING_WORKER_PROFILE] = &workerProfile_;
+  for (size_t k = 0; k < sceneBuffers_.size(); k++) buffers[sceneBindings_[k]] = &sceneBuffers_[k];
+  for (uint32_t i = 0; i < kRendererBindings; i++)
+    if (!buffers[i]) throw std::logic_error("binding " + std::to_string(i) + " has no buffer");
   VkDescriptorBufferInfo infos[kRendererBindings];
   VkWriteDescriptorSet writes[kRendererBindings];
   for (uint32_t i = 0; i < kRendererBindings; i++) {

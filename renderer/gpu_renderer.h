@@ -145,7 +145,8 @@ class GpuRenderer {
 
   Buffer frameData_, counters_, countersReadback_, queue_, drawList_, drawListReadback_, imageReadback_, triangleList_, patchList_,
       workerProfile_;  // host-visible; a placeholder until a frame is profiled
-  std::vector<Buffer> sceneBuffers_;  // bindings 1..9, then 13, then 15..19, then 22
+  std::vector<Buffer> sceneBuffers_;     // the scene's arrays, uploaded once
+  std::vector<uint32_t> sceneBindings_;  // the binding of each (VGEO_BINDING_*)
   VkImage color_ = VK_NULL_HANDLE, depth_ = VK_NULL_HANDLE;
   VkDeviceMemory colorMemory_ = VK_NULL_HANDLE, depthMemory_ = VK_NULL_HANDLE;
   VkImageView colorView_ = VK_NULL_HANDLE, depthView_ = VK_NULL_HANDLE;
@@ -165,9 +166,7 @@ class GpuRenderer {
 
 const char* traversalName(Traversal t);
 
-// Binding count of the one descriptor set (common.glsl): 0 frame data, 1..9, 13 and 15..19 the scene,
-// 10 counters, 11 queue, 12 draw list, 14 triangle list, 20 patch list, 21 worker profile, 22 level
-// subtrees' cluster runs (RenderScene::levelClusterRuns).
-constexpr uint32_t kRendererBindings = 23;
+// Binding count of the one descriptor set (shaderio.h, VGEO_BINDING_*).
+constexpr uint32_t kRendererBindings = VGEO_BINDING_COUNT;
 
 }  // namespace vgeo

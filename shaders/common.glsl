@@ -3,34 +3,34 @@
 #extension GL_GOOGLE_include_directive : require
 #include "shaderio.h"
 
-layout(set = 0, binding = 0) uniform FrameBlock { FrameData frame; };
-layout(set = 0, binding = 1, std430) readonly buffer GeometryBuffer { Geometry geometries[]; };
-layout(set = 0, binding = 2, std430) readonly buffer InstanceBuffer { Instance instances[]; };
-layout(set = 0, binding = 3, std430) readonly buffer PositionBuffer { float positions[]; };
-layout(set = 0, binding = 4, std430) readonly buffer NormalBuffer { uint normals[]; };
-layout(set = 0, binding = 5, std430) readonly buffer ClusterBuffer { Cluster clusters[]; };
-layout(set = 0, binding = 6, std430) readonly buffer ClusterVertexBuffer { uint clusterVertices[]; };
-layout(set = 0, binding = 7, std430) readonly buffer ClusterTriangleBuffer { uint clusterTriangles[]; };
-layout(set = 0, binding = 8, std430) readonly buffer GroupBuffer { Group groups[]; };
-layout(set = 0, binding = 9, std430) readonly buffer NodeBuffer { BvhNode nodes[]; };
-layout(set = 0, binding = 10, std430) coherent buffer CounterBuffer { Counters counters; };
+layout(set = 0, binding = VGEO_BINDING_FRAME) uniform FrameBlock { FrameData frame; };
+layout(set = 0, binding = VGEO_BINDING_GEOMETRIES, std430) readonly buffer GeometryBuffer { Geometry geometries[]; };
+layout(set = 0, binding = VGEO_BINDING_INSTANCES, std430) readonly buffer InstanceBuffer { Instance instances[]; };
+layout(set = 0, binding = VGEO_BINDING_POSITIONS, std430) readonly buffer PositionBuffer { float positions[]; };
+layout(set = 0, binding = VGEO_BINDING_NORMALS, std430) readonly buffer NormalBuffer { uint normals[]; };
+layout(set = 0, binding = VGEO_BINDING_CLUSTERS, std430) readonly buffer ClusterBuffer { Cluster clusters[]; };
+layout(set = 0, binding = VGEO_BINDING_CLUSTER_VERTICES, std430) readonly buffer ClusterVertexBuffer { uint clusterVertices[]; };
+layout(set = 0, binding = VGEO_BINDING_CLUSTER_TRIANGLES, std430) readonly buffer ClusterTriangleBuffer { uint clusterTriangles[]; };
+layout(set = 0, binding = VGEO_BINDING_GROUPS, std430) readonly buffer GroupBuffer { Group groups[]; };
+layout(set = 0, binding = VGEO_BINDING_NODES, std430) readonly buffer NodeBuffer { BvhNode nodes[]; };
+layout(set = 0, binding = VGEO_BINDING_COUNTERS, std430) coherent buffer CounterBuffer { Counters counters; };
 // Traversal queue: item i is (instance, node or group | VGEO_ITEM_GROUP_BIT) in queue[2i], queue[2i+1];
 // an unwritten slot holds VGEO_INVALID in both words. Consumers reset slots after reading, so the
 // queue is clean for the next frame.
-layout(set = 0, binding = 11, std430) coherent buffer QueueBuffer { uint queue[]; };
+layout(set = 0, binding = VGEO_BINDING_QUEUE, std430) coherent buffer QueueBuffer { uint queue[]; };
 // Draw list: entry i is (instance, cluster) in drawList[2i], drawList[2i+1].
-layout(set = 0, binding = 12, std430) buffer DrawListBuffer { uint drawList[]; };
-layout(set = 0, binding = 13, std430) readonly buffer ClusterConeBuffer { ClusterCone clusterCones[]; };
+layout(set = 0, binding = VGEO_BINDING_DRAW_LIST, std430) buffer DrawListBuffer { uint drawList[]; };
+layout(set = 0, binding = VGEO_BINDING_CLUSTER_CONES, std430) readonly buffer ClusterConeBuffer { ClusterCone clusterCones[]; };
 // Triangle list (cull_triangles.comp): entry i is (draw-list entry << VGEO_TRIANGLE_BITS | triangle).
-layout(set = 0, binding = 14, std430) buffer TriangleListBuffer { uint triangleList[]; };
+layout(set = 0, binding = VGEO_BINDING_TRIANGLE_LIST, std430) buffer TriangleListBuffer { uint triangleList[]; };
 // Leaves as patches (shaderio.h, Patch; patch_eval.h): the cage's control points, its faces, their patches.
-layout(set = 0, binding = 15, std430) readonly buffer ControlPointBuffer { float controlPoints[]; };
-layout(set = 0, binding = 16, std430) readonly buffer CageFaceBuffer { CageFace cageFaces[]; };
-layout(set = 0, binding = 17, std430) readonly buffer CageFaceVertexBuffer { uint cageFaceVertices[]; };
-layout(set = 0, binding = 18, std430) readonly buffer PatchBuffer { Patch patches[]; };
-layout(set = 0, binding = 19, std430) readonly buffer PatchPointBuffer { uint patchPoints[]; };
+layout(set = 0, binding = VGEO_BINDING_CONTROL_POINTS, std430) readonly buffer ControlPointBuffer { float controlPoints[]; };
+layout(set = 0, binding = VGEO_BINDING_CAGE_FACES, std430) readonly buffer CageFaceBuffer { CageFace cageFaces[]; };
+layout(set = 0, binding = VGEO_BINDING_CAGE_FACE_VERTICES, std430) readonly buffer CageFaceVertexBuffer { uint cageFaceVertices[]; };
+layout(set = 0, binding = VGEO_BINDING_PATCHES, std430) readonly buffer PatchBuffer { Patch patches[]; };
+layout(set = 0, binding = VGEO_BINDING_PATCH_POINTS, std430) readonly buffer PatchPointBuffer { uint patchPoints[]; };
 // Patch list (cull_triangles.comp): entry i is (draw-list entry << VGEO_TRIANGLE_BITS | cage face in its cluster).
-layout(set = 0, binding = 20, std430) buffer PatchListBuffer { uint patchList[]; };
+layout(set = 0, binding = VGEO_BINDING_PATCH_LIST, std430) buffer PatchListBuffer { uint patchList[]; };
 
 vec3 toWorld(Instance inst, vec3 p) {
   vec4 h = vec4(p, 1.0);

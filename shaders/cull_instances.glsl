@@ -38,7 +38,7 @@ shared uint sVisible, sKept, sFirst, sWalked, sWalkedNodes, sSweepTests, sSweep,
 shared uint sKeptInstance[kMaxKept], sKeptCode[kMaxKept], sKeptSlot[kMaxKept];
 shared uint sKeptRunFirst[kMaxKept], sKeptRunCount[kMaxKept];  // the level's cluster run (count 0: none)
 shared uint sSweptList[kMaxKept], sSweptStart[kMaxKept];  // swept items, and their first run in the reservation
-layout(set = 0, binding = 22, std430) readonly buffer LevelRunBuffer { uvec2 levelClusterRuns[]; };
+layout(set = 0, binding = VGEO_BINDING_LEVEL_CLUSTER_RUNS, std430) readonly buffer LevelRunBuffer { uvec2 levelClusterRuns[]; };
 
 // Instances [firstInstance, firstInstance + kCullInstances), by the whole workgroup (it has barriers).
 // The node items it queues count in counters.nodesPending before they are written, so that a traversal

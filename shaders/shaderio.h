@@ -241,6 +241,35 @@ uint patchWordCount(uint info) {
 #define VGEO_CULL_SPREAD_WORKGROUP 128
 #define VGEO_CULL_SPREAD_INSTANCES 4096
 
+// The renderer's one descriptor set, named once for the host (gpu_renderer.cpp fills it) and the
+// shaders (common.glsl and the passes declare their buffers with these). 0 is the frame's uniform
+// buffer; the scene's arrays come from the .vgeo (and the renderer's per-level cluster runs); the rest
+// are the frame's working buffers.
+#define VGEO_BINDING_FRAME 0
+#define VGEO_BINDING_GEOMETRIES 1
+#define VGEO_BINDING_INSTANCES 2
+#define VGEO_BINDING_POSITIONS 3
+#define VGEO_BINDING_NORMALS 4
+#define VGEO_BINDING_CLUSTERS 5
+#define VGEO_BINDING_CLUSTER_VERTICES 6
+#define VGEO_BINDING_CLUSTER_TRIANGLES 7
+#define VGEO_BINDING_GROUPS 8
+#define VGEO_BINDING_NODES 9
+#define VGEO_BINDING_COUNTERS 10
+#define VGEO_BINDING_QUEUE 11
+#define VGEO_BINDING_DRAW_LIST 12
+#define VGEO_BINDING_CLUSTER_CONES 13
+#define VGEO_BINDING_TRIANGLE_LIST 14
+#define VGEO_BINDING_CONTROL_POINTS 15
+#define VGEO_BINDING_CAGE_FACES 16
+#define VGEO_BINDING_CAGE_FACE_VERTICES 17
+#define VGEO_BINDING_PATCHES 18
+#define VGEO_BINDING_PATCH_POINTS 19
+#define VGEO_BINDING_PATCH_LIST 20
+#define VGEO_BINDING_WORKER_PROFILE 21
+#define VGEO_BINDING_LEVEL_CLUSTER_RUNS 22
+#define VGEO_BINDING_COUNT 23
+
 // Per-frame constants (a uniform buffer). The cull camera selects the cut and culls; the draw camera
 // makes the picture. They differ only with --freeze-camera.
 struct FrameData {

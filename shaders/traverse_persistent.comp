@@ -278,7 +278,7 @@ void runClusterRound(uint round, uint lane) {
 #ifdef VGEO_PROFILE
 // Worker profile (layout in shaderio.h): lane 0 stamps each iteration with the device clock and records
 // the iterations that took items; the others are only counted.
-layout(set = 0, binding = 21, std430) buffer ProfileBuffer { uint profile[]; };
+layout(set = 0, binding = VGEO_BINDING_WORKER_PROFILE, std430) buffer ProfileBuffer { uint profile[]; };
 uvec2 pStart, pClaimed, pTaken, pBegin;
 uint pIterations = 0u, pRecorded = 0u, pPolls = 0u, pPollTicks = 0u;
 #define PROFILE_STAMP(t) if (gl_LocalInvocationIndex == 0u) t = clockRealtime2x32EXT()
