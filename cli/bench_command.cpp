@@ -122,9 +122,8 @@ void runBenchCut(const BenchArgs& a) {
               r["timing"] = "host";
               r["visible_clusters"] = cut.entries.size() + cut.borderline.size();
             } else {
-              s.traversal = mode == "persistent" ? Traversal::Persistent : mode == "levels" ? Traversal::Levels : Traversal::Flat;
+              s.traversal = traversalNamed("--traversals", mode);
               if (s.traversal == Traversal::Flat && count > a.flatMaxInstances) continue;
-              if (mode != "persistent" && mode != "levels" && mode != "flat") throw std::runtime_error("--traversals: unknown '" + mode + "'");
               FrameResult f = renderer.renderFrame(s);  // warm-up (and growth after an overflow)
               while (!f.complete) f = renderer.renderFrame(s);
               // At least 3 more frames and 300 ms: a GPU that idled (during the CPU reference or the scene's
@@ -141,21 +140,13 @@ void runBenchCut(const BenchArgs& a) {
                 ms.push_back(f.instanceCullMs + f.traversalMs);  // the whole selection
                 cullMs.push_back(f.instanceCullMs);
               }
-              const auto& c = f.counters;
               r["traversal_ms"] = median(ms);
               r["instance_cull_ms"] = median(cullMs);  // part of traversal_ms (the counter reset when culled in the traversal)
-              r["instance_culling"] = f.culledInTraversal ? "traversal" : "pass";
-              r["timing"] = f.timing;
-              r["nodes_visited"] = c.nodesVisited;
-              r["clusters_tested"] = c.clustersTested;
-              r["visible_clusters"] = std::min(c.drawCount, renderer.drawCapacity());
-              r["triangles"] = c.triangles;
-              r["instances_visible"] = c.visibleInstances;
-              r["queue_high_water"] = c.queueHighWater;
+              addFrameCounters(r, f, renderer, vk);
               if (s.traversal == Traversal::Persistent) {
                 r["workgroups"] = renderer.persistentWorkgroups();
                 r["sweep_budget"] = a.sweepBudget;
-                r["swept_tests"] = c.sweptTests;
+                r["swept_tests"] = f.counters.sweptTests;
                 // One more frame, profiled (not timed: the stamps cost time of their own).
                 if (a.profileWorkers && renderer.canProfileWorkers()) {
                   FrameSettings p = s;
@@ -164,8 +155,10 @@ void runBenchCut(const BenchArgs& a) {
                 }
               }
             }
-            r["device"] = mode == "cpu" ? std::string("host CPU") : vk.deviceName();
-            r["driver"] = mode == "cpu" ? std::string("") : vk.driverName();
+            if (mode == "cpu") {
+              r["device"] = "host CPU";
+              r["driver"] = "";
+            }
             r["width"] = width;
             r["height"] = height;
             r["commit"] = VGEO_COMMIT;
@@ -201,7 +194,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
   addInstanceCullingOption(cut, a->instanceCulling);
   cut->add_flag("--profile-workers", a->profileWorkers,
                 "Persistent records: one more frame with the workers' iterations timed in the shader (needs VK_KHR_shader_clock)");
-  cut->add_option("--device", a->device, "Use the first Vulkan device whose name contains this");
+  addDeviceOption(cut, a->device);
   cut->callback([a, &exitCode] {
     runBenchCut(*a);
     exitCode = 0;

@@ -19,9 +19,7 @@ struct FrameBenchArgs {
 };
 
 void runBenchFrame(const FrameBenchArgs& a) {
-  Traversal traversal = a.traversal == "levels" ? Traversal::Levels : a.traversal == "flat" ? Traversal::Flat : Traversal::Persistent;
-  if (a.traversal != "persistent" && a.traversal != "levels" && a.traversal != "flat")
-    throw std::runtime_error("--traversal: expected persistent, levels or flat");
+  Traversal traversal = traversalNamed("--traversal", a.traversal);
   VulkanContext vk({a.device, false});
   nlohmann::ordered_json records = nlohmann::json::array();
   for (uint32_t grid : parseList<uint32_t>(a.grids)) {
@@ -63,8 +61,6 @@ void runBenchFrame(const FrameBenchArgs& a) {
             draw.push_back(f.drawMs);
             frame.push_back(f.frameMs);
           }
-          const auto& c = f.counters;
-          const uint32_t drawn = f.trianglesDrawn;
           nlohmann::ordered_json r;
           r["input"] = a.input;
           r["instances"] = scene.data.instances.size();
@@ -76,29 +72,18 @@ void runBenchFrame(const FrameBenchArgs& a) {
           r["traversal"] = a.traversal;
           r["triangle_cull"] = triangleCull;
           r["patches"] = patches;
-          r["instance_culling"] = f.culledInTraversal ? "traversal" : "pass";  // traversal: instance_cull_ms is the counter reset
           r["instance_cull_ms"] = median(cull);
           r["traversal_ms"] = median(traverse);
           r["triangle_cull_ms"] = median(triangles);
           r["draw_ms"] = median(draw);
           r["frame_ms"] = median(frame);
-          r["timing"] = f.timing;
-          r["instances_visible"] = c.visibleInstances;
-          r["visible_clusters"] = std::min(c.drawCount, renderer.drawCapacity());
-          r["triangles"] = c.triangles;
-          r["triangles_drawn"] = drawn;
+          addFrameCounters(r, f, renderer, vk);
           r["pixels_covered"] = covered;
-          r["triangles_per_covered_pixel"] = covered ? double(drawn) / double(covered) : 0.0;
-          // Leaves drawn as tessellated patches: how many, the triangles the tessellator made of them
-          // (pipeline statistics, -1 without), the pixels they cover and the ratio of the two.
-          r["patch_clusters"] = c.patchClusters;
-          r["patches_drawn"] = f.patchesDrawn;
-          r["patch_triangles"] = f.patchTriangles;
+          r["triangles_per_covered_pixel"] = covered ? double(f.trianglesDrawn) / double(covered) : 0.0;
+          // The pixels the patches cover, and the tessellator's triangles a patch pixel.
           r["patch_pixels"] = patchCovered;
           r["patch_triangles_per_patch_pixel"] = patchCovered && f.patchTriangles > 0 ? double(f.patchTriangles) / double(patchCovered) : 0.0;
           r["frames"] = a.frames;
-          r["device"] = vk.deviceName();
-          r["driver"] = vk.driverName();
           r["commit"] = VGEO_COMMIT;
           std::fprintf(stderr,
                        "%7zu instances %4ux%-4u %-7s triangle cull %-3s patches %-3s: cull %.3f  traversal %.3f  triangles %.3f  draw %.3f  "
@@ -123,10 +108,10 @@ void addBenchFrameCommand(CLI::App& bench, int& exitCode) {
   cmd->add_option("--grids", a->grids, "N for N x N copies of the input (the main job's default scene is 32)")->capture_default_str();
   cmd->add_option("--sizes", a->sizes, "Viewports WxH")->capture_default_str();
   cmd->add_option("--cameras", a->cameras, "far, corner (the default camera), inside, closeup, surface, away")->capture_default_str();
-  cmd->add_option("--traversal", a->traversal, "persistent, levels or flat")->capture_default_str();
+  addTraversalOption(cmd, a->traversal);
   cmd->add_option("--tau", a->tau, "Allowed projected error, pixels")->capture_default_str();
   cmd->add_option("--frames", a->frames, "Measured frames per record (median)")->capture_default_str();
-  cmd->add_option("--device", a->device, "Use the first Vulkan device whose name contains this");
+  addDeviceOption(cmd, a->device);
   cmd->callback([a, &exitCode] {
     runBenchFrame(*a);
     exitCode = 0;

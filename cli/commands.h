@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "../common/atomic_file.h"
 #include "../renderer/gpu_renderer.h"
@@ -34,6 +35,28 @@ inline void addInstanceCullingOption(CLI::App* cmd, std::string& name) {
 inline InstanceCulling instanceCullingNamed(const std::string& name) {
   return name == "pass" ? InstanceCulling::Pass : name == "traversal" ? InstanceCulling::InTraversal : InstanceCulling::Auto;
 }
+
+// --traversal persistent|levels|flat (render and bench frame) and its value; bench cut lists several.
+inline const std::vector<std::string> kTraversalNames = {"persistent", "levels", "flat"};
+inline void addTraversalOption(CLI::App* cmd, std::string& name) {
+  cmd->add_option("--traversal", name, "Cut selection")->capture_default_str()->check(CLI::IsMember(kTraversalNames));
+}
+// Throws std::runtime_error("OPTION: unknown traversal 'NAME'") for a name not in kTraversalNames.
+inline Traversal traversalNamed(const std::string& option, const std::string& name) {
+  for (Traversal t : {Traversal::Persistent, Traversal::Levels, Traversal::Flat})
+    if (name == traversalName(t)) return t;
+  throw std::runtime_error(option + ": unknown traversal '" + name + "'");
+}
+
+// --device NAME (every command that opens a Vulkan device).
+inline void addDeviceOption(CLI::App* cmd, std::string& name) {
+  cmd->add_option("--device", name, "Use the first Vulkan device whose name contains this");
+}
+
+// What one GPU frame reports, for `render --stats` and the bench records: the device, how it was timed
+// and the counters of the cut and the draw (docs/design.md names each).
+void addFrameCounters(nlohmann::ordered_json& record, const FrameResult& frame, const GpuRenderer& renderer,
+                      const VulkanContext& vk);
 
 void addBuildCommand(CLI::App& app, int& exitCode);
 void addCheckCommand(CLI::App& app, int& exitCode);

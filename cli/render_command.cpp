@@ -36,7 +36,7 @@ int runRender(const RenderArgs& a) {
   // The command line first, all of it, before anything is loaded or drawn.
   uint32_t width = 0, height = 0;
   if (!parseSize(a.size, width, height)) throw UsageError("--size", "expected WxH with both in 1..16384, e.g. 1280x720 (got '" + a.size + "')");
-  Traversal traversal = a.traversal == "persistent" ? Traversal::Persistent : a.traversal == "levels" ? Traversal::Levels : Traversal::Flat;
+  Traversal traversal = traversalNamed("--traversal", a.traversal);
   checkOutputPath("--output", a.output, {a.input}, ".png");
   if (!a.stats.empty()) checkOutputPath("--stats", a.stats, {a.input, a.output});
   std::optional<Camera> camera, cullCamera;
@@ -101,49 +101,31 @@ int runRender(const RenderArgs& a) {
 
   const auto& c = result.counters;
   nlohmann::ordered_json j;
-  j["device"] = vk.deviceName();
-  j["driver"] = vk.driverName();
   j["width"] = width;
   j["height"] = height;
   j["tau"] = a.tau;
   j["mode"] = a.mode;
   j["traversal"] = a.traversal;
   j["instances_total"] = scene.data.instances.size();
-  j["instances_visible"] = c.visibleInstances;
   j["virtual_triangles"] = scene.virtualTriangles;
-  j["nodes_visited"] = c.nodesVisited;
-  j["clusters_tested"] = c.clustersTested;
-  j["visible_clusters"] = std::min(c.drawCount, renderer.drawCapacity());
-  // triangles: of the listed clusters (the cut); triangles_drawn: sent to the rasterizer, after triangle
-  // culling dropped those that cannot make a fragment (equal to triangles with --no-triangle-cull).
+  addFrameCounters(j, result, renderer, vk);
   const uint32_t drawn = result.trianglesDrawn;
-  j["triangles"] = c.triangles;
-  j["triangles_drawn"] = drawn;
   j["triangle_cull"] = settings.triangleCull;
+  j["patches"] = settings.patches && settings.triangleCull;
   j["pixels_covered"] = covered;
   j["triangles_per_covered_pixel"] = covered ? double(drawn) / double(covered) : 0.0;
   j["cut_triangles_per_covered_pixel"] = covered ? double(c.triangles) / double(covered) : 0.0;
-  // Leaves too coarse for tau drawn as tessellated patches: clusters, faces (patches) and the triangles
-  // the tessellator made (pipeline statistics; -1 where the device has none). `bench frame` also counts
-  // the pixels they cover (patch_pixels).
-  j["patches"] = settings.patches && settings.triangleCull;
-  j["patch_clusters"] = c.patchClusters;
-  j["patches_drawn"] = result.patchesDrawn;
-  j["patch_triangles"] = result.patchTriangles;
   j["queue_overflows"] = queueOverflows;
   j["draw_overflows"] = drawOverflows;
   j["triangle_overflows"] = triangleOverflows;
   j["patch_overflows"] = patchOverflows;
-  j["queue_high_water"] = c.queueHighWater;
   j["persistent_workgroups"] = renderer.persistentWorkgroups();
   j["swept_tests"] = c.sweptTests;
-  j["instance_culling"] = result.culledInTraversal ? "traversal" : "pass";  // traversal: instance_cull_ms is the counter reset
   j["instance_cull_ms"] = result.instanceCullMs;
   j["traversal_ms"] = result.traversalMs;
   j["triangle_cull_ms"] = result.triangleCullMs;
   j["draw_ms"] = result.drawMs;
   j["frame_ms"] = result.frameMs;
-  j["timing"] = result.timing;
   j["frames"] = frames;
   if (a.compareCpu) {
     SceneCut reference = selectSceneCut(scene, settings.cullView, a.tau);
@@ -189,11 +171,11 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   for (const auto& [name, value] : kModes) modes.push_back(name);
   cmd->add_option("--mode", a->mode, "Debug view")->capture_default_str()->check(CLI::IsMember(modes));
   cmd->add_option("--grid", a->grid, "N x N instances of the input")->capture_default_str()->check(CLI::Range(1u, 4096u));
-  cmd->add_option("--traversal", a->traversal, "Cut selection")->capture_default_str()->check(CLI::IsMember({"persistent", "levels", "flat"}));
+  addTraversalOption(cmd, a->traversal);
   cmd->add_option("--freeze-camera", a->freezeCamera, "Select and cull with this camera (six numbers), draw from --camera");
   cmd->add_flag("--compare-cpu", a->compareCpu, "Compare the GPU draw list with the CPU reference cut (exit 4 if they differ)");
   cmd->add_option("--stats", a->stats, "Write frame statistics as JSON to this file");
-  cmd->add_option("--device", a->device, "Use the first Vulkan device whose name contains this");
+  addDeviceOption(cmd, a->device);
   cmd->add_flag("--validate", a->validate, "Khronos validation layer with synchronization validation (exit 3 on any message)");
   cmd->add_option("--frames", a->frames, "Frames to render; the last is reported (the first warms shader caches)")
       ->capture_default_str()
