@@ -384,15 +384,4 @@ uint32_t encodeNormal(glm::vec3 n) {
   return q(e.x) | q(e.y) << 16;
 }
 
-glm::vec3 decodeNormal(uint32_t packed) {
-  glm::vec2 e(float(int16_t(packed & 0xffff)) / 32767.0f, float(int16_t(packed >> 16)) / 32767.0f);
-  glm::vec3 n(e.x, e.y, 1.0f - std::abs(e.x) - std::abs(e.y));
-  if (n.z < 0.0f) {
-    glm::vec2 xy = (1.0f - glm::abs(glm::vec2(n.y, n.x))) * glm::vec2(n.x >= 0.0f ? 1.0f : -1.0f, n.y >= 0.0f ? 1.0f : -1.0f);
-    n.x = xy.x;
-    n.y = xy.y;
-  }
-  return glm::normalize(n);
-}
-
 }  // namespace vgeo

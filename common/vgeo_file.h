@@ -89,8 +89,8 @@ VgeoData readVgeo(const std::string& path);
 // geometry is closed.
 shaderio::Instance makeInstance(const glm::mat4& transform, uint32_t geometry, bool geometryClosed);
 
-// Octahedral encoding of unit normals (Cigolle et al. 2014), 16 bits a component.
+// Octahedral encoding of unit normals (Cigolle et al. 2014), 16 bits a component; shaderio::decodeNormal
+// (shaders/shaderio_scene.h) is its inverse on both sides.
 uint32_t encodeNormal(glm::vec3 n);
-glm::vec3 decodeNormal(uint32_t packed);
 
 }  // namespace vgeo

@@ -10,11 +10,6 @@
 namespace vgeo {
 namespace {
 
-glm::vec4 worldSphere(const shaderio::Instance& inst, glm::vec4 s) {
-  glm::vec4 h(glm::vec3(s), 1.0f);
-  return {glm::dot(inst.row0, h), glm::dot(inst.row1, h), glm::dot(inst.row2, h), s.w * inst.maxScale};
-}
-
 // Smallest signed distance of the sphere's far side to a frustum plane: < 0 means outside.
 float frustumMargin(const View& view, glm::vec4 s) {
   float margin = INFINITY;
@@ -30,15 +25,15 @@ SceneCut selectSceneCut(const RenderScene& scene, const View& cull, float tau, f
   for (uint32_t i = 0; i < d.instances.size(); i++) {
     const auto& inst = d.instances[i];
     const auto& g = d.geometries[inst.geometry];
-    glm::vec4 bounds = worldSphere(inst, g.boundsSphere);
+    glm::vec4 bounds = shaderio::worldSphere(inst, g.boundsSphere);
     float boundsMargin = frustumMargin(cull, bounds);
     if (boundsMargin < -epsilon * bounds.w) continue;  // clearly outside: the GPU culls it too
     for (uint32_t c = g.clusterOffset; c < g.clusterOffset + g.clusterCount; c++) {
       const auto& cl = d.clusters[c];
-      glm::vec4 self = worldSphere(inst, cl.selfSphere);
+      glm::vec4 self = shaderio::worldSphere(inst, cl.selfSphere);
       float margin = frustumMargin(cull, self);
       float selfError = shaderio::projectedError(self, cl.selfError * inst.maxScale, cull.eye, cull.projScale, cull.znear);
-      float parentError = shaderio::projectedError(worldSphere(inst, cl.parentSphere), cl.parentError * inst.maxScale, cull.eye,
+      float parentError = shaderio::projectedError(shaderio::worldSphere(inst, cl.parentSphere), cl.parentError * inst.maxScale, cull.eye,
                                                    cull.projScale, cull.znear);
       const bool leaf = cl.producer == VGEO_NO_GROUP;
       bool drawn = margin >= 0.0f && shaderio::inCut(selfError, parentError, tau, leaf);
@@ -48,7 +43,7 @@ SceneCut selectSceneCut(const RenderScene& scene, const View& cull, float tau, f
         const shaderio::ClusterCone& cc = d.clusterCones[c];
         glm::vec3 axis = glm::normalize(glm::vec3(glm::dot(glm::vec3(inst.row0), glm::vec3(cc.cone)), glm::dot(glm::vec3(inst.row1), glm::vec3(cc.cone)),
                                                   glm::dot(glm::vec3(inst.row2), glm::vec3(cc.cone))));
-        glm::vec4 tight = worldSphere(inst, cc.sphere);
+        glm::vec4 tight = shaderio::worldSphere(inst, cc.sphere);
         drawn = !shaderio::clusterFacesAway(glm::vec4(axis, cc.cone.w), tight, cull.eye);
         if (cc.cone.w >= 0.0f) {
           glm::vec3 v = glm::vec3(tight) - cull.eye;

@@ -32,11 +32,6 @@ layout(set = 0, binding = VGEO_BINDING_PATCH_POINTS, std430) readonly buffer Pat
 // Patch list (cull_triangles.comp): entry i is (draw-list entry << VGEO_TRIANGLE_BITS | cage face in its cluster).
 layout(set = 0, binding = VGEO_BINDING_PATCH_LIST, std430) buffer PatchListBuffer { uint patchList[]; };
 
-vec3 toWorld(Instance inst, vec3 p) {
-  vec4 h = vec4(p, 1.0);
-  return vec3(dot(inst.row0, h), dot(inst.row1, h), dot(inst.row2, h));
-}
-
 // A normal to world space by the cofactor matrix of the instance's linear part (det(M) M^-T): right under
 // non-uniform scale, and under a mirror (det < 0) it turns with the winding, so the fragment shader's
 // "flip the normal of a back face" still yields the outward normal of the mirrored surface.
@@ -52,21 +47,9 @@ vec3 vertexPosition(uint vertex) { return vec3(positions[3u * vertex], positions
 // the two shaders, so both give the same bits. (`invariant gl_Position` would say the same, but Debian
 // 12's glslang decorates a struct member with it, which the validation layer reports.)
 vec4 clipPosition(Instance inst, vec3 p) {
-  precise vec3 world = toWorld(inst, p);
+  precise vec3 world = instanceToWorld(inst, p);
   precise vec4 clip = frame.viewProjection * vec4(world, 1.0);
   return clip;
-}
-
-// Octahedral unit normal (vgeo_file.h, encodeNormal).
-vec3 decodeNormal(uint packed) {
-  vec2 e = vec2(float(int(packed << 16) >> 16), float(int(packed) >> 16)) / 32767.0;
-  vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
-  if (n.z < 0.0) n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
-  return normalize(n);
-}
-
-vec4 worldSphere(Instance inst, vec4 sphere) {
-  return vec4(toWorld(inst, sphere.xyz), sphere.w * inst.maxScale);
 }
 
 // Outside when wholly behind one plane of the cull camera's frustum (conservative). Written without a

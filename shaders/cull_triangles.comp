@@ -35,7 +35,7 @@ bool visible(Instance inst, Cluster c, uint triangle) {
   vec4 clip[3];
   for (uint k = 0u; k < 3u; k++) {
     uint vertex = clusterVertices[c.vertexOffset + ((packed >> (8u * k)) & 0xffu)];
-    world[k] = toWorld(inst, vertexPosition(vertex));
+    world[k] = instanceToWorld(inst, vertexPosition(vertex));
     clip[k] = frame.viewProjection * vec4(world[k], 1.0);
   }
   // Outside one plane of the view volume (-w <= x, y <= w; the near plane is z <= w; reversed infinite
@@ -65,7 +65,7 @@ bool visible(Instance inst, Cluster c, uint triangle) {
 bool faceVisible(Instance inst, uint face) {
   CageFace f = cageFaces[face];
   vec3 corner[4];
-  for (uint k = 0u; k < 4u; k++) corner[k] = toWorld(inst, vertexPosition(cageFaceVertices[f.firstVertex + k]));
+  for (uint k = 0u; k < 4u; k++) corner[k] = instanceToWorld(inst, vertexPosition(cageFaceVertices[f.firstVertex + k]));
   vec3 centre = 0.25 * (corner[0] + corner[1] + corner[2] + corner[3]);
   float radius = max(max(distance(centre, corner[0]), distance(centre, corner[1])), max(distance(centre, corner[2]), distance(centre, corner[3])));
   return sphereInFrustum(vec4(centre, radius + patches[face].faceError * inst.maxScale));

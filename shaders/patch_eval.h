@@ -27,22 +27,9 @@
 
 #ifdef __cplusplus
 #include <cmath>
-namespace shaderio {
-using glm::vec2;
-using glm::cross;
-using glm::max;
-using glm::normalize;
-using glm::mix;
-#define VGEO_INLINE inline
-#define VGEO_OUT(T) T&
-#define VGEO_OUT_ARRAY(T, name, n) T (&name)[n]
-#define VGEO_INOUT(T) T&
-#else
-#define VGEO_INLINE
-#define VGEO_OUT(T) out T
-#define VGEO_OUT_ARRAY(T, name, n) out T name[n]
-#define VGEO_INOUT(T) inout T
 #endif
+
+VGEO_NAMESPACE_BEGIN
 
 // Uniform cubic B-spline basis at t, and its derivative.
 VGEO_INLINE void bsplineBasis(float t, VGEO_OUT(vec4) b, VGEO_OUT(vec4) d) {
@@ -262,12 +249,6 @@ vec3 evaluatePatchWords(uint info, const uint* words, Point point, Corner corner
 }
 #endif
 
-#ifdef __cplusplus
-#undef VGEO_INLINE
-#undef VGEO_OUT
-#undef VGEO_OUT_ARRAY
-#undef VGEO_INOUT
-}  // namespace shaderio
-#endif
+VGEO_NAMESPACE_END
 
 #endif

@@ -37,7 +37,7 @@ void patchFactors(Instance inst, uint face, out float edge[4], out float inner[2
   uint vertex[4];
   for (uint k = 0u; k < 4u; k++) {
     vertex[k] = cageFaceVertices[cf.firstVertex + k];
-    corner[k] = toWorld(inst, vertexPosition(vertex[k]));
+    corner[k] = instanceToWorld(inst, vertexPosition(vertex[k]));
   }
   for (uint k = 0u; k < 4u; k++) {
     uint next = (k + 1u) % 4u;

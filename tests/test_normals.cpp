@@ -32,7 +32,7 @@ std::vector<Corner> corners(const VgeoData& d) {
       glm::vec3 n = glm::cross(d.position(v[1]) - d.position(v[0]), d.position(v[2]) - d.position(v[0]));
       if (glm::length(n) == 0.0f) continue;
       n = glm::normalize(n);
-      for (int k = 0; k < 3; k++) out.push_back({decodeNormal(d.normals[v[k]]), n, shaderio::clusterLevel(c.counts)});
+      for (int k = 0; k < 3; k++) out.push_back({shaderio::decodeNormal(d.normals[v[k]]), n, shaderio::clusterLevel(c.counts)});
     }
   return out;
 }
@@ -104,7 +104,7 @@ TEST(Normals, ObjAndPlyNormalsAreKept) {
   VgeoData tetra = test::build(test::writeFile(dir, "tetra.ply", ply), 0);
   ASSERT_EQ(tetra.vertexCount(), 4u);
   for (uint32_t v = 0; v < 4; v++)
-    EXPECT_GT(glm::dot(decodeNormal(tetra.normals[v]), glm::normalize(tetra.position(v))), 0.9999f) << "vertex " << v;
+    EXPECT_GT(glm::dot(shaderio::decodeNormal(tetra.normals[v]), glm::normalize(tetra.position(v))), 0.9999f) << "vertex " << v;
 }
 
 TEST(Normals, GltfWithoutNormalsIsFlatAndWithThemSmooth) {

@@ -1,0 +1,177 @@
+// shaderio_frame.h: the renderer's side of the GPU interface, declared once for C++ and GLSL: the
+// descriptor bindings, the per-frame constants, the frame's counters, the encodings of its working lists
+// (queue items, draw, triangle and patch lists, the worker profile) and the debug modes.
+#ifndef VGEO_SHADERIO_FRAME_H
+#define VGEO_SHADERIO_FRAME_H
+
+#include "shaderio_scene.h"
+
+VGEO_NAMESPACE_BEGIN
+
+// Debug shading modes (--mode).
+#define VGEO_MODE_LIT 0
+#define VGEO_MODE_NORMAL 1
+#define VGEO_MODE_CLUSTER 2
+#define VGEO_MODE_GROUP 3
+#define VGEO_MODE_LOD 4
+#define VGEO_MODE_TRIANGLE 5
+#define VGEO_MODE_INSTANCE 6
+#define VGEO_MODE_ERROR 7
+#define VGEO_MODE_WIRE 8
+#define VGEO_MODE_OVERDRAW 9
+#define VGEO_MODE_FROZEN_DIFF 10
+#define VGEO_MODE_PATCH 11
+
+#define VGEO_INVALID 0xffffffffu
+#define VGEO_ITEM_GROUP_BIT 0x80000000u  // queue item names a group, not a BVH node
+// Sweep run (persistent traversal): the item's code is VGEO_ITEM_RUN_BIT | first cluster, and its instance
+// word carries (run length - 1) << VGEO_RUN_INSTANCE_BITS above the instance index: up to VGEO_SWEEP_RUN
+// clusters of one simplification level, tested without walking its subtree. Instances are 64 bytes, so a
+// storage buffer (maxStorageBufferRange <= 2^32) holds fewer than 2^26 of them.
+#define VGEO_ITEM_RUN_BIT 0x40000000u
+// A slot reserved for a sweep run that was not granted (cull_instances.comp): taken and skipped.
+#define VGEO_ITEM_SKIP (VGEO_ITEM_GROUP_BIT | VGEO_ITEM_RUN_BIT)
+#define VGEO_RUN_INSTANCE_BITS 26u
+#define VGEO_SWEEP_RUN 64u
+#define VGEO_TRAVERSAL_WORKGROUP 64
+// Specialization constant of traverse_persistent.comp: cluster tests a lane runs between draw-list atomics.
+#define VGEO_SPEC_LANE_TESTS 0
+// Worker profile (traverse_persistent.comp built with VGEO_PROFILE, binding 21; vgeo bench cut
+// --profile-workers): per workgroup VGEO_PROFILE_WORKER_WORDS words. Header: [0] working iterations
+// recorded, [1] iterations, [2] iterations without an item, [3] their summed clock ticks, [4,5] begin,
+// [6,7] exit (64-bit device clock, low word first). Then up to VGEO_PROFILE_ITERATIONS records of the
+// iterations that took items, VGEO_PROFILE_ITERATION_WORDS each: [0,1] start, [2,3] claimed (after the
+// claim), [4,5] taken (the items read and their entries made), [6,7] end (after both rounds), [8] items,
+// [9] round-1 tests, [10] round-2 tests, [11] slots claimed that iteration.
+#define VGEO_PROFILE_ITERATIONS 48
+#define VGEO_PROFILE_ITERATION_WORDS 12
+#define VGEO_PROFILE_HEADER_WORDS 8
+#define VGEO_PROFILE_WORKER_WORDS (VGEO_PROFILE_HEADER_WORDS + VGEO_PROFILE_ITERATIONS * VGEO_PROFILE_ITERATION_WORDS)
+// cull_instances.comp: VGEO_CULL_INSTANCE_LANES lanes an instance in scenes of up to
+// VGEO_CULL_SPREAD_INSTANCES instances, in workgroups of VGEO_CULL_SPREAD_WORKGROUP (2 instances each), so
+// that the runs of a close view's few instances are written by many lanes side by side; one lane an
+// instance (workgroups of 64) in larger ones, where thousands of workgroups reserving queue slots on one
+// counter cost more (bench/README.md, cut selection).
+#define VGEO_CULL_INSTANCE_LANES 64
+#define VGEO_CULL_SPREAD_WORKGROUP 128
+#define VGEO_CULL_SPREAD_INSTANCES 4096
+
+// The renderer's one descriptor set, named once for the host (gpu_renderer.cpp fills it) and the
+// shaders (common.glsl and the passes declare their buffers with these). 0 is the frame's uniform
+// buffer; the scene's arrays come from the .vgeo (and the renderer's per-level cluster runs); the rest
+// are the frame's working buffers.
+#define VGEO_BINDING_FRAME 0
+#define VGEO_BINDING_GEOMETRIES 1
+#define VGEO_BINDING_INSTANCES 2
+#define VGEO_BINDING_POSITIONS 3
+#define VGEO_BINDING_NORMALS 4
+#define VGEO_BINDING_CLUSTERS 5
+#define VGEO_BINDING_CLUSTER_VERTICES 6
+#define VGEO_BINDING_CLUSTER_TRIANGLES 7
+#define VGEO_BINDING_GROUPS 8
+#define VGEO_BINDING_NODES 9
+#define VGEO_BINDING_COUNTERS 10
+#define VGEO_BINDING_QUEUE 11
+#define VGEO_BINDING_DRAW_LIST 12
+#define VGEO_BINDING_CLUSTER_CONES 13
+#define VGEO_BINDING_TRIANGLE_LIST 14
+#define VGEO_BINDING_CONTROL_POINTS 15
+#define VGEO_BINDING_CAGE_FACES 16
+#define VGEO_BINDING_CAGE_FACE_VERTICES 17
+#define VGEO_BINDING_PATCHES 18
+#define VGEO_BINDING_PATCH_POINTS 19
+#define VGEO_BINDING_PATCH_LIST 20
+#define VGEO_BINDING_WORKER_PROFILE 21
+#define VGEO_BINDING_LEVEL_CLUSTER_RUNS 22
+#define VGEO_BINDING_COUNT 23
+
+// Per-frame constants (a uniform buffer). The cull camera selects the cut and culls; the draw camera
+// makes the picture. They differ only with --freeze-camera.
+struct FrameData {
+  mat4 viewProjection;   // draw camera
+  vec4 frustum[6];       // cull camera's planes in world space: dot(xyz, p) + w >= 0 inside
+  vec4 cullEye;          // xyz
+  vec4 drawEye;          // xyz
+  float projScale;       // viewport height / (2 tan(fovY / 2)): object size to pixels at unit distance
+  float tau;             // allowed projected error, pixels
+  float znear;
+  uint mode;
+  uint instanceCount;
+  uint queueCapacity;    // items in the traversal queue
+  uint drawCapacity;     // entries in the draw list
+  uint iterationBudget;  // persistent traversal: leave after this many loop iterations (0: never)
+  uint maxClusters;      // largest cluster count of a geometry (flat traversal)
+  uint claimMode;        // persistent traversal: 0 claim past the frontier, 1 claim only reserved items
+  uint triangleCull;     // 1: cull_triangles.comp lists the triangles to draw; 0: every listed cluster's
+  uint triangleCapacity; // entries in the triangle list
+  float viewportWidth;   // pixels
+  float viewportHeight;
+  uint patches;          // 1: leaf clusters whose chord error projects above tau are drawn as patches
+  uint patchCapacity;    // entries in the patch list
+  uint queueRoots;       // 1 (flat traversal): instance culling queues (instance, root) for each visible
+                         // instance; 0: it tests the root's children and queues those
+  uint sweepBudget;      // persistent traversal: cluster tests a frame may spend sweeping levels (0: none)
+  uint firstClaimItems;  // persistent traversal: the last frame's counters.cullItems (0: unknown), sizes the first claim
+  uint cullInTraversal;  // persistent traversal: its workers cull the instances first (worker w: instances w,
+                         // w + workers, ...) instead of cull_instances.comp; the host starts
+                         // counters.nodesPending at frame.instanceCount
+  uint patchesPerInstance; // the patch draw: instances of this many patches (patch.vert), so that no run of
+                           // lavapipe's tessellator outputs more vertices than its 16-bit indices address
+  uint framePad[3];
+};
+
+// GPU counters of one frame, and the indirect arguments built from them. The counters the persistent
+// traversal's workers hit all the time each have a 128-byte line of their own (atomics on one line are
+// served one after another at the L2; the cut benchmark on an H100 was ~1% faster this way).
+#define VGEO_COUNTER_LINE_PAD 31
+struct Counters {
+  uint queueWrite;       // items reserved in the traversal queue
+  uint linePad0[VGEO_COUNTER_LINE_PAD];
+  uint queueRead;        // items claimed by persistent workers
+  uint linePad1[VGEO_COUNTER_LINE_PAD];
+  uint drawCount;        // draw list entries requested (may exceed the capacity: see drawOverflow)
+  uint linePad2[VGEO_COUNTER_LINE_PAD];
+  uint nodesPending;     // node items queued and not yet finished: only they produce items, so at 0 the
+                         // queue is final (persistent traversal termination)
+  uint linePad3[VGEO_COUNTER_LINE_PAD];
+  uint itemsDone;        // items processed (or dropped by overflow)
+  uint queueOverflow;    // items that did not fit the queue
+  uint drawOverflow;     // clusters that did not fit the draw list
+  uint nodesVisited;     // BVH nodes and groups processed
+  uint clustersTested;
+  uint visibleInstances;
+  uint triangles;        // triangles of the listed clusters
+  uint levelStart;       // levels traversal: the window of the queue processed by one dispatch
+  uint levelEnd;
+  uint queueHighWater;   // largest queueWrite seen
+  uint workgroupsExited; // persistent traversal: workers that left
+  uint budgetExits;      // of those, left on the iteration budget (lavapipe)
+  uint dispatch[4];      // indirect dispatch arguments (x, y, z): levels and flat traversal, triangle culling
+  uint draw[4];          // VkDrawIndirectCommand
+  uint trianglesDrawn;   // triangles that survived triangle culling (requested; see triangleOverflow)
+  uint triangleOverflow; // triangles that did not fit the triangle list
+  uint patchesDrawn;     // patches listed for the tessellated draw (requested; see patchOverflow)
+  uint patchOverflow;    // patches that did not fit the patch list
+  uint patchClusters;    // draw-list entries drawn as patches
+  uint patchDraw[4];     // VkDrawIndirectCommand of the patch draw (one vertex a patch)
+  uint sweepTests;       // cluster tests claimed for sweeps (may pass frame.sweepBudget: then not swept)
+  uint sweptTests;       // of those, swept
+  uint cullItems;        // queue items instance culling wrote: sizes the next frame's first claim
+};
+
+// Triangle list entry: draw-list entry << 7 | triangle within its cluster. Patch list entry: draw-list
+// entry << 7 | cage face within its (leaf) cluster.
+#define VGEO_TRIANGLE_BITS 7u
+// Draw-list cluster word: set when the leaf cluster is drawn as patches (its chord error projects above tau).
+#define VGEO_DRAW_PATCHES_BIT 0x80000000u
+#define VGEO_MAX_DRAW_ENTRIES (1u << 25)
+
+#ifdef __cplusplus
+static_assert(sizeof(FrameData) == 64 + 96 + 32 + 96, "FrameData layout");
+static_assert(sizeof(Counters) == 5 * 128, "Counters layout");
+static_assert(offsetof(Counters, itemsDone) == 4 * 128, "Counters: the hot words on lines of their own");
+#endif
+
+VGEO_NAMESPACE_END
+
+#endif
