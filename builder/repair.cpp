@@ -89,10 +89,9 @@ size_t dissolveFolds(PolygonMesh& mesh, size_t& degenerate) {
   return dissolved;
 }
 
-}  // namespace
-
-RepairReport repairMesh(PolygonMesh& mesh, const std::string& file) {
-  RepairReport report;
+// Every face index in range and every used position finite and within +-kMaxCoordinate, else an
+// InputError naming the file. Returns which vertices the faces use.
+std::vector<bool> checkPositions(const PolygonMesh& mesh, const std::string& file) {
   const size_t vertexCount = mesh.positions.size();
   for (uint32_t v : mesh.faceVertices)
     if (v >= vertexCount) throw InputError(file, "face index " + std::to_string(v) + " is out of range (" + std::to_string(vertexCount) + " vertices)");
@@ -106,8 +105,7 @@ RepairReport repairMesh(PolygonMesh& mesh, const std::string& file) {
   }
   for (size_t v = 0; v < vertexCount; v++) {
     const glm::vec3& p = mesh.positions[v];
-    if (used[v] && std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) > kMaxCoordinate)
-    {
+    if (used[v] && std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) > kMaxCoordinate) {
       char where[256];
       std::snprintf(where, sizeof where, "vertex %zu lies beyond +-1e12 (%g, %g, %g), past what the LOD build's float arithmetic holds: scale the model down",
                     v, double(p.x), double(p.y), double(p.z));
@@ -115,32 +113,38 @@ RepairReport repairMesh(PolygonMesh& mesh, const std::string& file) {
     }
   }
   if (mesh.faceCount() == 0) throw InputError(file, "empty mesh: no faces");
+  return used;
+}
 
-  // Weld: sort by position bits (with -0 == +0), map every vertex to the first of its equals.
+// Weld: sorts the vertices by position bits (with -0 == +0) and maps each to the first of its equals.
+std::vector<uint32_t> weldPositions(const PolygonMesh& mesh, const std::vector<bool>& used, size_t& welded) {
+  const size_t vertexCount = mesh.positions.size();
   std::vector<uint32_t> weld(vertexCount);
-  {
-    auto bits = [&](uint32_t v) {
-      std::array<uint32_t, 3> b;
-      for (int i = 0; i < 3; i++) {
-        float f = mesh.positions[v][i] + 0.0f;  // -0 + 0 = +0
-        std::memcpy(&b[size_t(i)], &f, 4);
-      }
-      return b;
-    };
-    std::vector<uint32_t> order(vertexCount);
-    std::iota(order.begin(), order.end(), 0u);
-    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-      auto ba = bits(a), bb = bits(b);
-      return ba != bb ? ba < bb : a < b;
-    });
-    for (size_t i = 0; i < order.size(); i++) {
-      bool same = i > 0 && bits(order[i]) == bits(order[i - 1]);
-      weld[order[i]] = same ? weld[order[i - 1]] : order[i];
-      if (same && used[order[i]]) report.weldedVertices++;
+  auto bits = [&](uint32_t v) {
+    std::array<uint32_t, 3> b;
+    for (int i = 0; i < 3; i++) {
+      float f = mesh.positions[v][i] + 0.0f;  // -0 + 0 = +0
+      std::memcpy(&b[size_t(i)], &f, 4);
     }
+    return b;
+  };
+  std::vector<uint32_t> order(vertexCount);
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+    auto ba = bits(a), bb = bits(b);
+    return ba != bb ? ba < bb : a < b;
+  });
+  for (size_t i = 0; i < order.size(); i++) {
+    bool same = i > 0 && bits(order[i]) == bits(order[i - 1]);
+    weld[order[i]] = same ? weld[order[i - 1]] : order[i];
+    if (same && used[order[i]]) welded++;
   }
+  return weld;
+}
 
-  // Faces: weld corners, drop repeated neighbours, drop faces with < 3 distinct corners.
+// The faces over welded corners: repeated neighbours merged, faces with < 3 distinct corners dropped
+// (counted in `degenerate`). Takes the positions from `mesh`.
+PolygonMesh weldFaces(PolygonMesh& mesh, const std::vector<uint32_t>& weld, size_t& degenerate) {
   PolygonMesh faces;
   faces.positions = std::move(mesh.positions);
   const bool withNormals = !mesh.cornerNormals.empty();
@@ -162,56 +166,55 @@ RepairReport repairMesh(PolygonMesh& mesh, const std::string& file) {
     sorted = corners;
     std::sort(sorted.begin(), sorted.end());
     if (corners.size() < 3 || std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
-      report.degenerateFaces++;
+      degenerate++;
       continue;
     }
     faces.addFace(corners.data(), corners.size(), withNormals ? normals.data() : nullptr);
   }
+  return faces;
+}
 
-  // Duplicates: faces with the same corner set; the first one stays.
-  {
-    const size_t n = faces.faceCount();
-    std::vector<uint64_t> hash(n);
-    for (size_t f = 0; f < n; f++) {
-      sorted.assign(faces.face(f), faces.face(f) + faces.faceSize(f));
-      std::sort(sorted.begin(), sorted.end());
-      uint64_t h = 1469598103934665603ull;
-      for (uint32_t v : sorted) h = (h ^ v) * 1099511628211ull;
-      hash[f] = h;
-    }
-    std::vector<uint32_t> order(n);
-    std::iota(order.begin(), order.end(), 0u);
-    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return hash[a] != hash[b] ? hash[a] < hash[b] : a < b; });
-    std::vector<bool> drop(n, false);
-    std::vector<uint32_t> sa, sb;
-    for (size_t i = 0; i < n; i++) {
-      for (size_t j = i + 1; j < n && hash[order[j]] == hash[order[i]]; j++) {
-        if (drop[order[j]]) continue;
-        sa.assign(faces.face(order[i]), faces.face(order[i]) + faces.faceSize(order[i]));
-        sb.assign(faces.face(order[j]), faces.face(order[j]) + faces.faceSize(order[j]));
-        std::sort(sa.begin(), sa.end());
-        std::sort(sb.begin(), sb.end());
-        if (sa == sb && !drop[order[i]]) drop[order[j]] = true;
-      }
-    }
-    PolygonMesh kept;
-    kept.positions = std::move(faces.positions);
-    for (size_t f = 0; f < n; f++) {
-      if (drop[f]) report.duplicateFaces++;
-      else kept.addFace(faces.face(f), faces.faceSize(f), faces.faceNormals(f));
-    }
-    faces = std::move(kept);
+// Duplicates: faces with the same corner set; the first one stays. Returns how many went.
+size_t dropDuplicateFaces(PolygonMesh& faces) {
+  size_t duplicates = 0;
+  std::vector<uint32_t> sorted;
+  const size_t n = faces.faceCount();
+  std::vector<uint64_t> hash(n);
+  for (size_t f = 0; f < n; f++) {
+    sorted.assign(faces.face(f), faces.face(f) + faces.faceSize(f));
+    std::sort(sorted.begin(), sorted.end());
+    uint64_t h = 1469598103934665603ull;
+    for (uint32_t v : sorted) h = (h ^ v) * 1099511628211ull;
+    hash[f] = h;
   }
-  if (faces.faceCount() == 0) throw InputError(file, "empty mesh: every face is degenerate or a duplicate");
-  report.dissolvedVertices = dissolveFolds(faces, report.degenerateFaces);
-  if (faces.faceCount() == 0) throw InputError(file, "empty mesh: every face is degenerate or a duplicate");
-  {
-    OrientReport orient = orientFaces(faces);
-    report.flippedFaces = orient.flippedFaces;
-    report.components = orient.components;
-    report.nonOrientableComponents = orient.nonOrientableComponents;
+  std::vector<uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return hash[a] != hash[b] ? hash[a] < hash[b] : a < b; });
+  std::vector<bool> drop(n, false);
+  std::vector<uint32_t> sa, sb;
+  for (size_t i = 0; i < n; i++) {
+    for (size_t j = i + 1; j < n && hash[order[j]] == hash[order[i]]; j++) {
+      if (drop[order[j]]) continue;
+      sa.assign(faces.face(order[i]), faces.face(order[i]) + faces.faceSize(order[i]));
+      sb.assign(faces.face(order[j]), faces.face(order[j]) + faces.faceSize(order[j]));
+      std::sort(sa.begin(), sa.end());
+      std::sort(sb.begin(), sb.end());
+      if (sa == sb && !drop[order[i]]) drop[order[j]] = true;
+    }
   }
+  PolygonMesh kept;
+  kept.positions = std::move(faces.positions);
+  for (size_t f = 0; f < n; f++) {
+    if (drop[f]) duplicates++;
+    else kept.addFace(faces.face(f), faces.faceSize(f), faces.faceNormals(f));
+  }
+  faces = std::move(kept);
+  return duplicates;
+}
 
+// Step 5 of the file's head: every face corner a wedge, wedges joined across manifold edges, one output
+// vertex for each fan (split copies counted in the report).
+PolygonMesh splitNonManifold(const PolygonMesh& faces, RepairReport& report) {
   // Edges sorted by (key, corner): every undirected edge's faces are adjacent, in face order.
   const size_t cornerCount = faces.faceVertices.size();
   std::vector<uint32_t> cornerFace(cornerCount);
@@ -295,8 +298,11 @@ RepairReport repairMesh(PolygonMesh& mesh, const std::string& file) {
   out.faceStart = faces.faceStart;
   out.faceVertices = newCorner;
   out.cornerNormals = std::move(faces.cornerNormals);
+  return out;
+}
 
-  // Drop unused vertices, keeping order.
+// Drops the vertices no face uses, keeping order; returns how many (welded ones not counted again).
+size_t dropUnusedVertices(PolygonMesh& out, size_t welded) {
   std::vector<uint32_t> remap(out.positions.size(), UINT32_MAX);
   for (uint32_t v : out.faceVertices) remap[v] = 0;
   std::vector<glm::vec3> compact;
@@ -306,11 +312,15 @@ RepairReport repairMesh(PolygonMesh& mesh, const std::string& file) {
       compact.push_back(out.positions[v]);
     }
   // Vertices welded into another are not referenced any more either; count only the others.
-  report.unusedVertices = out.positions.size() - compact.size() - report.weldedVertices;
+  const size_t unused = out.positions.size() - compact.size() - welded;
   for (uint32_t& v : out.faceVertices) v = remap[v];
   out.positions = std::move(compact);
+  return unused;
+}
 
-  // Boundary edges of the result.
+// Edges with one face.
+size_t countBoundaryEdges(const PolygonMesh& out) {
+  size_t boundary = 0;
   std::vector<uint64_t> keys;
   keys.reserve(out.faceVertices.size());
   for (size_t f = 0; f < out.faceCount(); f++)
@@ -322,9 +332,30 @@ RepairReport repairMesh(PolygonMesh& mesh, const std::string& file) {
   for (size_t i = 0; i < keys.size();) {
     size_t j = i;
     while (j < keys.size() && keys[j] == keys[i]) j++;
-    if (j - i == 1) report.boundaryEdges++;
+    if (j - i == 1) boundary++;
     i = j;
   }
+  return boundary;
+}
+
+}  // namespace
+
+RepairReport repairMesh(PolygonMesh& mesh, const std::string& file) {
+  RepairReport report;
+  const std::vector<bool> used = checkPositions(mesh, file);
+  const std::vector<uint32_t> weld = weldPositions(mesh, used, report.weldedVertices);
+  PolygonMesh faces = weldFaces(mesh, weld, report.degenerateFaces);
+  report.duplicateFaces = dropDuplicateFaces(faces);
+  if (faces.faceCount() == 0) throw InputError(file, "empty mesh: every face is degenerate or a duplicate");
+  report.dissolvedVertices = dissolveFolds(faces, report.degenerateFaces);
+  if (faces.faceCount() == 0) throw InputError(file, "empty mesh: every face is degenerate or a duplicate");
+  const OrientReport orient = orientFaces(faces);
+  report.flippedFaces = orient.flippedFaces;
+  report.components = orient.components;
+  report.nonOrientableComponents = orient.nonOrientableComponents;
+  PolygonMesh out = splitNonManifold(faces, report);
+  report.unusedVertices = dropUnusedVertices(out, report.weldedVertices);
+  report.boundaryEdges = countBoundaryEdges(out);
   mesh = std::move(out);
   return report;
 }
