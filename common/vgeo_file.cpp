@@ -127,8 +127,19 @@ std::vector<uint8_t> serializeVgeo(const VgeoData& data) {
   return out;
 }
 
-VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name) {
-  auto fail = [&](const std::string& cause) { throw InputError(name, cause); };
+namespace {
+
+// Throws InputError(file, cause): the one way a check below reports.
+struct Fail {
+  const std::string& file;
+  [[noreturn]] void operator()(const std::string& cause) const { throw InputError(file, cause); }
+};
+
+// [offset, offset + n) lies within [0, size), without overflow.
+bool within(uint64_t offset, uint64_t n, uint64_t size) { return offset <= size && n <= size - offset; }
+
+// The header, the section table and each known section's bytes (checksums, sizes, bounds).
+VgeoData readSections(const uint8_t* bytes, size_t size, const Fail& fail) {
   if (size < kHeaderSize) fail("truncated: " + std::to_string(size) + " bytes is smaller than a .vgeo header");
   if (std::memcmp(bytes, kMagic, 8) != 0) fail("not a .vgeo file (bad magic)");
   uint32_t version = get<uint32_t>(bytes + 8);
@@ -176,10 +187,12 @@ VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name) {
   }
   for (size_t i = 0; i < seen.size(); i++)
     if (!seen[i]) fail(std::string("section '") + sectionName(Section(i + 1)) + "' is missing");
+  return data;
+}
 
-  // References: everything the renderer will follow must stay inside its array.
+// References: everything the renderer will follow must stay inside its array.
+void checkReferences(const VgeoData& data, const Fail& fail) {
   const uint64_t vertices = data.vertexCount();
-  auto within = [](uint64_t offset, uint64_t n, uint64_t size) { return offset <= size && n <= size - offset; };
   if (data.normals.size() != vertices) fail("normals and positions differ in count");
   if (data.clusterCones.size() != data.clusters.size()) fail("cluster cones and clusters differ in count");
   for (const auto& c : data.clusterCones)
@@ -227,8 +240,11 @@ VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name) {
       fail("group " + std::to_string(i) + " refers outside the cluster array");
     else if (data.groups[i].clusterCount > VGEO_MAX_GROUP_CLUSTERS)
       fail("group " + std::to_string(i) + " has more than " + std::to_string(VGEO_MAX_GROUP_CLUSTERS) + " clusters");
-  // Nodes: children in range, and every node reached once from its geometry's root (no cycles), no
-  // deeper than kMaxBvhDepth (the walks that follow may then keep their stacks small).
+}
+
+// Nodes: children in range, and every node reached once from its geometry's root (no cycles), no
+// deeper than kMaxBvhDepth (the walks that follow may then keep their stacks small).
+void checkBvh(const VgeoData& data, const Fail& fail) {
   std::vector<uint8_t> reached(data.nodes.size(), 0);
   for (const auto& g : data.geometries) {
     std::vector<std::pair<uint32_t, uint32_t>> stack{{g.nodeOffset, 1u}};
@@ -251,8 +267,11 @@ VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name) {
       }
     }
   }
-  // Each geometry's clusters, groups and cage faces refer only to its own vertices, groups, clusters
-  // and faces (a cluster naming another geometry's vertices would draw them with its instances).
+}
+
+// Each geometry's clusters, groups and cage faces refer only to its own vertices, groups, clusters
+// and faces (a cluster naming another geometry's vertices would draw them with its instances).
+void checkGeometryOwnership(const VgeoData& data, const Fail& fail) {
   for (size_t i = 0; i < data.geometries.size(); i++) {
     const auto& g = data.geometries[i];
     auto in = [](uint64_t x, uint64_t offset, uint64_t count) { return x >= offset && x - offset < count; };
@@ -289,13 +308,18 @@ VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name) {
             fail(what + ": the patch of cage face " + std::to_string(fi) + " names a neighbour of another geometry");
     }
   }
+}
+
+// Cage faces and their patches: vertices, control points and neighbours in range, tree words well formed,
+// chord errors finite and ordered (an edge's no larger than its face's).
+void checkPatches(const VgeoData& data, const Fail& fail) {
   for (size_t i = 0; i < data.cageFaces.size(); i++) {
     const auto& f = data.cageFaces[i];
     if (!within(f.firstVertex, f.vertexCount, data.cageFaceVertices.size()) || f.leafCluster >= data.clusters.size())
       fail("cage face " + std::to_string(i) + " refers outside the file's arrays");
   }
   for (uint32_t v : data.cageFaceVertices)
-    if (v >= vertices) fail("a cage face uses a vertex out of range");
+    if (v >= data.vertexCount()) fail("a cage face uses a vertex out of range");
   if (data.controlPoints.size() % 3 != 0) fail("the control points are not x, y, z triples");
   for (float x : data.controlPoints)
     if (!std::isfinite(x)) fail("a control point is not finite");
@@ -321,6 +345,17 @@ VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name) {
     for (int k = 0; k < 4; k++)
       if (!(p.edgeError[k] >= 0.0f) || !std::isfinite(p.edgeError[k]) || p.edgeError[k] > p.faceError) fail(what + " has a bad edge chord error");
   }
+}
+
+}  // namespace
+
+VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name) {
+  const Fail fail{name};
+  VgeoData data = readSections(bytes, size, fail);
+  checkReferences(data, fail);
+  checkBvh(data, fail);
+  checkGeometryOwnership(data, fail);
+  checkPatches(data, fail);
   return data;
 }
 
