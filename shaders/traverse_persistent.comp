@@ -10,8 +10,8 @@
 //      claimed, read beside the previous iteration's slots, shared over the workgroups), from kMinBatch
 //      (a chain of single items, as in a close view of a few instances: spread over many workgroups) to
 //      64 (100,000 instances: fewer claims). The first claim, which nothing has been read for, is sized
-//      by the last frame's instance-culling items (frame.firstClaimItems): sizing it by the instance count
-//      instead made close views of 10,000 instances up to 1.7x slower (a few workgroups took every item).
+//      by the last frame's instance-culling items (frame.firstClaimItems), not the instance count, so that
+//      a few workgroups do not take every item of a close view.
 //   1  written items only (lavapipe): the lanes find the written prefix after the read position and
 //      lane 0 claims it by compare-and-swap; nobody waits on a slot, a workgroup holds nothing between
 //      iterations, so it can leave on the iteration budget (lavapipe ends loops silently after 65,535
@@ -21,12 +21,11 @@
 // before it takes itself off, on the same counter). At 0 nothing more will be written: every slot below the
 // last reservation is then visible (instance culling's, before this dispatch or before its worker left the
 // count) or was a node item, taken already. So a worker that sees 0 lets go of the slots it holds
-// unfilled and leaves: they lie past the end, and every item before them is claimed. One load, read beside
-// the slots (the itemsDone == queueWrite test it replaces took two in a row, every 4th poll: ~8 us after
-// the last item on an H100). A worker that sees 0 and as many slots claimed as reserved leaves after the
+// unfilled and leaves: they lie past the end, and every item before them is claimed: one load, read beside
+// the slots. A worker that sees 0 and as many slots claimed as reserved leaves after the
 // items it took, without claiming again: every item is claimed, whatever order the three loads took
 // effect in (the items reserved after its load of queueWrite were node items, all taken by the time
-// nodesPending read 0). A view that is all sweep runs (no node item at all) ends ~1.5 us sooner on an H100.
+// nodesPending read 0). The constants' measurements: bench/README.md, cut selection.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_ballot : require
@@ -41,20 +40,25 @@ layout(local_size_x = VGEO_TRAVERSAL_WORKGROUP) in;
 #include "cull_instances.glsl"
 #include "draw_arguments.glsl"
 
-const uint kMinBatch = 4u;         // measured on an H100: 4 to 8 best for close views, 16 and more worse
+const uint kMinBatch = 4u;         // the least claim: a close view's chain of single items spreads over workers
 const uint kSerialBatch = 32u;     // batches this large are tested a lane an item (see takeItemSerial)
 
 shared uint sBase;     // first slot of the batch claimed this iteration
 shared uint sCount;    // slots claimed this iteration (0: none)
-shared uint sExit;
+shared uint sExit;     // kWorkerStays, or why the worker leaves after this claim
+const uint kWorkerStays = 0u;
+const uint kWorkerDone = 1u;          // every item is claimed and none will be written (see Termination)
+const uint kWorkerOutOfBudget = 2u;   // lavapipe: the iteration budget is spent (frame.iterationBudget)
 shared uint sHolding;  // lanes still holding a slot (claim mode 0)
 shared uint sLoops;    // loop iterations so far, as lavapipe counts them (see below)
 shared uint sRound;    // the most inner-loop iterations any lane ran this iteration
 shared uint sRead, sReserved, sWritten, sClaiming;  // claim mode 1
 shared uint sDone;     // items this workgroup finished this iteration (added to itemsDone once)
 shared uint sDoneNodes;  // of those, node items (taken off counters.nodesPending once)
-shared uint sFinal;    // claim mode 0: no node item was pending at this iteration's take (2: and every
-                       // reserved slot was claimed)
+shared uint sFinal;    // claim mode 0, read beside this iteration's take:
+const uint kMoreMayCome = 0u;    //   node items pending: a slot not yet written may still be
+const uint kNoMoreWritten = 1u;  //   none pending: a slot not written now never will be
+const uint kAllClaimed = 2u;     //   and every reserved slot is claimed: leave after these items
 shared uint sLetGo;    // claim mode 0: a slot was let go as past the end (then the worker leaves)
 shared uint sBatch;    // claim mode 0: slots the next claim takes
 shared uint sNoItems;  // claim mode 0: instance culling queued nothing (read beside the first claim)
@@ -167,7 +171,7 @@ uint testChild(uint instance, uint child, uint kind) {
 }
 
 // A taken item whose children its own lane tests, for large batches (100,000 instances): spreading them
-// costs more than it saves once every lane has an item (far views 3-5% slower on an H100).
+// costs more than it saves once every lane has an item.
 bool takeItemSerial(uint instance, uint code) {
   if (addClusterItem(1u, instance, code)) return false;
   gNodes++;
@@ -195,9 +199,8 @@ uint entryOf(uint base, uint entries, uint k) {
 
 // Every lane calls it after a barrier, with the round's entry count uniform and non-zero. A lane runs
 // kLaneTests tests before it appends what they drew, with one draw-list atomic a subgroup: an atomic
-// after every test put its round trip between each test and the next (a worker of a close view ran 4
-// tests a lane in ~7 us on an H100). A specialization constant (VGEO_SPEC_LANE_TESTS): 4 on GPUs, 1 on
-// lavapipe, where a lane's arrays of 4 made the main job's traversal ~40% slower (2.7 -> 3.85 ms).
+// after every test would put its round trip between each test and the next. A specialization constant
+// (VGEO_SPEC_LANE_TESTS): 4 on GPUs, 1 on lavapipe, which runs a lane's arrays of 4 slower.
 layout(constant_id = VGEO_SPEC_LANE_TESTS) const uint kLaneTests = 4u;
 void runRound(uint round, uint lane) {
   const uint base = round == 0u ? 0u : kRound2;
@@ -231,7 +234,7 @@ void runRound(uint round, uint lane) {
 // of all its tests (instance, cluster, cone) before the first, so that they go out together, where
 // runRound's tests of a lane run one after another. Only where some lane has more than one test and
 // batches are small (see main): in rounds of one test a lane the extra registers cost more than the
-// overlap gains. Its own function rather than a uniform flag of runRound, which measured slower.
+// overlap gains. Its own function: a uniform flag of runRound costs the other rounds registers.
 void runClusterRound(uint round, uint lane) {
   const uint base = round == 0u ? 0u : kRound2;
   const uint entries = sEntryCounts[round] >> kTestBits;
@@ -318,175 +321,207 @@ void profileExit() {  // lane 0
 #define PROFILE_STAMP(t)
 #endif
 
+// Lane 0 sets the workgroup's shared state before its first claim.
+void startWorker() {
+  sHolding = 0u;
+  sLoops = 0u;
+  sRound = 0u;
+  sClaiming = 0u;
+  sDone = 0u;
+  sDoneNodes = 0u;
+  sEntryCounts[0] = 0u;
+  sEntryCounts[1] = 0u;
+  sKeepCount = 0u;
+  sFinal = kMoreMayCome;
+  sLetGo = 0u;
+  sNoItems = 0u;
+  // The first claim goes out at once (a load of queueWrite first put a round trip in front of every
+  // frame's work), sized to take all of instance culling's items if the last frame's count holds (the
+  // least batch when there is none); the watch lane sizes the next ones by the backlog. An empty queue
+  // ends at the first claim (sNoItems).
+  const uint expected = frame.firstClaimItems;
+  sBatch = clamp((expected + gl_NumWorkGroups.x - 1u) / gl_NumWorkGroups.x, kMinBatch, uint(VGEO_TRAVERSAL_WORKGROUP));
+}
+
+// Small scenes (frame.cullInTraversal): worker w culls instances w, w + workers, ... first, their items
+// written into slots that the other workers may have claimed already (they wait on them as on any slot
+// past the frontier). The host counted every instance in nodesPending and each culling takes its own off,
+// so no worker sees 0 before all are queued.
+void cullInstancesFirst() {
+  for (uint i = gl_WorkGroupID.x; i < frame.instanceCount; i += gl_NumWorkGroups.x) cullInstancesSpread(i, true);
+}
+
+// Claims this iteration's slots for the workgroup (sBase, sCount), or decides that it leaves (sExit,
+// sNoItems). Uniform: every lane returns with the same shared values.
+void claimSlots(uint lane, bool firstClaim) {
+  // Beside the first claim: when instance culling queued nothing, nothing will ever be queued (only node
+  // items produce items), and the workers leave without reading their slots.
+  if (lane == kWatchLane && firstClaim && frame.claimMode == 0u && frame.cullInTraversal == 0u) sNoItems = counters.queueWrite == 0u ? 1u : 0u;
+  if (lane == 0u) {
+    sExit = kWorkerStays;
+    sCount = 0u;
+    if (sLetGo != 0u) {
+      sExit = kWorkerDone;  // past the end: every item is claimed (see Termination)
+    } else if (sHolding == 0u) {
+      if (frame.iterationBudget != 0u && sLoops >= frame.iterationBudget) {
+        sExit = kWorkerOutOfBudget;
+      } else if (frame.claimMode == 0u) {
+        sBase = atomicAdd(counters.queueRead, sBatch);  // one atomic on the chain of steps, nothing before it
+        sCount = sBatch;
+      } else {
+        sRead = atomicOr(counters.queueRead, 0u);
+        sReserved = min(atomicOr(counters.queueWrite, 0u), frame.queueCapacity);
+        sWritten = VGEO_TRAVERSAL_WORKGROUP;
+        sClaiming = 1u;
+      }
+    }
+  }
+  barrier();
+  if (sClaiming != 0u) {
+    // Claim mode 1: only the written prefix of the slots after the read position, found by all lanes
+    // at once, is claimed, so no lane ever waits on a slot (on lavapipe a wait on a reserved slot can
+    // outlast every worker's iteration budget).
+    uint s = sRead + lane;
+    if (s >= sReserved || !slotWritten(s)) atomicMin(sWritten, lane);
+    barrier();
+    if (lane == 0u) {
+      sClaiming = 0u;
+      if (sWritten > 0u && atomicCompSwap(counters.queueRead, sRead, sRead + sWritten) == sRead) {
+        sBase = sRead;
+        sCount = sWritten;
+      } else if (sRead >= sReserved && atomicOr(counters.nodesPending, 0u) == 0u) {
+        sExit = kWorkerDone;  // all claimed, and nothing more will be written (see Termination)
+      }
+    }
+    barrier();
+  }
+}
+
+// The worker leaves (lane 0): the profile, the budget count, and the draw arguments if it is the last.
+void leaveWorker() {
+#ifdef VGEO_PROFILE
+  profileExit();
+#endif
+  if (sExit == kWorkerOutOfBudget) atomicAdd(counters.budgetExits, 1u);
+  // The last worker to leave writes the draw arguments: every other worker's draw-list atomics
+  // returned before its own exit count (a barrier of its workgroup lies between), so the count it
+  // reads is final. Saves the dispatch of finalize.comp and its barrier (draw_arguments.glsl).
+  memoryBarrierBuffer();
+  if (atomicAdd(counters.workgroupsExited, 1u) == gl_NumWorkGroups.x - 1u) {
+    memoryBarrierBuffer();
+    writeDrawArguments();
+  }
+}
+
+// Each lane reads its slot (holding it, in claim mode 0, until a producer fills it) and takes its item:
+// node and group items become this iteration's round entries (traverse_common.glsl). Ends with the
+// workgroup's view of whether anything more will be written (sFinal, sLetGo).
+void takeSlots(uint lane, inout uint slot) {
+  if (lane < sCount) slot = sBase + lane;
+  uint instance, code;
+  bool have = false;
+  if (frame.claimMode == 1u) {
+    // Claimed slots are written (above).
+    have = slot != VGEO_INVALID && takeQueue(slot, instance, code);
+    slot = VGEO_INVALID;
+  } else {
+    if (lane == kWatchLane) {
+      // Beside the lanes' slot reads (a lane of another subgroup than the first slots' on NVIDIA).
+      uint pending = counters.nodesPending, written = counters.queueWrite, read = counters.queueRead;
+      sFinal = pending != 0u ? kMoreMayCome : read >= written ? kAllClaimed : kNoMoreWritten;
+      sBatch = clamp((written > read ? written - read : 0u) / gl_NumWorkGroups.x, kMinBatch, uint(VGEO_TRAVERSAL_WORKGROUP));
+    }
+    if (slot != VGEO_INVALID && slot < frame.queueCapacity && takeQueue(slot, instance, code)) {
+      have = true;
+      slot = VGEO_INVALID;
+    }
+  }
+  bool node = false;
+  if (have) node = sCount >= kSerialBatch ? takeItemSerial(instance, code) : takeItem(instance, code);
+  uint taken = subgroupAdd(have ? 1u : 0u), takenNodes = subgroupAdd(node ? 1u : 0u);
+  if (subgroupElect() && taken != 0u) atomicAdd(sDone, taken);
+  if (subgroupElect() && takenNodes != 0u) atomicAdd(sDoneNodes, takenNodes);
+  if (lane == 0u) sHolding = 0u;
+  noteLoops();
+  barrier();
+  // No node item pending when the slots were read: a slot still unfilled never will be.
+  if (sFinal != kMoreMayCome && slot != VGEO_INVALID) {
+    slot = VGEO_INVALID;
+    sLetGo = 1u;
+  }
+  if (lane == 0u && sFinal == kAllClaimed) sLetGo = 1u;  // nothing left to claim: leave after these items
+}
+
+// Tests the entries of both rounds: round 1 the children of the items taken, round 2 the clusters of the
+// groups round 1 kept (queued or tested here, queueKept).
+void runRounds(uint lane) {
+  // The items count as done below, after both rounds: every child node they keep is reserved by then.
+  // Uniform: shared, read after a barrier. A round of cluster entries only (round 1: no node item taken;
+  // round 2 always) with more tests than lanes preloads them, in claims below kSerialBatch on GPUs
+  // (lavapipe runs a test a lane: kLaneTests is 1 there; bench/README.md, cut selection).
+  const uint testMask = (1u << kTestBits) - 1u;
+  const bool preload = frame.claimMode == 0u && sCount < kSerialBatch;
+  if (preload && sDoneNodes == 0u && (sEntryCounts[0] & testMask) > VGEO_TRAVERSAL_WORKGROUP) runClusterRound(0u, lane);
+  else if (sEntryCounts[0] != 0u) runRound(0u, lane);
+  if (sKeepCount != 0u) {
+    queueKept(lane);
+    noteLoops();
+    barrier();
+  }
+  if (preload && (sEntryCounts[1] & testMask) > VGEO_TRAVERSAL_WORKGROUP) runClusterRound(1u, lane);
+  else if (sEntryCounts[1] != 0u) runRound(1u, lane);
+}
+
+// Lane 0 closes the iteration: counts the lanes still holding slots and lavapipe's loop iterations, and
+// takes this iteration's items off the counters.
+void endIteration(uint lane, uint slot) {
+  uint holding = subgroupAdd(slot != VGEO_INVALID ? 1u : 0u);
+  if (subgroupElect() && holding != 0u) atomicAdd(sHolding, holding);
+  // lavapipe counts a loop iteration for a whole SIMD vector of lanes whenever any of them iterates,
+  // over every loop inside the outermost one: bound that by this iteration and the most inner
+  // iterations any lane ran, plus, as a margin, one count per barrier (up to 10) and vector of 8 lanes.
+  if (lane == 0u) {
+    sLoops += 1u + sRound + 10u * (VGEO_TRAVERSAL_WORKGROUP / 8u);
+    sRound = 0u;
+#ifdef VGEO_PROFILE
+    const uint testMask = (1u << kTestBits) - 1u;
+    profileIteration(sDone, sEntryCounts[0] & testMask, sEntryCounts[1] & testMask, sCount);
+#endif
+    // After the barrier: every child these items produced was reserved (and added to nodesPending)
+    // before they are taken off.
+    if (sDoneNodes != 0u) atomicAdd(counters.nodesPending, 0u - sDoneNodes);
+    if (sDone != 0u) atomicAdd(counters.itemsDone, sDone);
+    sDone = 0u;
+    sDoneNodes = 0u;
+    sEntryCounts[0] = 0u;
+    sEntryCounts[1] = 0u;
+    sKeepCount = 0u;
+  }
+}
+
 void main() {
   beginStats();
   const uint lane = gl_LocalInvocationIndex;
   uint slot = VGEO_INVALID;  // the slot this lane holds (claim mode 0)
   bool firstClaim = true;
   PROFILE_STAMP(pBegin);
-  if (lane == 0u) {
-    sHolding = 0u;
-    sLoops = 0u;
-    sRound = 0u;
-    sClaiming = 0u;
-    sDone = 0u;
-    sDoneNodes = 0u;
-    sEntryCounts[0] = 0u;
-    sEntryCounts[1] = 0u;
-    sKeepCount = 0u;
-    sFinal = 0u;
-    sLetGo = 0u;
-    sNoItems = 0u;
-    // The first claim goes out at once (a load of queueWrite first put a round trip in front of every
-    // frame's work), sized to take all of instance culling's items if the last frame's count holds (the
-    // least batch when there is none); the watch lane sizes the next ones by the backlog. An empty queue
-    // ends at the first claim (sNoItems).
-    const uint expected = frame.firstClaimItems;
-    sBatch = clamp((expected + gl_NumWorkGroups.x - 1u) / gl_NumWorkGroups.x, kMinBatch, uint(VGEO_TRAVERSAL_WORKGROUP));
-  }
-  // Small scenes (frame.cullInTraversal): worker w culls instances w, w + workers, ... first, their items
-  // written into slots that the other workers may have claimed already (they wait on them as on any slot
-  // past the frontier). The host counted every instance in nodesPending and each culling takes its own off,
-  // so no worker sees 0 before all are queued.
-  if (frame.cullInTraversal != 0u)
-    for (uint i = gl_WorkGroupID.x; i < frame.instanceCount; i += gl_NumWorkGroups.x) cullInstancesSpread(i, true);
+  if (lane == 0u) startWorker();
+  if (frame.cullInTraversal != 0u) cullInstancesFirst();
   for (;;) {
     barrier();
     PROFILE_STAMP(pStart);
-    // Beside the first claim: when instance culling queued nothing, nothing will ever be queued (only node
-    // items produce items), and the workers leave without reading their slots (a view with nothing in it
-    // ends ~1 us sooner).
-    if (lane == kWatchLane && firstClaim && frame.claimMode == 0u && frame.cullInTraversal == 0u) sNoItems = counters.queueWrite == 0u ? 1u : 0u;
+    claimSlots(lane, firstClaim);
     firstClaim = false;
-    if (lane == 0u) {
-      sExit = 0u;
-      sCount = 0u;
-      if (sLetGo != 0u) {
-        sExit = 1u;  // past the end: every item is claimed (see Termination)
-      } else if (sHolding == 0u) {
-        if (frame.iterationBudget != 0u && sLoops >= frame.iterationBudget) {
-          sExit = 2u;
-        } else if (frame.claimMode == 0u) {
-          sBase = atomicAdd(counters.queueRead, sBatch);  // one atomic on the chain of steps, nothing before it
-          sCount = sBatch;
-        } else {
-          sRead = atomicOr(counters.queueRead, 0u);
-          sReserved = min(atomicOr(counters.queueWrite, 0u), frame.queueCapacity);
-          sWritten = VGEO_TRAVERSAL_WORKGROUP;
-          sClaiming = 1u;
-        }
-      }
-    }
-    barrier();
-    if (sClaiming != 0u) {
-      // Claim mode 1: only the written prefix of the slots after the read position, found by all lanes
-      // at once, is claimed, so no lane ever waits on a slot. (Waiting on reserved slots, the first
-      // version, sometimes stalled on lavapipe until every worker ran out of iterations.)
-      uint s = sRead + lane;
-      if (s >= sReserved || !slotWritten(s)) atomicMin(sWritten, lane);
-      barrier();
-      if (lane == 0u) {
-        sClaiming = 0u;
-        if (sWritten > 0u && atomicCompSwap(counters.queueRead, sRead, sRead + sWritten) == sRead) {
-          sBase = sRead;
-          sCount = sWritten;
-        } else if (sRead >= sReserved && atomicOr(counters.nodesPending, 0u) == 0u) {
-          sExit = 1u;  // all claimed, and nothing more will be written (see Termination)
-        }
-      }
-      barrier();
-    }
     PROFILE_STAMP(pClaimed);
-    if (sExit != 0u || sNoItems != 0u) {
-      if (lane == 0u) {
-#ifdef VGEO_PROFILE
-        profileExit();
-#endif
-        if (sExit == 2u) atomicAdd(counters.budgetExits, 1u);
-        // The last worker to leave writes the draw arguments: every other worker's draw-list atomics
-        // returned before its own exit count (a barrier of its workgroup lies between), so the count it
-        // reads is final. Saves the dispatch of finalize.comp and its barrier (draw_arguments.glsl).
-        memoryBarrierBuffer();
-        if (atomicAdd(counters.workgroupsExited, 1u) == gl_NumWorkGroups.x - 1u) {
-          memoryBarrierBuffer();
-          writeDrawArguments();
-        }
-      }
-      break;  // uniform: sExit is shared
+    if (sExit != kWorkerStays || sNoItems != 0u) {  // uniform: both are shared
+      if (lane == 0u) leaveWorker();
+      break;
     }
     gLoops = 0u;
-
-    if (lane < sCount) slot = sBase + lane;
-    uint instance, code;
-    bool have = false;
-    if (frame.claimMode == 1u) {
-      // Claimed slots are written (above).
-      have = slot != VGEO_INVALID && takeQueue(slot, instance, code);
-      slot = VGEO_INVALID;
-    } else {
-      if (lane == kWatchLane) {
-        // Beside the lanes' slot reads (a lane of another subgroup than the first slots' on NVIDIA).
-        uint pending = counters.nodesPending, written = counters.queueWrite, read = counters.queueRead;
-        sFinal = pending != 0u ? 0u : read >= written ? 2u : 1u;
-        sBatch = clamp((written > read ? written - read : 0u) / gl_NumWorkGroups.x, kMinBatch, uint(VGEO_TRAVERSAL_WORKGROUP));
-      }
-      if (slot != VGEO_INVALID && slot < frame.queueCapacity && takeQueue(slot, instance, code)) {
-        have = true;
-        slot = VGEO_INVALID;
-      }
-    }
-    bool node = false;
-    if (have) node = sCount >= kSerialBatch ? takeItemSerial(instance, code) : takeItem(instance, code);
-    uint taken = subgroupAdd(have ? 1u : 0u), takenNodes = subgroupAdd(node ? 1u : 0u);
-    if (subgroupElect() && taken != 0u) atomicAdd(sDone, taken);
-    if (subgroupElect() && takenNodes != 0u) atomicAdd(sDoneNodes, takenNodes);
-    if (lane == 0u) sHolding = 0u;
-    noteLoops();
-    barrier();
-    // No node item pending when the slots were read: a slot still unfilled never will be.
-    if (sFinal != 0u && slot != VGEO_INVALID) {
-      slot = VGEO_INVALID;
-      sLetGo = 1u;
-    }
-    if (lane == 0u && sFinal == 2u) sLetGo = 1u;  // nothing left to claim: leave after these items
+    takeSlots(lane, slot);
     PROFILE_STAMP(pTaken);
-    // The items count as done below, after both rounds: every child node they keep is reserved by then.
-    // Uniform: shared, read after a barrier. A round of cluster entries only (round 1: no node item taken;
-    // round 2 always) with more tests than lanes preloads them, in claims below kSerialBatch on GPUs
-    // (lavapipe runs a test a lane: kLaneTests is 1 there). Against runRound for every round, on an H100:
-    // 100 instances 4-5% faster in sum over the cut benchmark's views, 1,000 6%, 10,000 and 100,000 1%.
-    const uint testMask = (1u << kTestBits) - 1u;
-    const bool preload = frame.claimMode == 0u && sCount < kSerialBatch;
-    if (preload && sDoneNodes == 0u && (sEntryCounts[0] & testMask) > VGEO_TRAVERSAL_WORKGROUP) runClusterRound(0u, lane);
-    else if (sEntryCounts[0] != 0u) runRound(0u, lane);
-    if (sKeepCount != 0u) {
-      queueKept(lane);
-      noteLoops();
-      barrier();
-    }
-    if (preload && (sEntryCounts[1] & testMask) > VGEO_TRAVERSAL_WORKGROUP) runClusterRound(1u, lane);
-    else if (sEntryCounts[1] != 0u) runRound(1u, lane);
-    uint holding = subgroupAdd(slot != VGEO_INVALID ? 1u : 0u);
-    if (subgroupElect() && holding != 0u) atomicAdd(sHolding, holding);
-    // lavapipe counts a loop iteration for a whole SIMD vector of lanes whenever any of them iterates,
-    // over every loop inside the outermost one: bound that by this iteration and the most inner
-    // iterations any lane ran, plus, as a margin, one count per barrier (up to 10) and vector of 8 lanes.
-    if (lane == 0u) {
-      sLoops += 1u + sRound + 10u * (VGEO_TRAVERSAL_WORKGROUP / 8u);
-      sRound = 0u;
-#ifdef VGEO_PROFILE
-      profileIteration(sDone, sEntryCounts[0] & testMask, sEntryCounts[1] & testMask, sCount);
-#endif
-      // After the barrier: every child these items produced was reserved (and added to nodesPending)
-      // before they are taken off.
-      if (sDoneNodes != 0u) atomicAdd(counters.nodesPending, 0u - sDoneNodes);
-      if (sDone != 0u) atomicAdd(counters.itemsDone, sDone);
-      sDone = 0u;
-      sDoneNodes = 0u;
-      sEntryCounts[0] = 0u;
-      sEntryCounts[1] = 0u;
-      sKeepCount = 0u;
-    }
+    runRounds(lane);
+    endIteration(lane, slot);
   }
   flushStats();
 }
