@@ -376,7 +376,8 @@ void GpuRenderer::recordRenderPass(VkCommandBuffer cmd, const FrameSettings& set
   vkCmdEndRenderPass(cmd);
 }
 
-FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
+// The frame's constants (shaderio.h, FrameData) for these settings.
+shaderio::FrameData GpuRenderer::frameConstants(const FrameSettings& settings) const {
   shaderio::FrameData frame{};
   frame.viewProjection = settings.drawView.viewProjection;
   for (int i = 0; i < 6; i++) frame.frustum[i] = settings.cullView.planes[i];
@@ -396,17 +397,18 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
   frame.sweepBudget = settings.traversal == Traversal::Persistent ? settings.sweepBudget : 0u;
   frame.firstClaimItems = lastCullItems_;
   frame.cullInTraversal = cullsInTraversal(settings) ? 1u : 0u;
-  const bool cullTriangles = settings.draw && settings.triangleCull;
-  frame.triangleCull = cullTriangles ? 1u : 0u;
+  frame.triangleCull = settings.draw && settings.triangleCull ? 1u : 0u;
   frame.triangleCapacity = triangleCapacity_;
   frame.viewportWidth = float(width_);
   frame.viewportHeight = float(height_);
-  const bool patches = drawsPatches(settings);
-  frame.patches = patches ? 1u : 0u;
+  frame.patches = drawsPatches(settings) ? 1u : 0u;
   frame.patchesPerInstance = vk_.isLavapipe() ? kLavapipePatchesPerInstance : kPatchesPerInstance;
   frame.patchCapacity = patchCapacity_;
-  std::memcpy(frameData_.mapped, &frame, sizeof(frame));
-  const bool profile = settings.profileWorkers && persistentProfile_ && settings.traversal == Traversal::Persistent;
+  return frame;
+}
+
+// Host-visible buffers the frame writes back: the worker profile when profiled, the draw-list copy.
+void GpuRenderer::prepareReadbacks(const FrameSettings& settings, bool profile) {
   if (profile) {
     const VkDeviceSize bytes = VkDeviceSize(persistentWorkgroups_) * VGEO_PROFILE_WORKER_WORDS * 4;
     if (workerProfile_.size < bytes) {
@@ -421,11 +423,14 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
     vk_.destroyBuffer(drawListReadback_);
     drawListReadback_ = vk_.createBuffer(drawList_.size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
   }
+}
 
-  FrameResult result;
-  result.culledInTraversal = frame.cullInTraversal != 0u;
+// Records and submits the passes in frame order (instance culling, traversal, triangle culling, draw)
+// and times each: GPU timestamps in one submission, or on lavapipe one submission a pass timed on the
+// host.
+void GpuRenderer::runPasses(const FrameSettings& settings, const shaderio::FrameData& frame, FrameResult& result) {
   double period = vk_.timestampPeriod();
-  auto start = std::chrono::steady_clock::now();
+  const auto start = std::chrono::steady_clock::now();
   if (vk_.isLavapipe() || period == 0.0) {
     // lavapipe's compute timestamps are wrong after the first submission (docs/gpu-notes.md, 3): one submission
     // a stage, timed on the host.
@@ -439,7 +444,7 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
     };
     result.instanceCullMs = timed([&](VkCommandBuffer cmd) { recordInstanceCull(cmd, settings); });
     result.traversalMs = timed([&](VkCommandBuffer cmd) { recordTraversal(cmd, settings); });
-    if (cullTriangles) result.triangleCullMs = timed([&](VkCommandBuffer cmd) { recordTriangleCull(cmd); });
+    if (frame.triangleCull != 0u) result.triangleCullMs = timed([&](VkCommandBuffer cmd) { recordTriangleCull(cmd); });
     result.drawMs = timed([&](VkCommandBuffer cmd) { recordDraw(cmd, settings); });
     result.frameMs = msSince(start);
   } else {
@@ -451,7 +456,7 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1);
     recordTraversal(cmd, settings);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 2);
-    if (cullTriangles) recordTriangleCull(cmd);
+    if (frame.triangleCull != 0u) recordTriangleCull(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 3);
     recordDraw(cmd, settings);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 4);
@@ -466,9 +471,14 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
     result.drawMs = ms(3, 4);
     result.frameMs = ms(0, 4);
   }
+}
 
+// Copies what the frame left in host-visible memory into the result: counters, tessellator statistics,
+// image, draw list, worker profile.
+void GpuRenderer::readResults(const FrameSettings& settings, const shaderio::FrameData& frame, bool profile, FrameResult& result) {
   std::memcpy(&result.counters, countersReadback_.mapped, sizeof(result.counters));
   const auto& c = result.counters;
+  const bool patches = frame.patches != 0u, cullTriangles = frame.triangleCull != 0u;
   lastCullItems_ = settings.traversal == Traversal::Persistent ? c.cullItems : 0u;
   result.trianglesDrawn = cullTriangles ? std::min(c.trianglesDrawn, triangleCapacity_) : c.triangles;
   result.patchesDrawn = std::min(c.patchesDrawn, patchCapacity_);
@@ -495,6 +505,13 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
     const uint32_t* p = static_cast<const uint32_t*>(workerProfile_.mapped);
     result.workerProfile.assign(p, p + size_t(persistentWorkgroups_) * VGEO_PROFILE_WORKER_WORDS);
   }
+}
+
+// Whether the frame is complete; a traversal whose workers all ran out of iterations before the queue
+// drained (lavapipe) gets twice the workers next frame (false then). A queue that did not drain for any
+// other reason is a bug of the traversal and throws.
+bool GpuRenderer::checkDrained(FrameResult& result) {
+  const auto& c = result.counters;
   bool drained = c.itemsDone == c.queueWrite;
   result.complete = c.queueOverflow == 0 && c.drawOverflow == 0 && c.triangleOverflow == 0 && c.patchOverflow == 0 && drained;
   // Every worker left on its iteration budget (lavapipe) before the queue drained: twice as many for the
@@ -504,46 +521,61 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
   if (result.workersRanOut) {
     persistentWorkgroups_ = std::min(2 * persistentWorkgroups_, kMaxPersistentWorkgroups);
     setCapacities(queueCapacity_, drawCapacity_, triangleCapacity_, patchCapacity_);
-    return result;
+    return false;
   }
   if (!drained && c.queueOverflow == 0)
     throw std::runtime_error("traversal did not drain its queue (" + std::to_string(c.itemsDone) + " of " + std::to_string(c.queueWrite) +
                              " items done, " + std::to_string(c.queueRead) + " claimed; " + std::to_string(c.workgroupsExited) + " of " +
                              std::to_string(persistentWorkgroups_) + " workers left, " + std::to_string(c.budgetExits) + " on their budget)");
-  // Grow what overflowed, for the next frame: to at least what this frame asked for, within what one
-  // storage buffer can address and the frame memory limit; a cut that cannot fit stops here.
-  if (c.queueOverflow || c.drawOverflow || c.triangleOverflow || c.patchOverflow) {
-    const uint64_t range = vk_.properties().limits.maxStorageBufferRange;
-    struct List {
-      const char* name;
-      bool overflowed;
-      uint32_t capacity;
-      uint64_t needed, bytesEach, most;
-    } lists[4] = {{"queue items", c.queueOverflow != 0, queueCapacity_, c.queueHighWater, 8, range / 8},
-                  {"draw-list entries", c.drawOverflow != 0, drawCapacity_, c.drawCount, 8, std::min<uint64_t>(range / 8, VGEO_MAX_DRAW_ENTRIES)},
-                  {"triangles", c.triangleOverflow != 0, triangleCapacity_, c.trianglesDrawn, 4, range / 4},
-                  {"patches", c.patchOverflow != 0, patchCapacity_, c.patchesDrawn, 4, range / 4}};
-    char tauText[32];
-    std::snprintf(tauText, sizeof tauText, "%g", double(settings.tau));
-    uint64_t neededBytes = 0, wantedBytes = 0, want[4];
-    for (int i = 0; i < 4; i++) {
-      const List& l = lists[i];
-      const uint64_t needed = l.overflowed ? std::max<uint64_t>(l.needed, uint64_t(l.capacity) + 1) : l.capacity;
-      if (needed > l.most)
-        throw FrameMemoryError(std::string("the cut at tau ") + tauText + " needs " + std::to_string(needed) + " " + l.name + ", more than one buffer of " +
-                               std::to_string(range >> 20) + " MiB (maxStorageBufferRange) holds on this device: raise --tau or render a smaller view");
-      want[i] = std::min<uint64_t>(l.overflowed ? std::max<uint64_t>(uint64_t(l.capacity) * 2, needed * 5 / 4) : l.capacity, std::min<uint64_t>(l.most, UINT32_MAX / 2));
-      neededBytes += needed * l.bytesEach;
-      wantedBytes += want[i] * l.bytesEach;
-    }
-    if (neededBytes > frameMemoryLimit_)
-      throw FrameMemoryError(std::string("the cut at tau ") + tauText + " needs " + std::to_string(neededBytes >> 20) + " MiB of frame lists (" +
-                             std::to_string(c.drawCount) + " clusters, " + std::to_string(c.trianglesDrawn) + " triangles), past the limit of " +
-                             std::to_string(frameMemoryLimit_ >> 20) + " MiB (--max-frame-memory): raise --tau or the limit");
-    if (wantedBytes > frameMemoryLimit_)  // room to grow is a nicety: just what was asked for then
-      for (int i = 0; i < 4; i++) want[i] = lists[i].overflowed ? std::max<uint64_t>(lists[i].needed, uint64_t(lists[i].capacity) + 1) : lists[i].capacity;
-    setCapacities(uint32_t(want[0]), uint32_t(want[1]), uint32_t(want[2]), uint32_t(want[3]));
+  return true;
+}
+
+// Grow what overflowed, for the next frame: to at least what this frame asked for, within what one
+// storage buffer can address and the frame memory limit; a cut that cannot fit stops here.
+void GpuRenderer::growOverflowedLists(const shaderio::Counters& c, float tau) {
+  if (!(c.queueOverflow || c.drawOverflow || c.triangleOverflow || c.patchOverflow)) return;
+  const uint64_t range = vk_.properties().limits.maxStorageBufferRange;
+  struct List {
+    const char* name;
+    bool overflowed;
+    uint32_t capacity;
+    uint64_t needed, bytesEach, most;
+  } lists[4] = {{"queue items", c.queueOverflow != 0, queueCapacity_, c.queueHighWater, 8, range / 8},
+                {"draw-list entries", c.drawOverflow != 0, drawCapacity_, c.drawCount, 8, std::min<uint64_t>(range / 8, VGEO_MAX_DRAW_ENTRIES)},
+                {"triangles", c.triangleOverflow != 0, triangleCapacity_, c.trianglesDrawn, 4, range / 4},
+                {"patches", c.patchOverflow != 0, patchCapacity_, c.patchesDrawn, 4, range / 4}};
+  char tauText[32];
+  std::snprintf(tauText, sizeof tauText, "%g", double(tau));
+  uint64_t neededBytes = 0, wantedBytes = 0, want[4];
+  for (int i = 0; i < 4; i++) {
+    const List& l = lists[i];
+    const uint64_t needed = l.overflowed ? std::max<uint64_t>(l.needed, uint64_t(l.capacity) + 1) : l.capacity;
+    if (needed > l.most)
+      throw FrameMemoryError(std::string("the cut at tau ") + tauText + " needs " + std::to_string(needed) + " " + l.name + ", more than one buffer of " +
+                             std::to_string(range >> 20) + " MiB (maxStorageBufferRange) holds on this device: raise --tau or render a smaller view");
+    want[i] = std::min<uint64_t>(l.overflowed ? std::max<uint64_t>(uint64_t(l.capacity) * 2, needed * 5 / 4) : l.capacity, std::min<uint64_t>(l.most, UINT32_MAX / 2));
+    neededBytes += needed * l.bytesEach;
+    wantedBytes += want[i] * l.bytesEach;
   }
+  if (neededBytes > frameMemoryLimit_)
+    throw FrameMemoryError(std::string("the cut at tau ") + tauText + " needs " + std::to_string(neededBytes >> 20) + " MiB of frame lists (" +
+                           std::to_string(c.drawCount) + " clusters, " + std::to_string(c.trianglesDrawn) + " triangles), past the limit of " +
+                           std::to_string(frameMemoryLimit_ >> 20) + " MiB (--max-frame-memory): raise --tau or the limit");
+  if (wantedBytes > frameMemoryLimit_)  // room to grow is a nicety: just what was asked for then
+    for (int i = 0; i < 4; i++) want[i] = lists[i].overflowed ? std::max<uint64_t>(lists[i].needed, uint64_t(lists[i].capacity) + 1) : lists[i].capacity;
+  setCapacities(uint32_t(want[0]), uint32_t(want[1]), uint32_t(want[2]), uint32_t(want[3]));
+}
+
+FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
+  const shaderio::FrameData frame = frameConstants(settings);
+  std::memcpy(frameData_.mapped, &frame, sizeof(frame));
+  const bool profile = settings.profileWorkers && persistentProfile_ && settings.traversal == Traversal::Persistent;
+  prepareReadbacks(settings, profile);
+  FrameResult result;
+  result.culledInTraversal = frame.cullInTraversal != 0u;
+  runPasses(settings, frame, result);
+  readResults(settings, frame, profile, result);
+  if (checkDrained(result)) growOverflowedLists(result.counters, settings.tau);
   return result;
 }
 

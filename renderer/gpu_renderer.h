@@ -98,9 +98,8 @@ class GpuRenderer {
   }
   // Whether the persistent traversal culls the instances itself (FrameSettings::instanceCulling), with
   // VGEO_CULL_INSTANCE_LANES lanes an instance: never with cullLanes 1; Auto on GPUs, in scenes of up to
-  // kCullInTraversalPerWorker instances a worker. On an H100 (396 workers, the cut benchmark's 24 views a
-  // size summed against the culling pass): 1 to 400 instances 8-11% faster, 1,000 (2.5 a worker) 4.5%
-  // faster, 3,000 (7.6) 9% slower. InTraversal up to kCullInTraversalMaxPerWorker a worker: lavapipe
+  // kCullInTraversalPerWorker instances a worker, where it beat the culling pass (bench/README.md, cut
+  // selection). InTraversal up to kCullInTraversalMaxPerWorker a worker: lavapipe
   // counts the culling's loop iterations (~50 an instance at most) against its limit of 65,535 an
   // invocation, past the traversal's budget (kLavapipeIterationBudget), which leaves ~15,000 to spare.
   static constexpr size_t kCullInTraversalPerWorker = 3, kCullInTraversalMaxPerWorker = 64;
@@ -116,13 +115,19 @@ class GpuRenderer {
   void createPipelines();
   void createQueueAndDrawList();
   void writeDescriptors();
+  // renderFrame's steps, in order (gpu_renderer.cpp).
+  shaderio::FrameData frameConstants(const FrameSettings& settings) const;
+  void prepareReadbacks(const FrameSettings& settings, bool profile);
+  void runPasses(const FrameSettings& settings, const shaderio::FrameData& frame, FrameResult& result);
+  void readResults(const FrameSettings& settings, const shaderio::FrameData& frame, bool profile, FrameResult& result);
+  bool checkDrained(FrameResult& result);
+  void growOverflowedLists(const shaderio::Counters& counters, float tau);
   void recordCounterReset(VkCommandBuffer cmd, uint32_t nodesPending = 0);
   void recordInstanceCull(VkCommandBuffer cmd, const FrameSettings& settings);
   // Lanes that cull one instance: VGEO_CULL_INSTANCE_LANES test a root's children side by side (a shorter
   // chain in front of the traversal of a small scene); in large scenes one, as the reservations of many
-  // more workgroups on one counter cost more than that (H100: 100,000 instances 0.09 -> 0.19 ms at 8
-  // lanes); on lavapipe one (a CPU's SIMD lanes gain nothing from the spread: the default scene's culling
-  // took 1.2 instead of 0.3 ms).
+  // more workgroups on one counter cost more than that; on lavapipe one (a CPU's SIMD lanes gain nothing
+  // from the spread).
   uint32_t cullInstanceLanes(const FrameSettings& settings) const {
     if (settings.cullLanes != 0) return settings.cullLanes == 1 ? 1 : VGEO_CULL_INSTANCE_LANES;
     return !vk_.isLavapipe() && scene_.data.instances.size() <= VGEO_CULL_SPREAD_INSTANCES ? VGEO_CULL_INSTANCE_LANES : 1;

@@ -6,8 +6,8 @@
 // root is never a queue item.
 // cullInstancesSpread: VGEO_CULL_INSTANCE_LANES lanes an instance (workgroups of VGEO_CULL_WORKGROUP lanes,
 // defined by the includer) test the children side by side and the workgroup queues them with one
-// reservation (one lane testing ~20 children in a row put a chain of ~20 loads in front of the traversal:
-// 10-18% of a close view's selection on an H100). The root's children come from the instance record
+// reservation (one lane testing ~20 children in a row puts a chain of ~20 loads in front of the
+// traversal). The root's children come from the instance record
 // (Instance::rootChildOffset), not from the root's.
 // Sweeps (persistent traversal): a kept level subtree whose clusters are one run may be queued as runs of
 // up to VGEO_SWEEP_RUN clusters instead, tested in one step rather than down a chain of node steps. The
@@ -26,8 +26,8 @@ bool instanceVisible(uint instance, out Instance inst, out Geometry g) {
 }
 
 #ifndef VGEO_CULL_SERIAL
-// The serial variant declares none of these shared arrays: with them (~14 KB a workgroup at 8 lanes an
-// instance, unused) culling 100,000 instances took ~0.047 instead of ~0.030 ms on an H100.
+// The serial variant declares none of these shared arrays: unused, their ~14 KB a workgroup would still
+// lower how many workgroups run at once.
 const uint kCullInstances = uint(VGEO_CULL_WORKGROUP) / VGEO_CULL_INSTANCE_LANES;  // instances a workgroup
 const uint kMaxKept = kCullInstances * VGEO_BVH_ROOT_WIDTH;
 const uint kRunBits = 20u;  // sSwept: swept items << kRunBits | their runs
@@ -64,8 +64,7 @@ void cullInstancesSpread(uint firstInstance, bool inTraversal) {
   const bool visible = instanceVisible(instance, inst, g);
   if (frame.queueRoots == 0u && visible) {
     // The root's children from the instance record (not from the root's record: a load less in a row),
-    // once the instance is known to be visible: an instance out of view loads none (a view with nothing in
-    // it culled ~0.7 us sooner on an H100; close views the same within +-0.6 us).
+    // once the instance is known to be visible: an instance out of view loads none.
     const uint count = (inst.flags >> VGEO_INSTANCE_ROOT_COUNT_SHIFT) & 0xffu;
     const bool leaf = (inst.flags & VGEO_INSTANCE_ROOT_LEAF) != 0u;
     for (uint i = part; i < count; i += lanes) {
@@ -121,11 +120,9 @@ void cullInstancesSpread(uint firstInstance, bool inTraversal) {
     if (sKeptRunCount[k] == 0u && !writeQueue(sFirst + runs + sKeptSlot[k], sKeptInstance[k], sKeptCode[k]) && (sKeptCode[k] & VGEO_ITEM_GROUP_BIT) == 0u)
       atomicAdd(sDropped, 1u);
   // Each lane writes a contiguous share of the runs, over all swept items at once: one search for its
-  // first run, then along the items (a search for every run put ~10 in a row in the heaviest workgroup of
-  // a close view of 100 instances; the shares were ~1% faster in sum over those views on an H100). A loop
-  // over the items, their runs spread over the lanes, cost a far view of 100 instances (a run an item, ~12
-  // items a workgroup) ~6 us, and one lane writing an item's runs in a row cost a close view 0.029 instead
-  // of 0.020 ms.
+  // first run, then along the items; not a search for every run (they come ~10 in a row in the heaviest
+  // workgroup of a close view), nor the runs of one item spread over the lanes (far views have one run an
+  // item), nor one lane writing an item's runs in a row (close views have many).
   const uint share = (runs + uint(VGEO_CULL_WORKGROUP) - 1u) / uint(VGEO_CULL_WORKGROUP);
   uint j = lane * share;
   const uint end = min(j + share, runs);

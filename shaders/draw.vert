@@ -1,7 +1,6 @@
 #version 450
 // draw.vert: corner gl_VertexIndex % 3 of a triangle of a draw-list entry, which names (instance, cluster).
-// One draw of 384-vertex instances (docs/gpu-notes.md, 14: never one huge vertex count; lavapipe also drew the
-// same 114k triangles 3x slower as one instance of 344k vertices than as 896 instances of 384).
+// One draw of 384-vertex instances (docs/gpu-notes.md, 14: never one huge vertex count).
 // With triangle culling (the default), instance i draws triangles 128 i .. 128 i + 127 of the triangle
 // list, each naming its entry and triangle; without, instance i is draw-list entry i and vertex / 3 the
 // cluster's triangle. Slots past the end collapse to a point outside the clip volume.

@@ -2,8 +2,7 @@
 // holds): the triangle-culling dispatch, one workgroup an entry in rows of 65,535 (the least
 // maxComputeWorkGroupCount a device may have), or, without triangle culling, the indirect draw of 384
 // vertices an entry. One invocation calls it: finalize.comp (levels), the flat traversal's reset pass,
-// or the persistent traversal's last worker to leave, so the last two need no dispatch of its own (on an
-// H100 a frame with nothing visible took ~2 us less in the persistent traversal, ~4.5 us less in the flat).
+// or the persistent traversal's last worker to leave, so the last two need no dispatch of its own.
 void writeDrawArguments() {
   uint listed = min(atomicOr(counters.drawCount, 0u), frame.drawCapacity);
   counters.dispatch[0] = min(listed, 65535u);

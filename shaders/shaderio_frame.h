@@ -122,7 +122,7 @@ struct FrameData {
 
 // GPU counters of one frame, and the indirect arguments built from them. The counters the persistent
 // traversal's workers hit all the time each have a 128-byte line of their own (atomics on one line are
-// served one after another at the L2; the cut benchmark on an H100 was ~1% faster this way).
+// served one after another at the L2).
 #define VGEO_COUNTER_LINE_PAD 31
 struct Counters {
   uint queueWrite;       // items reserved in the traversal queue

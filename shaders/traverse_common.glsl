@@ -47,9 +47,8 @@ uint reserveQueue(uint count) {
 }
 
 // An item is published by two plain stores and taken once both words are seen (each slot is written once
-// a frame, and both words are VGEO_INVALID until then), so neither side needs a memory barrier: on an
-// H100 a barrier and an atomic exchange per child were a large part of each step of the traversal's
-// chain of dependent steps.
+// a frame, and both words are VGEO_INVALID until then), so neither side needs a memory barrier, which
+// would sit on every step of the traversal's chain of dependent steps.
 // Returns whether the slot exists (false: the item was dropped as overflow).
 bool writeQueue(uint slot, uint instance, uint code) {
   if (slot >= frame.queueCapacity) return false;
