@@ -2,7 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
-#include "../renderer/cut.h"
+#include "../reference/cut.h"
 #include "commands.h"
 
 namespace vgeo {

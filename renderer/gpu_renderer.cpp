@@ -1,4 +1,4 @@
-// gpu_renderer.cpp: the frame. Read renderFrame() top to bottom: it is the list of passes.
+// gpu_renderer.cpp: the frame. renderFrame() is its steps; runPasses() records the passes, in this order:
 //   1. reset counters            (transfer)
 //   2. cull_instances.comp       1 or 64 lanes an instance (64 on GPUs up to 4,096 instances) -> queue of
 //                                (instance, level subtree root), or of (instance, BVH root) for flat; in
@@ -12,7 +12,8 @@
 //   5. cull_triangles.comp       one workgroup a listed cluster -> triangle list of what can make fragments
 //      finalize_triangles.comp   indirect draw arguments from the triangle count
 //   6. render pass: one vkCmdDrawIndirect of the listed triangles (draw.vert, draw.frag); without
-//      triangle culling, of 384 vertices x listed clusters
+//      triangle culling, of 384 vertices x listed clusters; then one of the listed patches, one vertex
+//      a patch (patch.vert, patch.tesc, patch.tese)
 //   7. copies back: counters (and the image / draw list when asked), read once the frame is done
 // No host read-back happens inside the frame; the host reads the counters after it, and a frame that
 // overflowed grows the buffers for the next one.

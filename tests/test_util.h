@@ -10,7 +10,7 @@
 #include <string>
 
 #include "../builder/build_scene.h"
-#include "../renderer/cut.h"
+#include "../reference/cut.h"
 
 namespace vgeo::test {
 

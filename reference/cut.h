@@ -1,4 +1,5 @@
-// cut.h: the CPU reference LOD cut and the invariant checker of docs/design.md (cut.cpp, check.cpp).
+// cut.h: the CPU reference LOD cut and the invariant checker of docs/design.md (cut.cpp, check.cpp),
+// apart from the renderer: they read only the .vgeo.
 // The renderer's GPU draw list is tested against selectCut; `vgeo check` runs checkVgeo.
 #pragma once
 
