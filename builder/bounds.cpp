@@ -23,7 +23,8 @@ glm::vec4 roundOutward(MinSphere& ms, const glm::dvec4* spheres, size_t count) {
   for (int i = 0; i < 3; i++, ++it) c[i] = *it;
   const glm::vec3 center{float(c[0]), float(c[1]), float(c[2])};
   double radius = 0.0;
-  for (size_t i = 0; i < count; i++) radius = std::max(radius, glm::distance(glm::dvec3(center), glm::dvec3(spheres[i])) + spheres[i].w);
+  for (size_t i = 0; i < count; i++)
+    radius = std::max(radius, glm::distance(glm::dvec3(center), glm::dvec3(spheres[i])) + spheres[i].w);
   float r = float(radius);
   while (double(r) < radius) r = std::nextafter(r, INFINITY);
   return glm::vec4(center, r);

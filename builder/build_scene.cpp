@@ -73,8 +73,8 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
   if (options.subdivisionLevels < 0) throw InputError(path, "--subdiv must be >= 0");
 
   std::vector<PolygonMesh> leaves(scene.meshes.size());
-  std::vector<std::vector<glm::vec3>> leafNormals(scene.meshes.size());  // limit normals of subdivided cages
-  std::vector<MeshPatches> patches(scene.meshes.size());  // and their limit-surface patches
+  std::vector<std::vector<glm::vec3>> leafNormals(scene.meshes.size());    // limit normals of subdivided cages
+  std::vector<MeshPatches> patches(scene.meshes.size());                   // and their limit-surface patches
   std::vector<std::vector<PatchErrors>> patchErrors(scene.meshes.size());  // chord errors of their faces
   std::vector<bool> closed(scene.meshes.size());
   for (size_t m = 0; m < scene.meshes.size(); m++) {
@@ -91,8 +91,9 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
     predictSize(mesh, report.boundaryEdges, options.subdivisionLevels, vertices, triangles);
     // Cluster triangles over all levels (~2x the leaves) and vertices must stay addressable by uint32.
     if (vertices > double(UINT32_MAX) || triangles * 2.0 > double(INT32_MAX))
-      throw InputError(where, "too large for the format's 32-bit indices: --subdiv " + std::to_string(options.subdivisionLevels) +
-                                  " would make " + std::to_string(uint64_t(triangles)) + " triangles over " +
+      throw InputError(where, "too large for the format's 32-bit indices: --subdiv " +
+                                  std::to_string(options.subdivisionLevels) + " would make " +
+                                  std::to_string(uint64_t(triangles)) + " triangles over " +
                                   std::to_string(uint64_t(vertices)) + " vertices (limit about 1 billion triangles)");
   }
   auto subdivideStart = std::chrono::steady_clock::now();
@@ -121,7 +122,9 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
     bo.threads = options.threads;
     bo.leafFaceErrors = &patchErrors[m];
     if (options.progress)
-      bo.progress = [&, m](double f, const char* stage) { options.progress((double(m) + f) / double(leaves.size()), stage); };
+      bo.progress = [&, m](double f, const char* stage) {
+        options.progress((double(m) + f) / double(leaves.size()), stage);
+      };
     const ShadingNormals shading = shadingNormals(leaves[m], leafNormals[m], options.creaseAngleDegrees);
     bo.shading = &shading;
     const std::string where = scene.meshes.size() > 1 ? path + " (mesh '" + scene.meshNames[m] + "')" : path;
@@ -145,7 +148,8 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
     }
     stats.rootClusters += dag.rootClusters;
     if (dag.rootClusters > dag.roots.components)
-      stats.unreduced.push_back({scene.meshes.size() > 1 ? scene.meshNames[m] : path, dag.rootClusters, dag.roots, unreducedReason(dag.roots)});
+      stats.unreduced.push_back({scene.meshes.size() > 1 ? scene.meshNames[m] : path, dag.rootClusters, dag.roots,
+                                 unreducedReason(dag.roots)});
     stats.relaxedGroups += dag.relaxedGroups;
     stats.stuckGroups += dag.stuckGroups;
     patchErrors[m] = {};
@@ -154,7 +158,8 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
   stats.buildSeconds = secondsSince(buildStart);
   for (const SourceInstance& inst : scene.instances) {
     shaderio::Instance out = makeInstance(inst.transform, inst.mesh, closed[inst.mesh]);
-    if (out.maxScale > 0.0f && std::isfinite(out.maxScale)) data.instances.push_back(out);  // a zero scale shows nothing
+    if (out.maxScale > 0.0f && std::isfinite(out.maxScale))
+      data.instances.push_back(out);  // a zero scale shows nothing
   }
   stats.geometries = uint32_t(data.geometries.size());
   stats.instances = uint32_t(data.instances.size());

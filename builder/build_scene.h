@@ -21,27 +21,27 @@ struct SceneBuildOptions {
 
 // A mesh whose DAG ended with more root clusters than its root level has connected components, and why.
 struct UnreducedMesh {
-  std::string mesh;            // the file, or the glTF mesh's name
+  std::string mesh;  // the file, or the glTF mesh's name
   uint64_t rootClusters = 0;
-  SurfaceTopology roots;       // of the root level
+  SurfaceTopology roots;  // of the root level
   std::string reason;
 };
 
 struct SceneBuildStats {
-  uint64_t inputTriangles = 0;   // of the input file's faces, fanned
-  uint64_t leafTriangles = 0;    // after subdivision: the finest level
+  uint64_t inputTriangles = 0;  // of the input file's faces, fanned
+  uint64_t leafTriangles = 0;   // after subdivision: the finest level
   uint64_t clusters = 0;
   uint64_t leafClusters = 0;
-  uint64_t clusterTriangles = 0; // over all levels
+  uint64_t clusterTriangles = 0;  // over all levels
   uint32_t levels = 0;
-  std::vector<uint64_t> levelClusters;   // summed over geometries
+  std::vector<uint64_t> levelClusters;  // summed over geometries
   std::vector<uint64_t> levelTriangles;
   uint64_t rootClusters = 0;
   uint64_t relaxedGroups = 0;
   uint64_t stuckGroups = 0;
   uint32_t geometries = 0;
   uint32_t instances = 0;
-  RepairReport repair;           // summed over meshes
+  RepairReport repair;  // summed over meshes
   std::vector<UnreducedMesh> unreduced;
   double loadSeconds = 0.0, subdivideSeconds = 0.0, buildSeconds = 0.0;
 };

@@ -18,7 +18,6 @@
 
 namespace vgeo {
 
-
 // An indexed polygon mesh: face f has the corners faceVertices[faceStart[f] .. faceStart[f+1]). Shading
 // normals the input gave (glTF NORMAL, OBJ vn, PLY nx ny nz) travel with the corners, one a corner, or
 // are absent (cornerNormals empty); every step that moves corners moves them alike.
@@ -31,7 +30,9 @@ struct PolygonMesh {
   size_t faceCount() const { return faceStart.size() - 1; }
   uint32_t faceSize(size_t f) const { return faceStart[f + 1] - faceStart[f]; }
   const uint32_t* face(size_t f) const { return faceVertices.data() + faceStart[f]; }
-  const glm::vec3* faceNormals(size_t f) const { return cornerNormals.empty() ? nullptr : cornerNormals.data() + faceStart[f]; }
+  const glm::vec3* faceNormals(size_t f) const {
+    return cornerNormals.empty() ? nullptr : cornerNormals.data() + faceStart[f];
+  }
   void addFace(const uint32_t* corners, size_t count, const glm::vec3* normals = nullptr) {
     faceVertices.insert(faceVertices.end(), corners, corners + count);
     if (normals) cornerNormals.insert(cornerNormals.end(), normals, normals + count);
@@ -71,16 +72,16 @@ SourceScene singleMeshScene(PolygonMesh mesh);
 
 // ---- repair.cpp -------------------------------------------------------------------------------------
 struct RepairReport {
-  size_t weldedVertices = 0;        // vertices merged because they had bit-identical positions
-  size_t degenerateFaces = 0;       // dropped: fewer than 3 distinct corners after welding
-  size_t duplicateFaces = 0;        // dropped: same corner set as an earlier face
-  size_t nonManifoldEdges = 0;      // edges with more than two faces, or two faces of one orientation
-  size_t splitVertices = 0;         // vertex copies added to make every edge and vertex manifold
-  size_t boundaryEdges = 0;         // edges with one face after repair (0 means closed)
-  size_t unusedVertices = 0;        // dropped: referenced by no face
-  size_t dissolvedVertices = 0;     // taken out of the two faces that fold through them (valence 2)
-  size_t flippedFaces = 0;          // turned to agree with their component (orientFaces)
-  size_t components = 0;            // of faces joined through two-face edges
+  size_t weldedVertices = 0;     // vertices merged because they had bit-identical positions
+  size_t degenerateFaces = 0;    // dropped: fewer than 3 distinct corners after welding
+  size_t duplicateFaces = 0;     // dropped: same corner set as an earlier face
+  size_t nonManifoldEdges = 0;   // edges with more than two faces, or two faces of one orientation
+  size_t splitVertices = 0;      // vertex copies added to make every edge and vertex manifold
+  size_t boundaryEdges = 0;      // edges with one face after repair (0 means closed)
+  size_t unusedVertices = 0;     // dropped: referenced by no face
+  size_t dissolvedVertices = 0;  // taken out of the two faces that fold through them (valence 2)
+  size_t flippedFaces = 0;       // turned to agree with their component (orientFaces)
+  size_t components = 0;         // of faces joined through two-face edges
   size_t nonOrientableComponents = 0;
 };
 // Welds bit-identical positions, drops degenerate and duplicate faces, and splits non-manifold edges and
@@ -116,15 +117,18 @@ struct ShadingNormals {
   std::vector<uint32_t> wedgeVertex;
   std::vector<glm::vec3> wedgeNormal;  // unit
   std::vector<uint32_t> wedgeStart;
-  bool oneAVertex = true;              // every vertex has one: wedge w is vertex w
-  uint32_t wedgeOfCorner(const PolygonMesh& mesh, uint32_t corner) const { return oneAVertex ? mesh.faceVertices[corner] : cornerWedge[corner]; }
+  bool oneAVertex = true;  // every vertex has one: wedge w is vertex w
+  uint32_t wedgeOfCorner(const PolygonMesh& mesh, uint32_t corner) const {
+    return oneAVertex ? mesh.faceVertices[corner] : cornerWedge[corner];
+  }
   // The wedge of `vertex` whose normal is nearest `faceNormal` (a coarse triangle's corner).
   uint32_t nearestWedge(uint32_t vertex, glm::vec3 faceNormal) const;
 };
 // Wedges of a leaf mesh: from `vertexNormals` when given (a subdivided cage's limit normals, one a
 // vertex), else from the mesh's cornerNormals when it has them, else from its faces, with a crease
 // wherever two faces meet at more than creaseAngleDegrees (180: smooth everywhere).
-ShadingNormals shadingNormals(const PolygonMesh& mesh, const std::vector<glm::vec3>& vertexNormals, float creaseAngleDegrees);
+ShadingNormals shadingNormals(const PolygonMesh& mesh, const std::vector<glm::vec3>& vertexNormals,
+                              float creaseAngleDegrees);
 
 // ---- subdivide.cpp ----------------------------------------------------------------------------------
 // Faces of `mesh` after `levels` rounds, computed without allocating; used to reject sizes that would not
@@ -158,8 +162,8 @@ class QuadCorners {
 // The faces of a quad mesh touching any of `vertices` (first `firstFace`, when given), as a mesh of their
 // own with `positions` whose vertices 0 .. count - 1 are `vertices`: what one round of subdivision needs
 // to get those vertices' rings right (limit.cpp, mesh_patches.cpp). Small neighbourhoods: linear scans.
-PolygonMesh facesAround(const PolygonMesh& mesh, const std::vector<glm::vec3>& positions, const QuadCorners& q, const uint32_t* vertices,
-                        uint32_t count, uint32_t firstFace = UINT32_MAX);
+PolygonMesh facesAround(const PolygonMesh& mesh, const std::vector<glm::vec3>& positions, const QuadCorners& q,
+                        const uint32_t* vertices, uint32_t count, uint32_t firstFace = UINT32_MAX);
 
 // ---- limit.cpp --------------------------------------------------------------------------------------
 // Moves every vertex of a quad mesh (a Catmull-Clark cage after >= 1 round) to its limit position and
@@ -181,9 +185,9 @@ struct FacePatch {
   uint32_t points[VGEO_MAX_RING];   // control points: vertex indices of the mesh; UINT32_MAX for a phantom
   // Phantom points beyond a boundary, in the order to compute them: points[slot] = 2 points[a] - points[b].
   uint32_t phantomCount = 0;
-  uint8_t phantoms[12][3];          // slot, a, b
+  uint8_t phantoms[12][3];                                                    // slot, a, b
   uint32_t neighbours[4] = {UINT32_MAX, UINT32_MAX, UINT32_MAX, UINT32_MAX};  // across edge k: face << 2 | its edge
-  uint32_t info() const { return kind | corner << 2 | valence << 8; }  // as shaderio.h's Patch.info
+  uint32_t info() const { return kind | corner << 2 | valence << 8; }         // as shaderio.h's Patch.info
 };
 class Patcher {
  public:
@@ -204,12 +208,15 @@ class Patcher {
 // The patch's control-point words (pointCount of them) into `words`: a mesh vertex v as vertexWord(v), a
 // phantom point (computed from `positions`) as the word appendPoint(position) returns for it.
 template <class VertexWord, class AppendPoint>
-void writePatchWords(const FacePatch& patch, const std::vector<glm::vec3>& positions, uint32_t* words, VertexWord vertexWord, AppendPoint appendPoint) {
+void writePatchWords(const FacePatch& patch, const std::vector<glm::vec3>& positions, uint32_t* words,
+                     VertexWord vertexWord, AppendPoint appendPoint) {
   glm::vec3 points[VGEO_MAX_RING];
   for (uint32_t i = 0; i < patch.pointCount; i++)
     if (patch.points[i] != UINT32_MAX) points[i] = positions[patch.points[i]];
-  for (uint32_t i = 0; i < patch.phantomCount; i++) points[patch.phantoms[i][0]] = 2.0f * points[patch.phantoms[i][1]] - points[patch.phantoms[i][2]];
-  for (uint32_t i = 0; i < patch.pointCount; i++) words[i] = patch.points[i] != UINT32_MAX ? vertexWord(patch.points[i]) : appendPoint(points[i]);
+  for (uint32_t i = 0; i < patch.phantomCount; i++)
+    points[patch.phantoms[i][0]] = 2.0f * points[patch.phantoms[i][1]] - points[patch.phantoms[i][2]];
+  for (uint32_t i = 0; i < patch.pointCount; i++)
+    words[i] = patch.points[i] != UINT32_MAX ? vertexWord(patch.points[i]) : appendPoint(points[i]);
 }
 
 // ---- mesh_patches.cpp -------------------------------------------------------------------------------
@@ -285,10 +292,12 @@ void triangulateFace(const glm::vec3* positions, const uint32_t* v, uint32_t n, 
 // are graph neighbours, weighted by their triangle count. cageFaces lists each cluster's faces, whose
 // triangles follow in that order (quads split along the shorter diagonal, other faces fanned).
 // With `shading` that has hard edges, the vertex limit counts wedges and each cluster lists its corners'.
-std::vector<BuildCluster> buildLeafClusters(const PolygonMesh& mesh, int threads, const ShadingNormals* shading = nullptr);
+std::vector<BuildCluster> buildLeafClusters(const PolygonMesh& mesh, int threads,
+                                            const ShadingNormals* shading = nullptr);
 // Splits a triangle list (absolute vertex indices) into clusters by edge adjacency; with `shading` as
 // above, each corner takes the wedge nearest its triangle's normal.
-std::vector<BuildCluster> splitIntoClusters(const std::vector<uint32_t>& indices, const std::vector<glm::vec3>& positions,
+std::vector<BuildCluster> splitIntoClusters(const std::vector<uint32_t>& indices,
+                                            const std::vector<glm::vec3>& positions,
                                             const ShadingNormals* shading = nullptr);
 
 // ---- bounds.cpp -------------------------------------------------------------------------------------
@@ -323,7 +332,8 @@ struct SimplifiedGroup {
 // surface's open boundary: their vertices, unless also on the locked border, collapse along it. A new
 // edge between two locked vertices a, b (absolute ids) is made only if chordAllowed(a, b).
 SimplifiedGroup simplifyGroup(const std::vector<uint32_t>& indices, const std::vector<glm::vec3>& positions,
-                              const std::function<bool(uint32_t, uint32_t)>& chordAllowed, const std::vector<uint64_t>& openEdges);
+                              const std::function<bool(uint32_t, uint32_t)>& chordAllowed,
+                              const std::vector<uint64_t>& openEdges);
 
 // ---- dag.cpp ----------------------------------------------------------------------------------------
 struct BuildOptions {
@@ -339,7 +349,7 @@ struct BuildOptions {
 struct BuildGroup {
   std::vector<uint32_t> members;  // cluster ids
   glm::vec4 sphere{0.0f};
-  float error = 0.0f;             // +inf for root groups
+  float error = 0.0f;  // +inf for root groups
   uint32_t level = 0;
 };
 // A mesh's LOD DAG before it is laid out into a file.
@@ -351,7 +361,7 @@ struct Dag {
   uint32_t relaxedGroups = 0;            // groups that needed any relaxation (see SimplifiedGroup)
   uint32_t stuckGroups = 0;              // groups that could not be halved; their clusters were retried
   uint32_t rootClusters = 0;
-  SurfaceTopology roots;                 // of the root clusters' triangles together
+  SurfaceTopology roots;  // of the root clusters' triangles together
 };
 // A surface the DAG cannot be built on (it folds onto itself: two leaf triangles hold the same edge in
 // the same direction, so no cut of it is watertight); buildScene reports it as an InputError.

@@ -19,7 +19,8 @@ struct Builder {
   // Splits `items` (sorted in place) into up to VGEO_BVH_WIDTH runs by rounds of longest-axis median cuts
   // (three for 8; 16 children measured slower on an H100: see bench/README.md).
   template <class CenterOf>
-  std::vector<std::pair<size_t, size_t>> splitRuns(std::vector<uint32_t>& items, size_t lo, size_t hi, CenterOf centerOf) {
+  std::vector<std::pair<size_t, size_t>> splitRuns(std::vector<uint32_t>& items, size_t lo, size_t hi,
+                                                   CenterOf centerOf) {
     std::vector<std::pair<size_t, size_t>> runs{{lo, hi}};
     for (uint32_t width = 1; width < VGEO_BVH_WIDTH; width *= 2) {
       std::vector<std::pair<size_t, size_t>> nextRuns;
@@ -36,10 +37,11 @@ struct Builder {
         glm::vec3 e = upper - lower;
         int axis = e.x >= e.y && e.x >= e.z ? 0 : e.y >= e.z ? 1 : 2;
         size_t mid = (a + b) / 2;
-        std::nth_element(items.begin() + long(a), items.begin() + long(mid), items.begin() + long(b), [&](uint32_t x, uint32_t y) {
-          float cx = centerOf(x)[axis], cy = centerOf(y)[axis];
-          return cx != cy ? cx < cy : x < y;
-        });
+        std::nth_element(items.begin() + long(a), items.begin() + long(mid), items.begin() + long(b),
+                         [&](uint32_t x, uint32_t y) {
+                           float cx = centerOf(x)[axis], cy = centerOf(y)[axis];
+                           return cx != cy ? cx < cy : x < y;
+                         });
         nextRuns.push_back({a, mid});
         nextRuns.push_back({mid, b});
       }
@@ -92,7 +94,8 @@ struct Builder {
       uint32_t innerFirst = uint32_t(bvh.nodes.size()), innerCount = (count + VGEO_BVH_WIDTH - 1) / VGEO_BVH_WIDTH;
       bvh.nodes.resize(bvh.nodes.size() + innerCount);
       for (uint32_t i = 0; i < innerCount; i++)
-        join(innerFirst + i, first + i * VGEO_BVH_WIDTH, std::min<uint32_t>(VGEO_BVH_WIDTH, count - i * VGEO_BVH_WIDTH));
+        join(innerFirst + i, first + i * VGEO_BVH_WIDTH,
+             std::min<uint32_t>(VGEO_BVH_WIDTH, count - i * VGEO_BVH_WIDTH));
       first = innerFirst;
       count = innerCount;
     }

@@ -13,8 +13,10 @@ void triangulateFace(const glm::vec3* positions, const uint32_t* v, uint32_t n, 
   if (n == 4) {
     // Split a quad along its shorter diagonal.
     float d02 = glm::distance(positions[v[0]], positions[v[2]]), d13 = glm::distance(positions[v[1]], positions[v[3]]);
-    if (d13 < d02) out.insert(out.end(), {v[0], v[1], v[3], v[1], v[2], v[3]});
-    else out.insert(out.end(), {v[0], v[1], v[2], v[0], v[2], v[3]});
+    if (d13 < d02)
+      out.insert(out.end(), {v[0], v[1], v[3], v[1], v[2], v[3]});
+    else
+      out.insert(out.end(), {v[0], v[1], v[2], v[0], v[2], v[3]});
     return;
   }
   for (uint32_t i = 1; i + 1 < n; i++) out.insert(out.end(), {v[0], v[i], v[i + 1]});
@@ -57,8 +59,10 @@ Graph dualGraph(const std::vector<uint32_t>& faceStart, const std::vector<uint32
           uint32_t other = vertexFaces[k];
           if (other == f || !hasVertex(other, b)) continue;
           uint32_t& slot = slots[faceStart[f] + i];
-          if (slot == kNone) slot = other;
-          else extraByChunk[ch].push_back({f, other});
+          if (slot == kNone)
+            slot = other;
+          else
+            extraByChunk[ch].push_back({f, other});
         }
       }
     }
@@ -85,7 +89,8 @@ Graph dualGraph(const std::vector<uint32_t>& faceStart, const std::vector<uint32
 
 // True when the faces use at most VGEO_MAX_CLUSTER_VERTICES distinct vertices (counted with a marker
 // array per thread, stamped so that it never needs clearing).
-bool fitsVertexLimit(const std::vector<uint32_t>& faceStart, const std::vector<uint32_t>& faceVertices, const uint32_t* faces, size_t count) {
+bool fitsVertexLimit(const std::vector<uint32_t>& faceStart, const std::vector<uint32_t>& faceVertices,
+                     const uint32_t* faces, size_t count) {
   size_t corners = 0;
   for (size_t i = 0; i < count; i++) corners += faceStart[faces[i] + 1] - faceStart[faces[i]];
   if (corners <= VGEO_MAX_CLUSTER_VERTICES) return true;
@@ -108,10 +113,10 @@ bool fitsVertexLimit(const std::vector<uint32_t>& faceStart, const std::vector<u
   return distinct <= VGEO_MAX_CLUSTER_VERTICES;
 }
 
-
 // `wedges`, when given (one a corner, like faceVertices), are what the vertex limit counts, and each
 // cluster lists those of its triangles' corners.
-std::vector<BuildCluster> clustersFromFaces(const std::vector<uint32_t>& faceStart, const std::vector<uint32_t>& faceVertices,
+std::vector<BuildCluster> clustersFromFaces(const std::vector<uint32_t>& faceStart,
+                                            const std::vector<uint32_t>& faceVertices,
                                             const std::vector<glm::vec3>& positions, int threads, bool keepFaces,
                                             uint32_t targetTriangles, const std::vector<uint32_t>* wedges) {
   const size_t faceCount = faceStart.size() - 1;
@@ -127,7 +132,8 @@ std::vector<BuildCluster> clustersFromFaces(const std::vector<uint32_t>& faceSta
   }
   const std::vector<uint32_t>& limited = wedges ? *wedges : faceVertices;
   auto fits = [&](const uint32_t* faces, size_t count) { return fitsVertexLimit(faceStart, limited, faces, count); };
-  Partition parts = partitionGraph(graph, weights, centroids, VGEO_MAX_CLUSTER_TRIANGLES, targetTriangles, threads, fits);
+  Partition parts =
+      partitionGraph(graph, weights, centroids, VGEO_MAX_CLUSTER_TRIANGLES, targetTriangles, threads, fits);
   std::vector<BuildCluster> clusters(parts.partCount());
   for (size_t p = 0; p < parts.partCount(); p++) {
     BuildCluster& c = clusters[p];
@@ -177,11 +183,12 @@ std::vector<BuildCluster> buildLeafClusters(const PolygonMesh& mesh, int threads
   // Leaves: nearly full clusters (the builder's promise is >= 124 triangles on average), with a little
   // room left for merging cut-off pieces.
   const bool hardEdges = shading && !shading->oneAVertex;
-  return clustersFromFaces(mesh.faceStart, mesh.faceVertices, mesh.positions, threads, true, 126, hardEdges ? &shading->cornerWedge : nullptr);
+  return clustersFromFaces(mesh.faceStart, mesh.faceVertices, mesh.positions, threads, true, 126,
+                           hardEdges ? &shading->cornerWedge : nullptr);
 }
 
-std::vector<BuildCluster> splitIntoClusters(const std::vector<uint32_t>& indices, const std::vector<glm::vec3>& positions,
-                                            const ShadingNormals* shading) {
+std::vector<BuildCluster> splitIntoClusters(const std::vector<uint32_t>& indices,
+                                            const std::vector<glm::vec3>& positions, const ShadingNormals* shading) {
   // Work on compact local vertex ids: the adjacency arrays are sized by the vertex count.
   thread_local std::vector<uint32_t> localOf;
   if (localOf.size() < positions.size()) localOf.assign(positions.size(), UINT32_MAX);
@@ -210,7 +217,8 @@ std::vector<BuildCluster> splitIntoClusters(const std::vector<uint32_t>& indices
       for (size_t k = 0; k < 3; k++) wedges[t + k] = shading->nearestWedge(indices[t + k], normal);
     }
   }
-  std::vector<BuildCluster> clusters = clustersFromFaces(faceStart, local, points, 1, false, 120, wedges.empty() ? nullptr : &wedges);
+  std::vector<BuildCluster> clusters =
+      clustersFromFaces(faceStart, local, points, 1, false, 120, wedges.empty() ? nullptr : &wedges);
   for (BuildCluster& c : clusters)
     for (uint32_t& v : c.indices) v = globals[v];
   return clusters;

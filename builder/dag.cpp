@@ -27,8 +27,8 @@ glm::vec4 sphereOfClusterVertices(const BuildCluster& c, const std::vector<glm::
   return sphereOfPoints(positions, v.data(), v.size());
 }
 
-BuildGroup makeGroup(std::vector<BuildCluster>& clusters, const std::vector<uint32_t>& members, uint32_t id, float addedError,
-                     uint32_t level) {
+BuildGroup makeGroup(std::vector<BuildCluster>& clusters, const std::vector<uint32_t>& members, uint32_t id,
+                     float addedError, uint32_t level) {
   BuildGroup g;
   g.members = members;
   g.level = level;
@@ -117,8 +117,10 @@ void checkNoFold(const std::vector<BuildCluster>& clusters, const std::vector<gl
     if (directed[i] == directed[i - 1]) {
       const glm::vec3 a = positions[directed[i] >> 32], b = positions[directed[i] & 0xffffffffu];
       char text[320];
-      std::snprintf(text, sizeof text, "the surface folds onto itself: two triangles run the same way along the edge (%g, %g, %g)-(%g, %g, %g)",
-                    double(a.x), double(a.y), double(a.z), double(b.x), double(b.y), double(b.z));
+      std::snprintf(
+          text, sizeof text,
+          "the surface folds onto itself: two triangles run the same way along the edge (%g, %g, %g)-(%g, %g, %g)",
+          double(a.x), double(a.y), double(a.z), double(b.x), double(b.y), double(b.z));
       throw SurfaceError(text);
     }
 }
@@ -157,7 +159,8 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
   // Go on while more than one cluster is left, and then keep halving the last one down to a few
   // triangles: far away, an instance costs only its root, so a small root keeps the triangles drawn
   // in proportion to the pixels covered.
-  for (uint32_t round = 1; active.size() > 1 || (active.size() == 1 && triangleCount(dag.clusters, active) > kSmallestRoot); round++) {
+  for (uint32_t round = 1;
+       active.size() > 1 || (active.size() == 1 && triangleCount(dag.clusters, active) > kSmallestRoot); round++) {
     report(doneWork / totalWork, "simplifying");
     std::vector<uint64_t> openEdges;
     std::vector<GroupPlan> plans = groupClusters(dag.clusters, active, options.groupSize, options.threads, &openEdges);
@@ -185,18 +188,22 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
     });
     parallelFor(plans.size(), options.threads, [&](size_t g) {
       std::vector<uint32_t> indices;
-      for (uint32_t m : plans[g].clusters) indices.insert(indices.end(), dag.clusters[m].indices.begin(), dag.clusters[m].indices.end());
+      for (uint32_t m : plans[g].clusters)
+        indices.insert(indices.end(), dag.clusters[m].indices.begin(), dag.clusters[m].indices.end());
       auto chordAllowed = [&](uint32_t a, uint32_t b) {
         if (edges.contains(uint64_t(std::min(a, b)) << 32 | std::max(a, b))) return false;
         if (holderCount[a] > kHolders || holderCount[b] > kHolders) return false;
         // Of the groups holding both ends, only the first may make the chord this round.
         for (uint32_t i = 0; i < holderCount[a]; i++)
           for (uint32_t j = 0; j < holderCount[b]; j++)
-            if (holders[size_t(a) * kHolders + i] == holders[size_t(b) * kHolders + j] && holders[size_t(a) * kHolders + i] < g) return false;
+            if (holders[size_t(a) * kHolders + i] == holders[size_t(b) * kHolders + j] &&
+                holders[size_t(a) * kHolders + i] < g)
+              return false;
         return true;
       };
       outcomes[g].simplified = simplifyGroup(indices, positions, chordAllowed, openEdges);
-      if (outcomes[g].simplified.halved) outcomes[g].produced = splitIntoClusters(outcomes[g].simplified.indices, positions, options.shading);
+      if (outcomes[g].simplified.halved)
+        outcomes[g].produced = splitIntoClusters(outcomes[g].simplified.indices, positions, options.shading);
     });
     // Merge in group order: ids depend only on the plans, never on thread timing.
     std::vector<uint32_t> next;
@@ -225,9 +232,12 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
     }
     // This round's edges join the set only now: its chords were checked against earlier rounds.
     uint64_t producedTriangles = 0;
-    for (size_t i = dag.clusters.size() - producedCount; i < dag.clusters.size(); i++) producedTriangles += dag.clusters[i].indices.size() / 3;
+    for (size_t i = dag.clusters.size() - producedCount; i < dag.clusters.size(); i++)
+      producedTriangles += dag.clusters[i].indices.size() / 3;
     edges.reserve(producedTriangles);
-    parallelFor(producedCount, options.threads, [&](size_t i) { edges.insertTriangles(dag.clusters[dag.clusters.size() - producedCount + i].indices); });
+    parallelFor(producedCount, options.threads, [&](size_t i) {
+      edges.insertTriangles(dag.clusters[dag.clusters.size() - producedCount + i].indices);
+    });
     if (producedCount == 0) break;  // no group could be halved: what is left are the roots
     std::sort(next.begin(), next.end());
     active = std::move(next);
@@ -240,12 +250,15 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
   dag.rootClusters = uint32_t(active.size());
   {
     std::vector<uint32_t> rootIndices;
-    for (uint32_t c : active) rootIndices.insert(rootIndices.end(), dag.clusters[c].indices.begin(), dag.clusters[c].indices.end());
+    for (uint32_t c : active)
+      rootIndices.insert(rootIndices.end(), dag.clusters[c].indices.begin(), dag.clusters[c].indices.end());
     dag.roots = surfaceTopology(rootIndices);
   }
   std::vector<GroupPlan> roots;
-  if (active.size() <= 32) roots.push_back({active, true});
-  else roots = groupClusters(dag.clusters, active, options.groupSize, options.threads);
+  if (active.size() <= 32)
+    roots.push_back({active, true});
+  else
+    roots = groupClusters(dag.clusters, active, options.groupSize, options.threads);
   for (const GroupPlan& plan : roots) {
     uint32_t groupId = uint32_t(dag.groups.size());
     dag.groups.push_back(makeGroup(dag.clusters, plan.clusters, groupId, 0.0f, uint32_t(dag.levelClusters.size() - 1)));

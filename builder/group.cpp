@@ -48,7 +48,8 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
     for (size_t a = i; a < j; a++)
       for (size_t b = a + 1; b < j; b++)
         if (borders[a].second != borders[b].second)
-          pairs.push_back(uint64_t(std::min(borders[a].second, borders[b].second)) << 32 | std::max(borders[a].second, borders[b].second));
+          pairs.push_back(uint64_t(std::min(borders[a].second, borders[b].second)) << 32 |
+                          std::max(borders[a].second, borders[b].second));
     i = j;
   }
   parallelSort(pairs, threads);
@@ -80,9 +81,10 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
     options[METIS_OPTION_NUMBERING] = 0;
     // Recursive bisection rather than k-way: with ~16 clusters a part, k-way cannot coarsen the graph and
     // was 6x slower; recursive bisection also gave shorter borders (armadillo, --subdiv 2).
-    int status = METIS_PartGraphRecursive(&nvtxs, &ncon, xadj.data(), adjncy.data(), nullptr, nullptr, adjwgt.data(), &nparts,
-                                          nullptr, nullptr, options, &objval, part.data());
-    if (status != METIS_OK) throw std::runtime_error("METIS_PartGraphRecursive failed with status " + std::to_string(status));
+    int status = METIS_PartGraphRecursive(&nvtxs, &ncon, xadj.data(), adjncy.data(), nullptr, nullptr, adjwgt.data(),
+                                          &nparts, nullptr, nullptr, options, &objval, part.data());
+    if (status != METIS_OK)
+      throw std::runtime_error("METIS_PartGraphRecursive failed with status " + std::to_string(status));
   }
   std::vector<GroupPlan> groups(size_t(std::max<idx_t>(nparts, 1)));
   std::vector<bool> touchesOther(groups.size(), false);

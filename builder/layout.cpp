@@ -54,7 +54,8 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
       clusterIndex[m] = clusterOffset + uint32_t(clusterOrder.size());
       clusterOrder.push_back(m);
     }
-  if (clusterOrder.size() != dag.clusters.size()) throw std::logic_error("appendGeometry: a cluster belongs to no group");
+  if (clusterOrder.size() != dag.clusters.size())
+    throw std::logic_error("appendGeometry: a cluster belongs to no group");
   // Exact room up front: growth by doubling left up to twice the largest arrays allocated at once, the
   // build's peak memory.
   size_t triangles = 0, faces = 0;
@@ -126,7 +127,8 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
     out.info = patches.info[f] | locked << 16;
     out.firstPoint = wordBase + patches.first[f];
     out.faceError = patchErrors[f].face;
-    out.edgeError = glm::vec4(patchErrors[f].edge[0], patchErrors[f].edge[1], patchErrors[f].edge[2], patchErrors[f].edge[3]);
+    out.edgeError =
+        glm::vec4(patchErrors[f].edge[0], patchErrors[f].edge[1], patchErrors[f].edge[2], patchErrors[f].edge[3]);
     return out;
   };
   std::vector<uint32_t> local;
@@ -163,7 +165,8 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
       face.leafCluster = clusterIndex[id];
       face.firstTriangle = firstTriangle;
       firstTriangle += face.vertexCount - 2;
-      for (uint32_t k = 0; k < face.vertexCount; k++) file.cageFaceVertices.push_back(vertexOffset + shading.wedgeOfCorner(leafMesh, leafMesh.faceStart[f] + k));
+      for (uint32_t k = 0; k < face.vertexCount; k++)
+        file.cageFaceVertices.push_back(vertexOffset + shading.wedgeOfCorner(leafMesh, leafMesh.faceStart[f] + k));
       file.cageFaces.push_back(face);
       file.patches.push_back(filePatch(f));
     }
@@ -176,7 +179,8 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
       cone.sphere = sphereOfPoints(leafMesh.positions, local.data(), local.size());
     }
     file.clusterCones.push_back(cone);
-    out.counts = shaderio::packClusterCounts(uint32_t(local.size()), uint32_t(c.indices.size() / 3), c.level, uint32_t(c.cageFaces.size()));
+    out.counts = shaderio::packClusterCounts(uint32_t(local.size()), uint32_t(c.indices.size() / 3), c.level,
+                                             uint32_t(c.cageFaces.size()));
     file.clusters.push_back(out);
   }
 

@@ -108,7 +108,8 @@ bool moveToLimit(PolygonMesh& mesh, std::vector<glm::vec3>& normals) {
       limit[v] = glm::vec3(curve);
       t1 = b - a;
       if (n == 2) {
-        glm::dvec3 c(mesh.positions[q.at(ring[0], 3)]), da(mesh.positions[q.at(ring[0], 2)]), db(mesh.positions[q.at(ring[1], 2)]);
+        glm::dvec3 c(mesh.positions[q.at(ring[0], 3)]), da(mesh.positions[q.at(ring[0], 2)]),
+            db(mesh.positions[q.at(ring[1], 2)]);
         t2 = (da + 4.0 * c + db) / 6.0 - curve;
       } else {
         t2 = crossBoundaryTangent(mesh, q, v);

@@ -28,7 +28,7 @@
 namespace vgeo {
 namespace {
 
-constexpr uint64_t kMaxFileBytes = uint64_t(2) << 30;  // the glTF, the GLB, each buffer file
+constexpr uint64_t kMaxFileBytes = uint64_t(2) << 30;   // the glTF, the GLB, each buffer file
 constexpr int kMaxJsonDepth = 64;                       // a glTF's own structure is under 10 deep
 constexpr uint64_t kMaxInstances = uint64_t(1) << 18;   // node instances of meshes, from one file
 constexpr uint64_t kMaxNodeVisits = 4 * kMaxInstances;  // node paths walked, meshes or not
@@ -51,8 +51,10 @@ int jsonDepth(const char* text, size_t size, int limit) {
   for (size_t i = 0; i < size; i++) {
     const char c = text[i];
     if (inString) {
-      if (c == '\\') i++;
-      else if (c == '"') inString = false;
+      if (c == '\\')
+        i++;
+      else if (c == '"')
+        inString = false;
     } else if (c == '"') {
       inString = true;
     } else if (c == '{' || c == '[') {
@@ -144,7 +146,8 @@ class GltfReader {
       const glm::mat4 world = parent * localTransform(node, nodeIndex);
       if (node.mesh >= 0) {
         if (size_t(node.mesh) >= model_.meshes.size())
-          fail("node " + std::to_string(nodeIndex) + " uses mesh " + std::to_string(node.mesh) + ", which does not exist");
+          fail("node " + std::to_string(nodeIndex) + " uses mesh " + std::to_string(node.mesh) +
+               ", which does not exist");
         uint32_t id = meshId(node.mesh, scene, sawPrimitives);
         if (id != UINT32_MAX) scene.instances.push_back({world, id});
       }
@@ -160,7 +163,8 @@ class GltfReader {
   [[noreturn]] void fail(const std::string& cause) const { throw InputError(path_, cause); }
 
   void checkNode(int index, const std::string& from) const {
-    if (index < 0 || size_t(index) >= model_.nodes.size()) fail(from + " names node " + std::to_string(index) + ", which does not exist");
+    if (index < 0 || size_t(index) >= model_.nodes.size())
+      fail(from + " names node " + std::to_string(index) + ", which does not exist");
   }
 
   // Refuses cycles and graphs of more paths than kMaxInstances allows, before any is walked: nodes in
@@ -196,8 +200,10 @@ class GltfReader {
         if (parents[i] > 0) fail("node " + std::to_string(i) + " is its own ancestor (cyclic node graph)");
     }
     if (instances > kMaxInstances)
-      fail("the node graph places meshes more than " + std::to_string(kMaxInstances) + " times (the limit of instances from one file)");
-    if (visits > kMaxNodeVisits) fail("the node graph reaches nodes by more than " + std::to_string(kMaxNodeVisits) + " paths");
+      fail("the node graph places meshes more than " + std::to_string(kMaxInstances) +
+           " times (the limit of instances from one file)");
+    if (visits > kMaxNodeVisits)
+      fail("the node graph reaches nodes by more than " + std::to_string(kMaxNodeVisits) + " paths");
   }
 
   glm::mat4 localTransform(const tinygltf::Node& node, int nodeIndex) const {
@@ -206,10 +212,13 @@ class GltfReader {
       for (int i = 0; i < 16; i++) glm::value_ptr(local)[i] = float(node.matrix[size_t(i)]);
     } else {
       glm::mat4 t(1.0f), r(1.0f), s(1.0f);
-      if (node.translation.size() == 3) t = glm::translate(glm::mat4(1.0f), glm::vec3(node.translation[0], node.translation[1], node.translation[2]));
+      if (node.translation.size() == 3)
+        t = glm::translate(glm::mat4(1.0f), glm::vec3(node.translation[0], node.translation[1], node.translation[2]));
       if (node.rotation.size() == 4)
-        r = glm::mat4_cast(glm::quat(float(node.rotation[3]), float(node.rotation[0]), float(node.rotation[1]), float(node.rotation[2])));
-      if (node.scale.size() == 3) s = glm::scale(glm::mat4(1.0f), glm::vec3(node.scale[0], node.scale[1], node.scale[2]));
+        r = glm::mat4_cast(glm::quat(float(node.rotation[3]), float(node.rotation[0]), float(node.rotation[1]),
+                                     float(node.rotation[2])));
+      if (node.scale.size() == 3)
+        s = glm::scale(glm::mat4(1.0f), glm::vec3(node.scale[0], node.scale[1], node.scale[2]));
       local = t * r * s;
     }
     for (int i = 0; i < 16; i++)
@@ -239,7 +248,8 @@ class GltfReader {
   // pointer to element 0 and the stride.
   const unsigned char* accessorData(int index, int type, const std::vector<int>& componentTypes, size_t& stride,
                                     size_t& count, const char* what) const {
-    if (index < 0 || size_t(index) >= model_.accessors.size()) fail(std::string(what) + " accessor " + std::to_string(index) + " does not exist");
+    if (index < 0 || size_t(index) >= model_.accessors.size())
+      fail(std::string(what) + " accessor " + std::to_string(index) + " does not exist");
     const tinygltf::Accessor& a = model_.accessors[size_t(index)];
     std::string name = std::string(what) + " accessor " + std::to_string(index);
     if (a.type != type) fail(name + " has the wrong type");
@@ -251,19 +261,22 @@ class GltfReader {
     const tinygltf::BufferView& view = model_.bufferViews[size_t(a.bufferView)];
     if (view.buffer < 0 || size_t(view.buffer) >= model_.buffers.size()) fail(name + " refers to a missing buffer");
     const tinygltf::Buffer& buffer = model_.buffers[size_t(view.buffer)];
-    const size_t elementSize = size_t(tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType)) * tinygltf::GetNumComponentsInType(uint32_t(a.type)));
+    const size_t elementSize = size_t(tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType)) *
+                                      tinygltf::GetNumComponentsInType(uint32_t(a.type)));
     stride = view.byteStride ? view.byteStride : elementSize;
     count = a.count;
-    if (stride < elementSize) fail("bufferView " + std::to_string(a.bufferView) + " has a stride smaller than " + name + "'s elements");
+    if (stride < elementSize)
+      fail("bufferView " + std::to_string(a.bufferView) + " has a stride smaller than " + name + "'s elements");
     uint64_t span = 0, end = 0, viewEnd = 0;
     const bool overflow = count > 0 && (__builtin_mul_overflow(uint64_t(stride), uint64_t(count - 1), &span) ||
                                         __builtin_add_overflow(span, uint64_t(elementSize), &span));
     if (overflow || __builtin_add_overflow(uint64_t(a.byteOffset), span, &end) || end > view.byteLength)
-      fail(name + " (" + std::to_string(count) + " elements from byte " + std::to_string(a.byteOffset) + ") reads past the end of bufferView " +
-           std::to_string(a.bufferView));
-    if (__builtin_add_overflow(uint64_t(view.byteOffset), uint64_t(view.byteLength), &viewEnd) || viewEnd > buffer.data.size())
-      fail("bufferView " + std::to_string(a.bufferView) + " reads past the end of buffer " + std::to_string(view.buffer) +
-           (buffer.data.empty() ? " (the buffer is missing or empty)" : ""));
+      fail(name + " (" + std::to_string(count) + " elements from byte " + std::to_string(a.byteOffset) +
+           ") reads past the end of bufferView " + std::to_string(a.bufferView));
+    if (__builtin_add_overflow(uint64_t(view.byteOffset), uint64_t(view.byteLength), &viewEnd) ||
+        viewEnd > buffer.data.size())
+      fail("bufferView " + std::to_string(a.bufferView) + " reads past the end of buffer " +
+           std::to_string(view.buffer) + (buffer.data.empty() ? " (the buffer is missing or empty)" : ""));
     return buffer.data.data() + view.byteOffset + a.byteOffset;
   }
 
@@ -272,12 +285,14 @@ class GltfReader {
     for (size_t p = 0; p < source.primitives.size(); p++) {
       const tinygltf::Primitive& prim = source.primitives[p];
       int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
-      if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) continue;
+      if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN)
+        continue;
       auto position = prim.attributes.find("POSITION");
       std::string where = "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(p);
       if (position == prim.attributes.end()) fail(where + " has no POSITION attribute");
       size_t stride = 0, vertexCount = 0;
-      const unsigned char* data = accessorData(position->second, TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT}, stride, vertexCount, "POSITION");
+      const unsigned char* data = accessorData(position->second, TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT},
+                                               stride, vertexCount, "POSITION");
       uint32_t base = uint32_t(mesh.positions.size());
       if (uint64_t(base) + vertexCount > UINT32_MAX) fail(where + ": too many vertices for 32-bit indices");
       for (size_t v = 0; v < vertexCount; v++) {
@@ -290,26 +305,32 @@ class GltfReader {
       auto normal = prim.attributes.find("NORMAL");
       if (normal != prim.attributes.end()) {
         size_t nstride = 0, ncount = 0;
-        const unsigned char* ndata = accessorData(normal->second, TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT}, nstride, ncount, "NORMAL");
-        if (ncount != vertexCount) fail(where + ": " + std::to_string(ncount) + " normals for " + std::to_string(vertexCount) + " positions");
+        const unsigned char* ndata = accessorData(normal->second, TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT},
+                                                  nstride, ncount, "NORMAL");
+        if (ncount != vertexCount)
+          fail(where + ": " + std::to_string(ncount) + " normals for " + std::to_string(vertexCount) + " positions");
         normals.resize(ncount);
         for (size_t v = 0; v < ncount; v++) std::memcpy(&normals[v], ndata + v * nstride, sizeof(glm::vec3));
       }
       std::vector<uint32_t> indices;
       if (prim.indices >= 0) {
         size_t istride = 0, icount = 0;
-        const unsigned char* idata = accessorData(prim.indices, TINYGLTF_TYPE_SCALAR,
-            {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
-            istride, icount, "index");
+        const unsigned char* idata =
+            accessorData(prim.indices, TINYGLTF_TYPE_SCALAR,
+                         {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                          TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
+                         istride, icount, "index");
         int ct = model_.accessors[size_t(prim.indices)].componentType;
         indices.resize(icount);  // bounded by the buffer, checked above
         for (size_t i = 0; i < icount; i++) {
           const unsigned char* e = idata + i * istride;
           uint32_t v = ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ? *e
-                       : ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? uint32_t(e[0] | e[1] << 8)
-                       : uint32_t(e[0] | e[1] << 8 | e[2] << 16 | uint32_t(e[3]) << 24);
+                       : ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT
+                           ? uint32_t(e[0] | e[1] << 8)
+                           : uint32_t(e[0] | e[1] << 8 | e[2] << 16 | uint32_t(e[3]) << 24);
           if (v >= vertexCount)
-            fail(where + ": index " + std::to_string(i) + " is " + std::to_string(v) + ", out of range (" + std::to_string(vertexCount) + " vertices)");
+            fail(where + ": index " + std::to_string(i) + " is " + std::to_string(v) + ", out of range (" +
+                 std::to_string(vertexCount) + " vertices)");
           indices[i] = v;
         }
       } else {
@@ -328,7 +349,8 @@ class GltfReader {
         mesh.addFace(t, 3, n);
       };
       if (mode == TINYGLTF_MODE_TRIANGLES) {
-        if (indices.size() % 3) fail(where + ": " + std::to_string(indices.size()) + " indices is not a whole number of triangles");
+        if (indices.size() % 3)
+          fail(where + ": " + std::to_string(indices.size()) + " indices is not a whole number of triangles");
         for (size_t i = 0; i + 2 < indices.size(); i += 3) add(indices[i], indices[i + 1], indices[i + 2]);
       } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
         for (size_t i = 0; i + 2 < indices.size(); i++)
@@ -351,7 +373,8 @@ SourceScene loadGltf(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw InputError(path, "cannot open: not a regular file");
-  if (fs::file_size(path, ec) > kMaxFileBytes) throw InputError(path, "larger than the " + std::to_string(kMaxFileBytes >> 30) + " GiB a glTF file may be");
+  if (fs::file_size(path, ec) > kMaxFileBytes)
+    throw InputError(path, "larger than the " + std::to_string(kMaxFileBytes >> 30) + " GiB a glTF file may be");
   const std::string bytes = vgeo::readWholeFile(path);
   const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
   // The JSON's nesting, before tinygltf walks it recursively (a GLB's JSON chunk follows its 20-byte

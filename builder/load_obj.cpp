@@ -10,8 +10,8 @@ SourceScene loadObj(const std::string& path) {
   std::string data = readWholeFile(path);
   TextReader in(data, path);
   PolygonMesh mesh;
-  std::vector<glm::vec3> normals;         // vn records
-  std::vector<int64_t> cornerNormal;      // a corner's vn index (0-based), -1 for none
+  std::vector<glm::vec3> normals;     // vn records
+  std::vector<int64_t> cornerNormal;  // a corner's vn index (0-based), -1 for none
   std::vector<uint32_t> corners;
   std::vector<int64_t> rawCorners, rawNormals;
   std::vector<size_t> faceLines;
@@ -41,7 +41,8 @@ SourceScene loadObj(const std::string& path) {
           std::string_view n = whole.substr(second + 1);
           int64_t value = 0;
           auto [nend, nec] = std::from_chars(n.data(), n.data() + n.size(), value);
-          if (nec != std::errc() || nend != n.data() + n.size() || value == 0) in.fail("bad normal index '" + std::string(n) + "'");
+          if (nec != std::errc() || nend != n.data() + n.size() || value == 0)
+            in.fail("bad normal index '" + std::string(n) + "'");
           if (value < 0) value += int64_t(normals.size()) + 1;
           if (value <= 0) in.fail("normal index " + std::string(n) + " refers before the first normal");
           normalIndex = value - 1;
@@ -49,7 +50,8 @@ SourceScene loadObj(const std::string& path) {
         rawNormals.push_back(normalIndex);
         int64_t index = 0;
         auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), index);
-        if (ec != std::errc() || end != t.data() + t.size() || index == 0) in.fail("bad face index '" + std::string(t) + "'");
+        if (ec != std::errc() || end != t.data() + t.size() || index == 0)
+          in.fail("bad face index '" + std::string(t) + "'");
         // Negative indices count back from the vertices read so far.
         if (index < 0) index += int64_t(mesh.positions.size()) + 1;
         if (index <= 0) in.fail("face index " + std::string(t) + " refers before the first vertex");
@@ -78,8 +80,8 @@ SourceScene loadObj(const std::string& path) {
     for (uint32_t i = 0; i < mesh.faceSize(f); i++) {
       int64_t n = cornerNormal[mesh.faceStart[f] + i];
       if (n >= int64_t(normals.size()))
-        throw InputError(path, "line " + std::to_string(faceLines[f]) + ": normal index " + std::to_string(n + 1) + " is out of range (" +
-                                   std::to_string(normals.size()) + " normals)");
+        throw InputError(path, "line " + std::to_string(faceLines[f]) + ": normal index " + std::to_string(n + 1) +
+                                   " is out of range (" + std::to_string(normals.size()) + " normals)");
       anyNormal |= n >= 0;
     }
   if (anyNormal) {

@@ -38,7 +38,8 @@ SourceScene loadOff(const std::string& path) {
     for (auto& c : corners) {
       int64_t index = in.number<int64_t>("face index");
       if (index < 0 || index >= vertexCount)
-        in.fail("face index " + std::to_string(index) + " is out of range (" + std::to_string(vertexCount) + " vertices)");
+        in.fail("face index " + std::to_string(index) + " is out of range (" + std::to_string(vertexCount) +
+                " vertices)");
       c = uint32_t(index);
     }
     mesh.addFace(corners.data(), corners.size());

@@ -57,15 +57,45 @@ class ValueReader {
     if (format_ == 2)
       for (size_t i = 0; i < size / 2; i++) std::swap(bytes[i], bytes[size - 1 - i]);
     switch (t) {
-      case Type::Int8: { int8_t v; std::memcpy(&v, bytes, 1); return v; }
-      case Type::Uint8: return bytes[0];
-      case Type::Int16: { int16_t v; std::memcpy(&v, bytes, 2); return v; }
-      case Type::Uint16: { uint16_t v; std::memcpy(&v, bytes, 2); return v; }
-      case Type::Int32: { int32_t v; std::memcpy(&v, bytes, 4); return v; }
-      case Type::Uint32: { uint32_t v; std::memcpy(&v, bytes, 4); return v; }
-      case Type::Float32: { float v; std::memcpy(&v, bytes, 4); return v; }
-      case Type::Float64: { double v; std::memcpy(&v, bytes, 8); return v; }
-      default: return 0;
+      case Type::Int8: {
+        int8_t v;
+        std::memcpy(&v, bytes, 1);
+        return v;
+      }
+      case Type::Uint8:
+        return bytes[0];
+      case Type::Int16: {
+        int16_t v;
+        std::memcpy(&v, bytes, 2);
+        return v;
+      }
+      case Type::Uint16: {
+        uint16_t v;
+        std::memcpy(&v, bytes, 2);
+        return v;
+      }
+      case Type::Int32: {
+        int32_t v;
+        std::memcpy(&v, bytes, 4);
+        return v;
+      }
+      case Type::Uint32: {
+        uint32_t v;
+        std::memcpy(&v, bytes, 4);
+        return v;
+      }
+      case Type::Float32: {
+        float v;
+        std::memcpy(&v, bytes, 4);
+        return v;
+      }
+      case Type::Float64: {
+        double v;
+        std::memcpy(&v, bytes, 8);
+        return v;
+      }
+      default:
+        return 0;
     }
   }
   uint64_t bytesLeft() const { return format_ == 0 ? body_.size() : body_.size() - pos_; }
@@ -177,8 +207,8 @@ SourceScene loadPly(const std::string& path) {
           if (isFace && int(i) == indexList) {
             // In range first (NaN fails it), so that the casts below are defined.
             if (!sawVertices || !(v >= 0 && v < double(mesh.positions.size())) || v != std::floor(v))
-              throw InputError(path, "face " + std::to_string(item) + " has vertex index " + std::to_string(v) + ", out of range (" +
-                                         std::to_string(mesh.positions.size()) + " vertices)");
+              throw InputError(path, "face " + std::to_string(item) + " has vertex index " + std::to_string(v) +
+                                         ", out of range (" + std::to_string(mesh.positions.size()) + " vertices)");
             corners[k] = uint32_t(v);
           }
         }

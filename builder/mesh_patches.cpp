@@ -42,7 +42,9 @@ struct PatchTree {
           points.push_back(p);
           return uint32_t(points.size() - 1);
         };
-        auto vertexWord = [&](uint32_t v) { return pointOf[v] != UINT32_MAX ? pointOf[v] : (pointOf[v] = append(sub.positions[v])); };
+        auto vertexWord = [&](uint32_t v) {
+          return pointOf[v] != UINT32_MAX ? pointOf[v] : (pointOf[v] = append(sub.positions[v]));
+        };
         writePatchWords(patch, sub.positions, words.data() + at, vertexWord, append);
       } else if (depth + 1 < VGEO_MAX_PATCH_DEPTH) {
         words.push_back(VGEO_PATCH_TREE);
@@ -122,10 +124,12 @@ MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& 
       return;
     }
     uint32_t next = extra;
-    writePatchWords(patcher.patch(uint32_t(f)), controlPoints, words, [](uint32_t v) { return v; }, [&](glm::vec3 p) {
-      out.points[next] = p;
-      return next++;
-    });
+    writePatchWords(
+        patcher.patch(uint32_t(f)), controlPoints, words, [](uint32_t v) { return v; },
+        [&](glm::vec3 p) {
+          out.points[next] = p;
+          return next++;
+        });
   });
   return out;
 }
@@ -133,7 +137,8 @@ MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& 
 glm::vec3 MeshPatches::evaluate(uint32_t face, float s, float t, glm::vec3* normal) const {
   glm::vec3 n;
   glm::vec3 p = shaderio::evaluatePatchWords(
-      info[face], words.data() + first[face], [&](uint32_t i) { return points[i]; }, [](uint32_t) { return glm::vec3(0.0f); }, s, t, n);
+      info[face], words.data() + first[face], [&](uint32_t i) { return points[i]; },
+      [](uint32_t) { return glm::vec3(0.0f); }, s, t, n);
   if (normal) *normal = n;
   return p;
 }
@@ -160,7 +165,8 @@ std::vector<PatchErrors> patchChordErrors(const PolygonMesh& limitMesh, const Me
       double worst = 0.0;
       for (int i = 1; i < 4; i++) {
         float u = float(i) / 4.0f;
-        float s = kCorner[k][0] + u * (kCorner[(k + 1) % 4][0] - kCorner[k][0]), t = kCorner[k][1] + u * (kCorner[(k + 1) % 4][1] - kCorner[k][1]);
+        float s = kCorner[k][0] + u * (kCorner[(k + 1) % 4][0] - kCorner[k][0]),
+              t = kCorner[k][1] + u * (kCorner[(k + 1) % 4][1] - kCorner[k][1]);
         worst = std::max(worst, pointSegmentDistance(glm::dvec3(patches.evaluate(uint32_t(f), s, t)), a, b));
       }
       e.edge[k] = float(worst * kSlack);
@@ -171,7 +177,8 @@ std::vector<PatchErrors> patchChordErrors(const PolygonMesh& limitMesh, const Me
     for (int i = 1; i < 4; i++)
       for (int j = 1; j < 4; j++) {
         glm::dvec3 p(patches.evaluate(uint32_t(f), float(i) / 4.0f, float(j) / 4.0f));
-        double d = std::min(pointTriangleDistance(p, x[tris[0]], x[tris[1]], x[tris[2]]), pointTriangleDistance(p, x[tris[3]], x[tris[4]], x[tris[5]]));
+        double d = std::min(pointTriangleDistance(p, x[tris[0]], x[tris[1]], x[tris[2]]),
+                            pointTriangleDistance(p, x[tris[3]], x[tris[4]], x[tris[5]]));
         worst = std::max(worst, d);
       }
     e.face = float(worst * kSlack);
@@ -185,7 +192,10 @@ std::vector<PatchErrors> patchChordErrors(const PolygonMesh& limitMesh, const Me
     out.face = own[f].face;
     for (int k = 0; k < 4; k++) {
       const uint32_t n = patches.neighbours[f][size_t(k)];
-      out.edge[k] = n == UINT32_MAX ? own[f].edge[k] : !own[n >> 2].patched ? 0.0f : (n >> 2) < f ? own[n >> 2].edge[n & 3] : own[f].edge[k];
+      out.edge[k] = n == UINT32_MAX        ? own[f].edge[k]
+                    : !own[n >> 2].patched ? 0.0f
+                    : (n >> 2) < f         ? own[n >> 2].edge[n & 3]
+                                           : own[f].edge[k];
       out.face = std::max(out.face, out.edge[k]);
     }
   });

@@ -33,7 +33,8 @@ OrientReport orientFaces(PolygonMesh& mesh) {
       uint32_t a = mesh.face(f)[i], b = mesh.face(f)[(i + 1) % n];
       halfEdges.push_back({uint64_t(std::min(a, b)) << 32 | std::max(a, b), uint32_t(f), a < b});
     }
-  std::sort(halfEdges.begin(), halfEdges.end(), [](const HalfEdge& x, const HalfEdge& y) { return x.key != y.key ? x.key < y.key : x.face < y.face; });
+  std::sort(halfEdges.begin(), halfEdges.end(),
+            [](const HalfEdge& x, const HalfEdge& y) { return x.key != y.key ? x.key < y.key : x.face < y.face; });
 
   // Face adjacency through two-face edges; `same` when both faces walk the edge the same way (one of
   // them must turn for the pair to agree).
@@ -109,7 +110,8 @@ OrientReport orientFaces(PolygonMesh& mesh) {
     if (flip[f] == 1) {
       std::reverse(mesh.faceVertices.begin() + mesh.faceStart[f], mesh.faceVertices.begin() + mesh.faceStart[f + 1]);
       if (!mesh.cornerNormals.empty())
-        std::reverse(mesh.cornerNormals.begin() + mesh.faceStart[f], mesh.cornerNormals.begin() + mesh.faceStart[f + 1]);
+        std::reverse(mesh.cornerNormals.begin() + mesh.faceStart[f],
+                     mesh.cornerNormals.begin() + mesh.faceStart[f + 1]);
       report.flippedFaces++;
     }
   return report;

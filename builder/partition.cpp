@@ -26,8 +26,8 @@ struct Bisector {
   uint32_t targetWeight;  // sets are cut into ceil(weight / targetWeight) parts
   const std::function<bool(const uint32_t*, size_t)>& fits;
   std::vector<uint32_t>& order;
-  std::vector<uint32_t> stamp;   // the end of the segment a node lives in; kTaken|end while being taken
-  std::vector<uint8_t> partHead; // 1 at the first position of every part
+  std::vector<uint32_t> stamp;    // the end of the segment a node lives in; kTaken|end while being taken
+  std::vector<uint8_t> partHead;  // 1 at the first position of every part
 
   uint32_t load(uint32_t node) const { return __atomic_load_n(&stamp[node], __ATOMIC_RELAXED); }
   void store(uint32_t node, uint32_t value) { __atomic_store_n(&stamp[node], value, __ATOMIC_RELAXED); }
@@ -113,11 +113,13 @@ struct Bisector {
       std::pop_heap(frontier.begin(), frontier.end(), byDistance);
       uint32_t node = frontier.back().second;
       frontier.pop_back();
-      if (wA + weights[node] <= maxA) take(node);
-      else store(node, inSet);
+      if (wA + weights[node] <= maxA)
+        take(node);
+      else
+        store(node, inSet);
     }
     for (auto& f : frontier) store(f.second, inSet);  // left in the frontier: back to side B
-    if (sideA.size() == hi - lo) {  // never take everything
+    if (sideA.size() == hi - lo) {                    // never take everything
       store(sideA.back(), inSet);
       sideA.pop_back();
     }
@@ -197,11 +199,14 @@ void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uin
           uint32_t r = owner[graph.adjacency[e]];
           if (r == q) continue;
           auto it = std::find_if(shared.begin(), shared.end(), [&](auto& x) { return x.first == r; });
-          if (it == shared.end()) shared.push_back({r, 1});
-          else it->second++;
+          if (it == shared.end())
+            shared.push_back({r, 1});
+          else
+            it->second++;
         }
       }
-      std::sort(shared.begin(), shared.end(), [](auto& a, auto& b) { return a.second != b.second ? a.second > b.second : a.first < b.first; });
+      std::sort(shared.begin(), shared.end(),
+                [](auto& a, auto& b) { return a.second != b.second ? a.second > b.second : a.first < b.first; });
       for (auto [r, edges] : shared) {
         if (weight[r] + w > maxWeight) continue;
         std::vector<uint32_t> merged = members[r];
@@ -233,14 +238,22 @@ void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uin
 
 }  // namespace
 
-Partition partitionGraph(const Graph& graph, const std::vector<uint8_t>& weights, const std::vector<glm::vec3>& positions,
-                         uint32_t maxWeight, uint32_t targetWeight, int threads, const std::function<bool(const uint32_t*, size_t)>& fits) {
+Partition partitionGraph(const Graph& graph, const std::vector<uint8_t>& weights,
+                         const std::vector<glm::vec3>& positions, uint32_t maxWeight, uint32_t targetWeight,
+                         int threads, const std::function<bool(const uint32_t*, size_t)>& fits) {
   const uint32_t n = uint32_t(graph.nodeCount());
   Partition result;
   if (n == 0) return result;
   result.order.resize(n);
   for (uint32_t i = 0; i < n; i++) result.order[i] = i;
-  Bisector b{graph, weights, positions, targetWeight, fits, result.order, std::vector<uint32_t>(n, n), std::vector<uint8_t>(n, 0)};
+  Bisector b{graph,
+             weights,
+             positions,
+             targetWeight,
+             fits,
+             result.order,
+             std::vector<uint32_t>(n, n),
+             std::vector<uint8_t>(n, 0)};
   int depth = 0;
   while ((1 << depth) < threads) depth++;
   b.split(0, n, depth);

@@ -53,7 +53,8 @@ bool Patcher::ring(uint32_t face, uint32_t corner, FacePatch& out) const {
   }
   if (c != 4 * face + corner) return false;
   const uint32_t e0 = p[1], f0 = p[2], e1 = p[3], f1 = p[4], fLast = p[2 * valence];
-  uint32_t cA = q.withNext(f0, e0), cB = q.withNext(e0, fLast), cC = UINT32_MAX, cD = q.withNext(e1, f0), cE = UINT32_MAX;
+  uint32_t cA = q.withNext(f0, e0), cB = q.withNext(e0, fLast), cC = UINT32_MAX, cD = q.withNext(e1, f0),
+           cE = UINT32_MAX;
   if (cA == UINT32_MAX || cB == UINT32_MAX || cD == UINT32_MAX) return false;
   cC = q.withNext(f0, q.at(cA, 3));
   cE = q.withNext(e1, q.at(cD, 3));
@@ -105,7 +106,8 @@ FacePatch Patcher::patch(uint32_t face) const {
   auto slot = [](const int cell[2]) { return uint8_t(4 * cell[0] + cell[1]); };
   auto mirror = [&](uint8_t target, uint8_t a, uint8_t b) {
     patch.points[target] = UINT32_MAX;
-    patch.phantoms[patch.phantomCount][0] = target, patch.phantoms[patch.phantomCount][1] = a, patch.phantoms[patch.phantomCount][2] = b;
+    patch.phantoms[patch.phantomCount][0] = target, patch.phantoms[patch.phantomCount][1] = a,
+    patch.phantoms[patch.phantomCount][2] = b;
     patch.phantomCount++;
   };
   uint32_t nearV[4], farV[4];

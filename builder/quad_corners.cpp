@@ -29,8 +29,8 @@ uint32_t QuadCorners::withPrev(uint32_t a, uint32_t b) const {
   return UINT32_MAX;
 }
 
-PolygonMesh facesAround(const PolygonMesh& mesh, const std::vector<glm::vec3>& positions, const QuadCorners& q, const uint32_t* vertices,
-                        uint32_t count, uint32_t firstFace) {
+PolygonMesh facesAround(const PolygonMesh& mesh, const std::vector<glm::vec3>& positions, const QuadCorners& q,
+                        const uint32_t* vertices, uint32_t count, uint32_t firstFace) {
   std::vector<uint32_t> faces;
   if (firstFace != UINT32_MAX) faces.push_back(firstFace);
   for (uint32_t k = 0; k < count; k++)

@@ -25,7 +25,7 @@ struct EdgeCorner {
   uint64_t key;     // (min vertex, max vertex)
   uint32_t corner;  // global corner index of the edge's first vertex in its face
   uint32_t face;
-  bool forward;     // from min to max in face order
+  bool forward;  // from min to max in face order
 };
 
 // Products of three coordinates (volumes, squared lengths times a length) stay inside float.
@@ -94,20 +94,24 @@ size_t dissolveFolds(PolygonMesh& mesh, size_t& degenerate) {
 std::vector<bool> checkPositions(const PolygonMesh& mesh, const std::string& file) {
   const size_t vertexCount = mesh.positions.size();
   for (uint32_t v : mesh.faceVertices)
-    if (v >= vertexCount) throw InputError(file, "face index " + std::to_string(v) + " is out of range (" + std::to_string(vertexCount) + " vertices)");
+    if (v >= vertexCount)
+      throw InputError(
+          file, "face index " + std::to_string(v) + " is out of range (" + std::to_string(vertexCount) + " vertices)");
   std::vector<bool> used(vertexCount, false);
   for (uint32_t v : mesh.faceVertices) used[v] = true;
   for (size_t v = 0; v < vertexCount; v++) {
     const glm::vec3& p = mesh.positions[v];
     if (used[v] && !(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)))
-      throw InputError(file, "vertex " + std::to_string(v) + " has a non-finite position (" + std::to_string(p.x) + ", " +
-                                 std::to_string(p.y) + ", " + std::to_string(p.z) + ")");
+      throw InputError(file, "vertex " + std::to_string(v) + " has a non-finite position (" + std::to_string(p.x) +
+                                 ", " + std::to_string(p.y) + ", " + std::to_string(p.z) + ")");
   }
   for (size_t v = 0; v < vertexCount; v++) {
     const glm::vec3& p = mesh.positions[v];
     if (used[v] && std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) > kMaxCoordinate) {
       char where[256];
-      std::snprintf(where, sizeof where, "vertex %zu lies beyond +-1e12 (%g, %g, %g), past what the LOD build's float arithmetic holds: scale the model down",
+      std::snprintf(where, sizeof where,
+                    "vertex %zu lies beyond +-1e12 (%g, %g, %g), past what the LOD build's float arithmetic holds: "
+                    "scale the model down",
                     v, double(p.x), double(p.y), double(p.z));
       throw InputError(file, where);
     }
@@ -189,7 +193,8 @@ size_t dropDuplicateFaces(PolygonMesh& faces) {
   }
   std::vector<uint32_t> order(n);
   std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return hash[a] != hash[b] ? hash[a] < hash[b] : a < b; });
+  std::sort(order.begin(), order.end(),
+            [&](uint32_t a, uint32_t b) { return hash[a] != hash[b] ? hash[a] < hash[b] : a < b; });
   std::vector<bool> drop(n, false);
   std::vector<uint32_t> sa, sb;
   for (size_t i = 0; i < n; i++) {
@@ -205,8 +210,10 @@ size_t dropDuplicateFaces(PolygonMesh& faces) {
   PolygonMesh kept;
   kept.positions = std::move(faces.positions);
   for (size_t f = 0; f < n; f++) {
-    if (drop[f]) duplicates++;
-    else kept.addFace(faces.face(f), faces.faceSize(f), faces.faceNormals(f));
+    if (drop[f])
+      duplicates++;
+    else
+      kept.addFace(faces.face(f), faces.faceSize(f), faces.faceNormals(f));
   }
   faces = std::move(kept);
   return duplicates;
@@ -229,10 +236,12 @@ PolygonMesh splitNonManifold(const PolygonMesh& faces, RepairReport& report) {
     uint32_t a = faces.faceVertices[c], b = faces.faceVertices[nextCorner(c)];
     edges[c] = {uint64_t(std::min(a, b)) << 32 | std::max(a, b), c, cornerFace[c], a < b};
   }
-  std::sort(edges.begin(), edges.end(), [](const EdgeCorner& x, const EdgeCorner& y) { return x.key != y.key ? x.key < y.key : x.corner < y.corner; });
+  std::sort(edges.begin(), edges.end(), [](const EdgeCorner& x, const EdgeCorner& y) {
+    return x.key != y.key ? x.key < y.key : x.corner < y.corner;
+  });
 
   UnionFind wedges(cornerCount);
-  std::vector<bool> isolated(cornerCount, false);  // wedges that get a vertex of their own
+  std::vector<bool> isolated(cornerCount, false);    // wedges that get a vertex of their own
   std::vector<std::pair<uint32_t, uint32_t>> pairs;  // the two corners of each manifold edge
   for (size_t i = 0; i < edges.size();) {
     size_t j = i;
@@ -244,7 +253,10 @@ PolygonMesh splitNonManifold(const PolygonMesh& faces, RepairReport& report) {
     }
     size_t partner = SIZE_MAX;
     for (size_t k = i + 1; k < j; k++)
-      if (edges[k].forward != edges[i].forward) { partner = k; break; }
+      if (edges[k].forward != edges[i].forward) {
+        partner = k;
+        break;
+      }
     if (count > 2 || partner == SIZE_MAX) report.nonManifoldEdges++;
     for (size_t k = i; k < j; k++) {
       if (k == i || k == partner) continue;
@@ -278,8 +290,13 @@ PolygonMesh splitNonManifold(const PolygonMesh& faces, RepairReport& report) {
   for (uint32_t c = 0; c < cornerCount; c++) {
     uint32_t v = faces.faceVertices[c];
     if (root[c] == UINT32_MAX) {
-      if (firstRoot[v] == UINT32_MAX) firstRoot[v] = cornerCount;  // the vertex itself is taken
-      else { out.positions.push_back(faces.positions[v]); v = uint32_t(out.positions.size() - 1); report.splitVertices++; }
+      if (firstRoot[v] == UINT32_MAX)
+        firstRoot[v] = cornerCount;  // the vertex itself is taken
+      else {
+        out.positions.push_back(faces.positions[v]);
+        v = uint32_t(out.positions.size() - 1);
+        report.splitVertices++;
+      }
       newCorner[c] = v;
       continue;
     }

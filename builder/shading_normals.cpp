@@ -30,7 +30,8 @@ glm::dvec3 areaVector(const PolygonMesh& mesh, size_t f) {
 
 }  // namespace
 
-ShadingNormals shadingNormals(const PolygonMesh& mesh, const std::vector<glm::vec3>& vertexNormals, float creaseAngleDegrees) {
+ShadingNormals shadingNormals(const PolygonMesh& mesh, const std::vector<glm::vec3>& vertexNormals,
+                              float creaseAngleDegrees) {
   ShadingNormals out;
   const size_t cornerCount = mesh.faceVertices.size(), vertexCount = mesh.positions.size();
   const bool given = vertexNormals.size() == vertexCount && vertexCount > 0;
@@ -82,13 +83,17 @@ ShadingNormals shadingNormals(const PolygonMesh& mesh, const std::vector<glm::ve
     // Across each edge v -> w of a face, the face holding w -> v joins its corner at v when the faces
     // meet at no more than the crease angle (and likewise at w, from that face's side).
     const double cosCrease = std::cos(double(creaseAngleDegrees) * 3.14159265358979323846 / 180.0);
-    auto nextCorner = [&](uint32_t c) { return c + 1 == mesh.faceStart[cornerFace[c] + 1] ? mesh.faceStart[cornerFace[c]] : c + 1; };
+    auto nextCorner = [&](uint32_t c) {
+      return c + 1 == mesh.faceStart[cornerFace[c] + 1] ? mesh.faceStart[cornerFace[c]] : c + 1;
+    };
     std::vector<std::pair<uint64_t, uint32_t>> directed(cornerCount);  // (v << 32 | w, corner at v)
-    for (uint32_t c = 0; c < cornerCount; c++) directed[c] = {uint64_t(mesh.faceVertices[c]) << 32 | mesh.faceVertices[nextCorner(c)], c};
+    for (uint32_t c = 0; c < cornerCount; c++)
+      directed[c] = {uint64_t(mesh.faceVertices[c]) << 32 | mesh.faceVertices[nextCorner(c)], c};
     std::sort(directed.begin(), directed.end());
     for (uint32_t c = 0; c < cornerCount; c++) {
       const uint32_t v = mesh.faceVertices[c], w = mesh.faceVertices[nextCorner(c)];
-      auto it = std::lower_bound(directed.begin(), directed.end(), std::pair<uint64_t, uint32_t>(uint64_t(w) << 32 | v, 0u));
+      auto it =
+          std::lower_bound(directed.begin(), directed.end(), std::pair<uint64_t, uint32_t>(uint64_t(w) << 32 | v, 0u));
       if (it == directed.end() || it->first != (uint64_t(w) << 32 | v)) continue;  // a boundary edge
       const uint32_t other = it->second;  // the corner at w of the face across; its next corner is at v
       const glm::dvec3 a = faceArea[cornerFace[c]], b = faceArea[cornerFace[other]];
@@ -141,7 +146,8 @@ ShadingNormals shadingNormals(const PolygonMesh& mesh, const std::vector<glm::ve
     n = len > 0.0f && std::isfinite(len) ? n / len : glm::vec3(0.0f, 0.0f, 1.0f);
   }
   out.oneAVertex = true;
-  for (size_t v = 0; v < vertexCount && out.oneAVertex; v++) out.oneAVertex = out.wedgeStart[v + 1] - out.wedgeStart[v] == 1;
+  for (size_t v = 0; v < vertexCount && out.oneAVertex; v++)
+    out.oneAVertex = out.wedgeStart[v + 1] - out.wedgeStart[v] == 1;
   return out;
 }
 

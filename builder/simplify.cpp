@@ -43,7 +43,8 @@ double pointTriangleDistance(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b, glm::dvec
   double vb = d5 * d2 - d1 * d6;
   if (vb <= 0 && d2 >= 0 && d6 <= 0) return glm::length(p - (a + ac * (d2 / (d2 - d6))));
   double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return glm::length(p - (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)))));
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return glm::length(p - (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)))));
   double denom = 1.0 / (va + vb + vc);
   return glm::length(p - (a + ab * (vb * denom) + ac * (vc * denom)));
 }
@@ -51,7 +52,7 @@ double pointTriangleDistance(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b, glm::dvec
 namespace {
 
 constexpr float kHalvedRatio = 0.55f;
-constexpr double kBoundedError = 0.02;  // of the group's bounding box diagonal: beyond it, "relaxed"
+constexpr double kBoundedError = 0.02;   // of the group's bounding box diagonal: beyond it, "relaxed"
 constexpr double kBoundaryWeight = 4.0;  // boundary planes against the surface's: keeps outlines in place
 
 enum VertexKind : uint8_t { kFree = 0, kLocked = 1, kOpen = 2 };  // kOpen: on the open boundary only
@@ -72,8 +73,8 @@ struct Quadric {
   }
   double evaluate(glm::dvec3 p) const {
     double x = p.x, y = p.y, z = p.z;
-    return a[0] * x * x + 2 * a[1] * x * y + 2 * a[2] * x * z + 2 * a[3] * x + a[4] * y * y + 2 * a[5] * y * z + 2 * a[6] * y +
-           a[7] * z * z + 2 * a[8] * z + a[9];
+    return a[0] * x * x + 2 * a[1] * x * y + 2 * a[2] * x * z + 2 * a[3] * x + a[4] * y * y + 2 * a[5] * y * z +
+           2 * a[6] * y + a[7] * z * z + 2 * a[8] * z + a[9];
   }
   // Mean squared distance of p to the planes of this quadric and `other` together.
   double meanSquaredDistance(glm::dvec3 p, const Quadric& other) const {
@@ -97,7 +98,10 @@ class Simplifier {
   // kind[v]: VertexKind; openEdges: local (min << 32 | max), ascending.
   Simplifier(std::vector<uint32_t> triangles, std::vector<glm::dvec3> points, std::vector<uint8_t> kind,
              const std::vector<uint64_t>& openEdges, std::function<bool(uint32_t, uint32_t)> chordAllowed)
-      : tri_(std::move(triangles)), p_(std::move(points)), kind_(std::move(kind)), chordAllowed_(std::move(chordAllowed)) {
+      : tri_(std::move(triangles)),
+        p_(std::move(points)),
+        kind_(std::move(kind)),
+        chordAllowed_(std::move(chordAllowed)) {
     const size_t n = p_.size(), m = tri_.size() / 3;
     alive_.assign(m, 1);
     removed_.assign(n, 0);
@@ -133,7 +137,9 @@ class Simplifier {
       if (openEdges.empty()) continue;
       for (int k = 0; k < 3; k++) {
         uint32_t e0 = tri_[3 * t + k], e1 = tri_[3 * t + (k + 1) % 3];
-        if (!std::binary_search(openEdges.begin(), openEdges.end(), uint64_t(std::min(e0, e1)) << 32 | std::max(e0, e1))) continue;
+        if (!std::binary_search(openEdges.begin(), openEdges.end(),
+                                uint64_t(std::min(e0, e1)) << 32 | std::max(e0, e1)))
+          continue;
         glm::dvec3 edge = p_[e1] - p_[e0];
         glm::dvec3 side = glm::cross(edge, normal);
         double length = glm::length(side);
@@ -178,7 +184,9 @@ class Simplifier {
       double best = INFINITY;
       for (uint32_t i = 0; i < size_[w]; i++) {
         uint32_t t = trianglesOf(w)[i];
-        if (alive_[t]) best = std::min(best, pointTriangleDistance(p_[u], p_[tri_[3 * t]], p_[tri_[3 * t + 1]], p_[tri_[3 * t + 2]]));
+        if (alive_[t])
+          best =
+              std::min(best, pointTriangleDistance(p_[u], p_[tri_[3 * t]], p_[tri_[3 * t + 1]], p_[tri_[3 * t + 2]]));
       }
       if (std::isfinite(best)) worst = std::max(worst, best);
     }
@@ -268,7 +276,8 @@ class Simplifier {
     neighbours(u, scratchA_);
     neighbours(v, scratchB_);
     scratchC_.clear();
-    std::set_intersection(scratchA_.begin(), scratchA_.end(), scratchB_.begin(), scratchB_.end(), std::back_inserter(scratchC_));
+    std::set_intersection(scratchA_.begin(), scratchA_.end(), scratchB_.begin(), scratchB_.end(),
+                          std::back_inserter(scratchC_));
     size_t apexes = 0;
     for (uint32_t i = 0; i < size_[u]; i++) {
       uint32_t t = trianglesOf(u)[i];
@@ -294,14 +303,17 @@ class Simplifier {
       glm::dvec3 n0 = glm::cross(before[1] - before[0], before[2] - before[0]);
       glm::dvec3 n1 = glm::cross(after[1] - after[0], after[2] - after[0]);
       double l0 = glm::length(n0), l1 = glm::length(n1);
-      if (l1 <= 1e-12 * (glm::dot(after[1] - after[0], after[1] - after[0]) + glm::dot(after[2] - after[0], after[2] - after[0])))
+      if (l1 <= 1e-12 * (glm::dot(after[1] - after[0], after[1] - after[0]) +
+                         glm::dot(after[2] - after[0], after[2] - after[0])))
         return false;
       if (l0 > 0.0 && glm::dot(n0, n1) < 0.2 * l0 * l1) return false;
     }
     // Chords: new edges v-w between two locked vertices.
     if (kind_[v] == kLocked)
       for (uint32_t w : scratchA_)
-        if (w != v && kind_[w] == kLocked && !std::binary_search(scratchB_.begin(), scratchB_.end(), w) && !chordAllowed_(v, w)) return false;
+        if (w != v && kind_[w] == kLocked && !std::binary_search(scratchB_.begin(), scratchB_.end(), w) &&
+            !chordAllowed_(v, w))
+          return false;
     return true;
   }
 
@@ -358,7 +370,8 @@ class Simplifier {
 }  // namespace
 
 SimplifiedGroup simplifyGroup(const std::vector<uint32_t>& indices, const std::vector<glm::vec3>& positions,
-                              const std::function<bool(uint32_t, uint32_t)>& chordAllowed, const std::vector<uint64_t>& openEdges) {
+                              const std::function<bool(uint32_t, uint32_t)>& chordAllowed,
+                              const std::vector<uint64_t>& openEdges) {
   // Local vertex ids in order of first use.
   thread_local std::vector<uint32_t> localOf;
   if (localOf.size() < positions.size()) localOf.assign(positions.size(), UINT32_MAX);

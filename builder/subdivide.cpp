@@ -67,7 +67,8 @@ PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh) {
 
   // Vertex points. Interior: (Q + 2R + (n-3) V) / n with Q the mean of the face points, R the mean of
   // the edge midpoints, n the valence. Boundary: 3/4 V + 1/8 (A + B) over the two boundary neighbours.
-  std::vector<glm::dvec3> sumFaces(vertexCount, glm::dvec3(0.0)), sumMid(vertexCount, glm::dvec3(0.0)), sumBoundary(vertexCount, glm::dvec3(0.0));
+  std::vector<glm::dvec3> sumFaces(vertexCount, glm::dvec3(0.0)), sumMid(vertexCount, glm::dvec3(0.0)),
+      sumBoundary(vertexCount, glm::dvec3(0.0));
   std::vector<uint32_t> valence(vertexCount, 0), faces(vertexCount, 0), boundary(vertexCount, 0);
   for (size_t f = 0; f < faceCount; f++)
     for (uint32_t i = 0; i < mesh.faceSize(f); i++) {
@@ -110,7 +111,8 @@ PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh) {
   for (size_t f = 0; f < faceCount; f++) {
     uint32_t n = mesh.faceSize(f), first = mesh.faceStart[f];
     for (uint32_t i = 0; i < n; i++) {
-      uint32_t quad[4] = {mesh.face(f)[i], uint32_t(vertexCount + cornerEdge[first + i]), uint32_t(vertexCount + edgeCount + f),
+      uint32_t quad[4] = {mesh.face(f)[i], uint32_t(vertexCount + cornerEdge[first + i]),
+                          uint32_t(vertexCount + edgeCount + f),
                           uint32_t(vertexCount + cornerEdge[first + (i + n - 1) % n])};
       out.addFace(quad, 4);
     }

@@ -31,10 +31,15 @@ class TextReader {
   void skipWhitespaceAndComments() {
     while (pos_ < text_.size()) {
       char c = text_[pos_];
-      if (c == '\n') { line_++; pos_++; }
-      else if (c == ' ' || c == '\t' || c == '\r') pos_++;
-      else if (c == '#') skipLine();
-      else break;
+      if (c == '\n') {
+        line_++;
+        pos_++;
+      } else if (c == ' ' || c == '\t' || c == '\r')
+        pos_++;
+      else if (c == '#')
+        skipLine();
+      else
+        break;
     }
   }
   bool atLineEnd() {
@@ -44,7 +49,10 @@ class TextReader {
   // Moves past the next newline.
   void skipLine() {
     while (pos_ < text_.size() && text_[pos_] != '\n') pos_++;
-    if (pos_ < text_.size()) { pos_++; line_++; }
+    if (pos_ < text_.size()) {
+      pos_++;
+      line_++;
+    }
   }
   // The next blank-separated token on this line (empty at the line's end).
   std::string_view token() {

@@ -17,7 +17,9 @@ SurfaceTopology surfaceTopology(const std::vector<uint32_t>& indices) {
   std::vector<uint32_t> vertices(indices);
   std::sort(vertices.begin(), vertices.end());
   vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
-  auto id = [&](uint32_t v) { return uint32_t(std::lower_bound(vertices.begin(), vertices.end(), v) - vertices.begin()); };
+  auto id = [&](uint32_t v) {
+    return uint32_t(std::lower_bound(vertices.begin(), vertices.end(), v) - vertices.begin());
+  };
   UnionFind components(vertices.size());
   std::vector<uint64_t> edges;
   edges.reserve(indices.size());

@@ -39,8 +39,9 @@ nlohmann::json buildInChild(const std::string& input, int subdiv, int threads, c
   // This very executable, even if its file was replaced since it started.
   std::string self = "/proc/self/exe";
   std::string out = dir + "/bench.vgeo", stats = dir + "/bench.json";
-  std::vector<std::string> args = {self, "build", input, "-o", out, "--subdiv", std::to_string(subdiv), "--threads", std::to_string(threads),
-                                   "--stats", stats, "-q"};
+  std::vector<std::string> args = {
+      self,      "build", input, "-o", out, "--subdiv", std::to_string(subdiv), "--threads", std::to_string(threads),
+      "--stats", stats,   "-q"};
   std::vector<char*> argv;
   for (auto& s : args) argv.push_back(s.data());
   argv.push_back(nullptr);
@@ -60,7 +61,8 @@ nlohmann::json buildInChild(const std::string& input, int subdiv, int threads, c
 }
 
 void runBenchBuild(const BuildBenchArgs& a) {
-  std::string dir = (std::filesystem::temp_directory_path() / ("vgeo_bench_build_" + std::to_string(getpid()))).string();
+  std::string dir =
+      (std::filesystem::temp_directory_path() / ("vgeo_bench_build_" + std::to_string(getpid()))).string();
   std::filesystem::create_directories(dir);
   nlohmann::ordered_json records = nlohmann::json::array();
   for (const std::string& input : a.inputs) {
@@ -80,7 +82,8 @@ void runBenchBuild(const BuildBenchArgs& a) {
         for (const auto& r : runs) peak = std::max(peak, r["peak_rss_bytes"].get<uint64_t>());
         std::vector<double> levelTriangles = s["level_triangles"].get<std::vector<double>>();
         double worstRatio = 0.0;
-        for (size_t l = 0; l + 1 < levelTriangles.size(); l++) worstRatio = std::max(worstRatio, levelTriangles[l + 1] / levelTriangles[l]);
+        for (size_t l = 0; l + 1 < levelTriangles.size(); l++)
+          worstRatio = std::max(worstRatio, levelTriangles[l + 1] / levelTriangles[l]);
         nlohmann::ordered_json r;
         r["mesh"] = std::filesystem::path(input).filename().string();
         r["subdiv"] = subdiv;
@@ -105,9 +108,12 @@ void runBenchBuild(const BuildBenchArgs& a) {
         r["cores"] = std::thread::hardware_concurrency();
         r["repeat"] = runs.size();
         r["commit"] = VGEO_COMMIT;
-        std::fprintf(stderr, "%-16s subdiv %d threads %d: %9.0f leaf triangles, DAG %.3f s (%.2f M/s), total %.3f s, %.0f B/triangle, %d levels, %d roots\n",
-                     r["mesh"].get<std::string>().c_str(), subdiv, threads, leaves, median(dag), r["mtri_per_second"].get<double>(), median(total),
-                     r["bytes_per_triangle"].get<double>(), s["levels"].get<int>(), s["root_clusters"].get<int>());
+        std::fprintf(stderr,
+                     "%-16s subdiv %d threads %d: %9.0f leaf triangles, DAG %.3f s (%.2f M/s), total %.3f s, %.0f "
+                     "B/triangle, %d levels, %d roots\n",
+                     r["mesh"].get<std::string>().c_str(), subdiv, threads, leaves, median(dag),
+                     r["mtri_per_second"].get<double>(), median(total), r["bytes_per_triangle"].get<double>(),
+                     s["levels"].get<int>(), s["root_clusters"].get<int>());
         records.push_back(r);
       }
   }
@@ -118,7 +124,8 @@ void runBenchBuild(const BuildBenchArgs& a) {
 }  // namespace
 
 void addBenchBuildCommand(CLI::App& bench, int& exitCode) {
-  auto* cmd = bench.add_subcommand("build", "Builder time, throughput, peak memory and DAG quality per mesh, --subdiv and --threads");
+  auto* cmd = bench.add_subcommand(
+      "build", "Builder time, throughput, peak memory and DAG quality per mesh, --subdiv and --threads");
   auto a = std::make_shared<BuildBenchArgs>();
   cmd->add_option("inputs", a->inputs, "Meshes (any format `vgeo build` reads)")->required();
   cmd->add_option("-o,--output", a->output, "JSON records")->required();

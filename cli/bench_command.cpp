@@ -48,7 +48,8 @@ std::vector<std::pair<std::string, Camera>> cameraPath(const RenderScene& scene,
   const float reach = 0.015f * object * i0.maxScale;
   Camera surface;
   surface.eye = world(outermost) + toward * reach;
-  surface.target = world(outermost) - toward * reach + glm::normalize(glm::cross(toward, glm::vec3(0.0f, 1.0f, 0.0f))) * reach;
+  surface.target =
+      world(outermost) - toward * reach + glm::normalize(glm::cross(toward, glm::vec3(0.0f, 1.0f, 0.0f))) * reach;
   path.push_back({"surface", surface});
   Camera away;
   away.eye = glm::vec3(hi.x, c.y + object, hi.z) + glm::vec3(0.1f) * wide;
@@ -68,7 +69,8 @@ namespace {
 struct BenchArgs {
   std::string input, output, sizes = "1,10,100,1000,10000,100000", layouts = "grid,scatter", taus = "1,4",
                              traversals = "persistent,levels,flat,cpu", size = "1920x1080", device;
-  uint32_t frames = 5, cpuMaxInstances = 1000, flatMaxInstances = 10000, workgroups = 0, sweepBudget = kDefaultSweepBudget;
+  uint32_t frames = 5, cpuMaxInstances = 1000, flatMaxInstances = 10000, workgroups = 0,
+           sweepBudget = kDefaultSweepBudget;
   bool profileWorkers = false;
   std::string instanceCulling = "auto";
   float fov = 60.0f;
@@ -116,7 +118,8 @@ void runBenchCut(const BenchArgs& a) {
               for (uint32_t f = 0; f < std::max(1u, a.frames / 2); f++) {
                 auto start = std::chrono::steady_clock::now();
                 cut = selectSceneCut(scene, s.cullView, tau);
-                ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+                ms.push_back(
+                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
               }
               r["traversal_ms"] = median(ms);
               r["timing"] = "host";
@@ -141,7 +144,8 @@ void runBenchCut(const BenchArgs& a) {
                 cullMs.push_back(f.instanceCullMs);
               }
               r["traversal_ms"] = median(ms);
-              r["instance_cull_ms"] = median(cullMs);  // part of traversal_ms (the counter reset when culled in the traversal)
+              r["instance_cull_ms"] =
+                  median(cullMs);  // part of traversal_ms (the counter reset when culled in the traversal)
               addFrameCounters(r, f, renderer, vk);
               if (s.traversal == Traversal::Persistent) {
                 r["workgroups"] = renderer.persistentWorkgroups();
@@ -151,7 +155,8 @@ void runBenchCut(const BenchArgs& a) {
                 if (a.profileWorkers && renderer.canProfileWorkers()) {
                   FrameSettings p = s;
                   p.profileWorkers = true;
-                  r["worker_profile"] = summarizeWorkerProfile(renderer.renderFrame(p).workerProfile, renderer.persistentWorkgroups());
+                  r["worker_profile"] =
+                      summarizeWorkerProfile(renderer.renderFrame(p).workerProfile, renderer.persistentWorkgroups());
                 }
               }
             }
@@ -162,8 +167,9 @@ void runBenchCut(const BenchArgs& a) {
             r["width"] = width;
             r["height"] = height;
             r["commit"] = VGEO_COMMIT;
-            std::fprintf(stderr, "%-7s %6u instances %-8s tau %-3g %-10s %9.3f ms %8s clusters\n", layout.c_str(), count, cameraName.c_str(), tau,
-                         mode.c_str(), r["traversal_ms"].get<double>(), std::to_string(r["visible_clusters"].get<uint64_t>()).c_str());
+            std::fprintf(stderr, "%-7s %6u instances %-8s tau %-3g %-10s %9.3f ms %8s clusters\n", layout.c_str(),
+                         count, cameraName.c_str(), tau, mode.c_str(), r["traversal_ms"].get<double>(),
+                         std::to_string(r["visible_clusters"].get<uint64_t>()).c_str());
             records.push_back(r);
           }
     }
@@ -176,7 +182,8 @@ void runBenchCut(const BenchArgs& a) {
 void addBenchCommand(CLI::App& app, int& exitCode) {
   auto* bench = app.add_subcommand("bench", "Benchmarks");
   bench->require_subcommand(1);
-  auto* cut = bench->add_subcommand("cut", "LOD-cut selection across scene sizes, layouts, cameras, tau and traversal modes");
+  auto* cut =
+      bench->add_subcommand("cut", "LOD-cut selection across scene sizes, layouts, cameras, tau and traversal modes");
   auto a = std::make_shared<BenchArgs>();
   cut->add_option("input", a->input, ".vgeo whose first geometry is instanced")->required();
   cut->add_option("-o,--output", a->output, "JSON records")->required();
@@ -186,14 +193,18 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
   cut->add_option("--traversals", a->traversals, "persistent, levels, flat, cpu")->capture_default_str();
   cut->add_option("--frames", a->frames, "Measured frames per record (median)")->capture_default_str();
   cut->add_option("--size", a->size, "Viewport WxH")->capture_default_str();
-  cut->add_option("--cpu-max-instances", a->cpuMaxInstances, "Largest scene the CPU reference runs on")->capture_default_str();
-  cut->add_option("--flat-max-instances", a->flatMaxInstances, "Largest scene the flat traversal runs on")->capture_default_str();
+  cut->add_option("--cpu-max-instances", a->cpuMaxInstances, "Largest scene the CPU reference runs on")
+      ->capture_default_str();
+  cut->add_option("--flat-max-instances", a->flatMaxInstances, "Largest scene the flat traversal runs on")
+      ->capture_default_str();
   cut->add_option("--workgroups", a->workgroups, "Persistent traversal workgroups (default: the renderer's)");
-  cut->add_option("--sweep-budget", a->sweepBudget, "Persistent traversal: cluster tests a frame may sweep instead of walking (0: none)")
+  cut->add_option("--sweep-budget", a->sweepBudget,
+                  "Persistent traversal: cluster tests a frame may sweep instead of walking (0: none)")
       ->capture_default_str();
   addInstanceCullingOption(cut, a->instanceCulling);
   cut->add_flag("--profile-workers", a->profileWorkers,
-                "Persistent records: one more frame with the workers' iterations timed in the shader (needs VK_KHR_shader_clock)");
+                "Persistent records: one more frame with the workers' iterations timed in the shader (needs "
+                "VK_KHR_shader_clock)");
   addDeviceOption(cut, a->device);
   cut->callback([a, &exitCode] {
     runBenchCut(*a);

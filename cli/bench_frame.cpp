@@ -13,7 +13,8 @@ namespace vgeo {
 namespace {
 
 struct FrameBenchArgs {
-  std::string input, output, grids = "32", sizes = "1280x720,1920x1080", cameras = "corner,inside", traversal = "persistent", device;
+  std::string input, output, grids = "32", sizes = "1280x720,1920x1080", cameras = "corner,inside",
+                             traversal = "persistent", device;
   uint32_t frames = 5;
   float fov = 60.0f, tau = 1.0f;
 };
@@ -82,14 +83,17 @@ void runBenchFrame(const FrameBenchArgs& a) {
           r["triangles_per_covered_pixel"] = covered ? double(f.trianglesDrawn) / double(covered) : 0.0;
           // The pixels the patches cover, and the tessellator's triangles a patch pixel.
           r["patch_pixels"] = patchCovered;
-          r["patch_triangles_per_patch_pixel"] = patchCovered && f.patchTriangles > 0 ? double(f.patchTriangles) / double(patchCovered) : 0.0;
+          r["patch_triangles_per_patch_pixel"] =
+              patchCovered && f.patchTriangles > 0 ? double(f.patchTriangles) / double(patchCovered) : 0.0;
           r["frames"] = a.frames;
           r["commit"] = VGEO_COMMIT;
           std::fprintf(stderr,
-                       "%7zu instances %4ux%-4u %-7s triangle cull %-3s patches %-3s: cull %.3f  traversal %.3f  triangles %.3f  draw %.3f  "
+                       "%7zu instances %4ux%-4u %-7s triangle cull %-3s patches %-3s: cull %.3f  traversal %.3f  "
+                       "triangles %.3f  draw %.3f  "
                        "frame %.3f ms\n",
-                       scene.data.instances.size(), width, height, cameraName.c_str(), triangleCull ? "on" : "off", patches ? "on" : "off",
-                       median(cull), median(traverse), median(triangles), median(draw), median(frame));
+                       scene.data.instances.size(), width, height, cameraName.c_str(), triangleCull ? "on" : "off",
+                       patches ? "on" : "off", median(cull), median(traverse), median(triangles), median(draw),
+                       median(frame));
           records.push_back(r);
         }
       }
@@ -101,13 +105,16 @@ void runBenchFrame(const FrameBenchArgs& a) {
 }  // namespace
 
 void addBenchFrameCommand(CLI::App& bench, int& exitCode) {
-  auto* cmd = bench.add_subcommand("frame", "Whole frames split into instance culling, traversal, triangle culling and draw");
+  auto* cmd =
+      bench.add_subcommand("frame", "Whole frames split into instance culling, traversal, triangle culling and draw");
   auto a = std::make_shared<FrameBenchArgs>();
   cmd->add_option("input", a->input, ".vgeo or scene file")->required();
   cmd->add_option("-o,--output", a->output, "JSON records")->required();
-  cmd->add_option("--grids", a->grids, "N for N x N copies of the input (the main job's default scene is 32)")->capture_default_str();
+  cmd->add_option("--grids", a->grids, "N for N x N copies of the input (the main job's default scene is 32)")
+      ->capture_default_str();
   cmd->add_option("--sizes", a->sizes, "Viewports WxH")->capture_default_str();
-  cmd->add_option("--cameras", a->cameras, "far, corner (the default camera), inside, closeup, surface, away")->capture_default_str();
+  cmd->add_option("--cameras", a->cameras, "far, corner (the default camera), inside, closeup, surface, away")
+      ->capture_default_str();
   addTraversalOption(cmd, a->traversal);
   cmd->add_option("--tau", a->tau, "Allowed projected error, pixels")->capture_default_str();
   cmd->add_option("--frames", a->frames, "Measured frames per record (median)")->capture_default_str();

@@ -16,7 +16,8 @@ namespace vgeo {
 
 // "WxH" with both in 1..16384.
 inline bool parseSize(const std::string& text, uint32_t& width, uint32_t& height) {
-  return std::sscanf(text.c_str(), "%ux%u", &width, &height) == 2 && width > 0 && height > 0 && width <= 16384 && height <= 16384;
+  return std::sscanf(text.c_str(), "%ux%u", &width, &height) == 2 && width > 0 && height > 0 && width <= 16384 &&
+         height <= 16384;
 }
 
 // Writes JSON (stats, benchmark records) to `path`, atomically; throws OutputError("path: cause").
@@ -26,14 +27,17 @@ inline void writeJson(const std::string& path, const nlohmann::ordered_json& j, 
 
 // --instance-culling auto|pass|traversal (render and bench cut), for FrameSettings::instanceCulling.
 inline void addInstanceCullingOption(CLI::App* cmd, std::string& name) {
-  cmd->add_option("--instance-culling", name,
-                  "Persistent traversal: cull the instances in a pass of their own, or first thing in the traversal's dispatch "
-                  "(auto: the traversal on GPUs in scenes of up to 3 instances a worker)")
+  cmd->add_option(
+         "--instance-culling", name,
+         "Persistent traversal: cull the instances in a pass of their own, or first thing in the traversal's dispatch "
+         "(auto: the traversal on GPUs in scenes of up to 3 instances a worker)")
       ->check(CLI::IsMember({"auto", "pass", "traversal"}))
       ->capture_default_str();
 }
 inline InstanceCulling instanceCullingNamed(const std::string& name) {
-  return name == "pass" ? InstanceCulling::Pass : name == "traversal" ? InstanceCulling::InTraversal : InstanceCulling::Auto;
+  return name == "pass"        ? InstanceCulling::Pass
+         : name == "traversal" ? InstanceCulling::InTraversal
+                               : InstanceCulling::Auto;
 }
 
 // --traversal persistent|levels|flat (render and bench frame) and its value; bench cut lists several.

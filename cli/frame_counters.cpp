@@ -6,12 +6,14 @@
 
 namespace vgeo {
 
-void addFrameCounters(nlohmann::ordered_json& r, const FrameResult& f, const GpuRenderer& renderer, const VulkanContext& vk) {
+void addFrameCounters(nlohmann::ordered_json& r, const FrameResult& f, const GpuRenderer& renderer,
+                      const VulkanContext& vk) {
   const auto& c = f.counters;
   r["device"] = vk.deviceName();
   r["driver"] = vk.driverName();
   r["timing"] = f.timing;  // gpu-timestamps or host-per-submission
-  r["instance_culling"] = f.culledInTraversal ? "traversal" : "pass";  // traversal: instance_cull_ms is the counter reset
+  r["instance_culling"] =
+      f.culledInTraversal ? "traversal" : "pass";  // traversal: instance_cull_ms is the counter reset
   r["instances_visible"] = c.visibleInstances;
   r["nodes_visited"] = c.nodesVisited;
   r["clusters_tested"] = c.clustersTested;

@@ -15,11 +15,13 @@ int main(int argc, char** argv) {
   CLI::App app{"vgeo: a virtual-geometry builder and renderer"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("vgeo " VGEO_VERSION " (commit " VGEO_COMMIT ")"));
-  app.footer("Exit codes: 0 done; 1 a bad or unreadable input file, an output that could not be written, or a failed check; "
-             "2 a bad command line; 3 validation messages (--validate); 4 the GPU cut differs from the CPU's (--compare-cpu); "
-             "5 no usable device, out of memory, or a frame past its memory limit.");
+  app.footer(
+      "Exit codes: 0 done; 1 a bad or unreadable input file, an output that could not be written, or a failed check; "
+      "2 a bad command line; 3 validation messages (--validate); 4 the GPU cut differs from the CPU's (--compare-cpu); "
+      "5 no usable device, out of memory, or a frame past its memory limit.");
   // CLI11's own errors as one line too, like every other error.
-  app.failure_message([](const CLI::App*, const CLI::Error& e) { return std::string("vgeo: ") + e.what() + " (see --help)\n"; });
+  app.failure_message(
+      [](const CLI::App*, const CLI::Error& e) { return std::string("vgeo: ") + e.what() + " (see --help)\n"; });
   int exitCode = vgeo::kExitBadFile;
   vgeo::addBuildCommand(app, exitCode);
   vgeo::addCheckCommand(app, exitCode);

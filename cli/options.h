@@ -19,11 +19,11 @@ namespace vgeo {
 // Exit codes of `vgeo` (README, "Exit codes").
 enum ExitCode : int {
   kExitOk = 0,
-  kExitBadFile = 1,      // an input file is bad or unreadable, an output could not be written, check found a violation
-  kExitUsage = 2,        // a bad command line: unknown option, bad value, unusable output path
-  kExitValidation = 3,   // --validate: the validation layer reported something
-  kExitCutDiffers = 4,   // --compare-cpu: the GPU's draw list differs from the CPU reference cut
-  kExitResources = 5,    // no usable Vulkan device, out of memory, a frame past its memory limit
+  kExitBadFile = 1,     // an input file is bad or unreadable, an output could not be written, check found a violation
+  kExitUsage = 2,       // a bad command line: unknown option, bad value, unusable output path
+  kExitValidation = 3,  // --validate: the validation layer reported something
+  kExitCutDiffers = 4,  // --compare-cpu: the GPU's draw list differs from the CPU reference cut
+  kExitResources = 5,   // no usable Vulkan device, out of memory, a frame past its memory limit
 };
 
 struct UsageError : std::runtime_error {
@@ -43,11 +43,12 @@ inline CLI::Validator finiteBetween(double lo, double hi, bool closedLow = false
           return "'" + text + "' is not a number";
         }
         if (!std::isfinite(v) || v > hi || v == hi || v < lo || (v == lo && !closedLow))
-          return "'" + text + "' is out of range: needs a finite number " + (closedLow ? ">= " : "> ") + CLI::detail::to_string(lo) +
-                 (std::isinf(hi) ? std::string() : " and < " + CLI::detail::to_string(hi));
+          return "'" + text + "' is out of range: needs a finite number " + (closedLow ? ">= " : "> ") +
+                 CLI::detail::to_string(lo) + (std::isinf(hi) ? std::string() : " and < " + CLI::detail::to_string(hi));
         return std::string();
       },
-      std::string("NUMBER in ") + (closedLow ? "[" : "(") + CLI::detail::to_string(lo) + ", " + CLI::detail::to_string(hi) + ")");
+      std::string("NUMBER in ") + (closedLow ? "[" : "(") + CLI::detail::to_string(lo) + ", " +
+          CLI::detail::to_string(hi) + ")");
 }
 
 // "ex,ey,ez,tx,ty,tz": six finite numbers, eye apart from target.
@@ -63,13 +64,17 @@ inline Camera parseCameraOption(const std::string& option, const std::string& te
       v.push_back(std::stod(item, &used));
       if (used != item.size()) throw std::invalid_argument(item);
     } catch (...) {
-      throw UsageError(option, "'" + item + "' is not a number (expected eye_x,eye_y,eye_z,target_x,target_y,target_z)");
+      throw UsageError(option,
+                       "'" + item + "' is not a number (expected eye_x,eye_y,eye_z,target_x,target_y,target_z)");
     }
     start = end + 1;
   }
-  if (v.size() != 6) throw UsageError(option, "expected six numbers eye_x,eye_y,eye_z,target_x,target_y,target_z, got " + std::to_string(v.size()));
+  if (v.size() != 6)
+    throw UsageError(
+        option, "expected six numbers eye_x,eye_y,eye_z,target_x,target_y,target_z, got " + std::to_string(v.size()));
   for (double x : v)
-    if (!std::isfinite(x) || std::abs(x) > 1e30) throw UsageError(option, "every number must be finite (got " + text + ")");
+    if (!std::isfinite(x) || std::abs(x) > 1e30)
+      throw UsageError(option, "every number must be finite (got " + text + ")");
   Camera c;
   c.eye = glm::vec3(float(v[0]), float(v[1]), float(v[2]));
   c.target = glm::vec3(float(v[3]), float(v[4]), float(v[5]));
@@ -93,11 +98,15 @@ inline void checkOutputPath(const std::string& option, const std::string& path, 
   std::error_code ec;
   fs::path folder = fs::path(path).parent_path();
   if (folder.empty()) folder = ".";
-  if (!fs::is_directory(folder, ec)) throw UsageError(option, path + ": the folder " + folder.string() + " does not exist");
-  if (::access(folder.c_str(), W_OK) != 0) throw UsageError(option, path + ": the folder " + folder.string() + " is not writable");
+  if (!fs::is_directory(folder, ec))
+    throw UsageError(option, path + ": the folder " + folder.string() + " does not exist");
+  if (::access(folder.c_str(), W_OK) != 0)
+    throw UsageError(option, path + ": the folder " + folder.string() + " is not writable");
   const fs::file_status status = fs::symlink_status(path, ec);
   if (fs::exists(status) && !fs::is_regular_file(status))
-    throw UsageError(option, path + (fs::is_directory(status) ? " is a folder" : " is not a regular file (a link or a device): it would be replaced"));
+    throw UsageError(option, path + (fs::is_directory(status)
+                                         ? " is a folder"
+                                         : " is not a regular file (a link or a device): it would be replaced"));
   for (const std::string& input : inputs)
     if (fs::exists(path, ec) && fs::exists(input, ec) && fs::equivalent(path, input, ec))
       throw UsageError(option, path + " is an input of this command; it would be overwritten");

@@ -12,7 +12,8 @@ namespace vgeo {
 
 class ProgressBar {
  public:
-  explicit ProgressBar(bool quiet) : enabled_(!quiet && isatty(STDERR_FILENO)), start_(std::chrono::steady_clock::now()) {}
+  explicit ProgressBar(bool quiet)
+      : enabled_(!quiet && isatty(STDERR_FILENO)), start_(std::chrono::steady_clock::now()) {}
   ~ProgressBar() { finish(); }
 
   void update(double fraction, const char* stage) {
@@ -21,8 +22,8 @@ class ProgressBar {
     if (elapsed < 1.0) return;
     int filled = int(fraction * 30.0 + 0.5);
     filled = filled < 0 ? 0 : filled > 30 ? 30 : filled;
-    std::fprintf(stderr, "\r[%s%s] %3d%% %-12s %5.1fs", std::string(size_t(filled), '#').c_str(), std::string(size_t(30 - filled), '.').c_str(),
-                 int(fraction * 100.0 + 0.5), stage, elapsed);
+    std::fprintf(stderr, "\r[%s%s] %3d%% %-12s %5.1fs", std::string(size_t(filled), '#').c_str(),
+                 std::string(size_t(30 - filled), '.').c_str(), int(fraction * 100.0 + 0.5), stage, elapsed);
     std::fflush(stderr);
     shown_ = true;
   }

@@ -17,16 +17,25 @@
 namespace vgeo {
 namespace {
 
-const std::map<std::string, uint32_t> kModes = {
-    {"lit", VGEO_MODE_LIT},         {"normal", VGEO_MODE_NORMAL},     {"cluster", VGEO_MODE_CLUSTER}, {"group", VGEO_MODE_GROUP},
-    {"lod", VGEO_MODE_LOD},         {"triangle", VGEO_MODE_TRIANGLE}, {"instance", VGEO_MODE_INSTANCE}, {"error", VGEO_MODE_ERROR},
-    {"wire", VGEO_MODE_WIRE},       {"overdraw", VGEO_MODE_OVERDRAW}, {"frozen-diff", VGEO_MODE_FROZEN_DIFF},
-    {"patch", VGEO_MODE_PATCH}};
+const std::map<std::string, uint32_t> kModes = {{"lit", VGEO_MODE_LIT},
+                                                {"normal", VGEO_MODE_NORMAL},
+                                                {"cluster", VGEO_MODE_CLUSTER},
+                                                {"group", VGEO_MODE_GROUP},
+                                                {"lod", VGEO_MODE_LOD},
+                                                {"triangle", VGEO_MODE_TRIANGLE},
+                                                {"instance", VGEO_MODE_INSTANCE},
+                                                {"error", VGEO_MODE_ERROR},
+                                                {"wire", VGEO_MODE_WIRE},
+                                                {"overdraw", VGEO_MODE_OVERDRAW},
+                                                {"frozen-diff", VGEO_MODE_FROZEN_DIFF},
+                                                {"patch", VGEO_MODE_PATCH}};
 
 struct RenderArgs {
-  std::string input, output, stats, camera, freezeCamera, mode = "lit", traversal = "persistent", size = "1280x720", device;
+  std::string input, output, stats, camera, freezeCamera, mode = "lit", traversal = "persistent", size = "1280x720",
+                                                          device;
   float fov = 60.0f, tau = 1.0f;
-  uint32_t grid = 1, frames = 2, queueCapacity = 0, drawCapacity = 0, triangleCapacity = 0, workgroups = 0, cullLanes = 0;
+  uint32_t grid = 1, frames = 2, queueCapacity = 0, drawCapacity = 0, triangleCapacity = 0, workgroups = 0,
+           cullLanes = 0;
   uint32_t sweepBudget = kDefaultSweepBudget, maxFrameMemoryMiB = kDefaultFrameMemoryMiB;
   std::string instanceCulling = "auto";
   bool compareCpu = false, validate = false, noTriangleCull = false, noPatches = false;
@@ -35,7 +44,8 @@ struct RenderArgs {
 int runRender(const RenderArgs& a) {
   // The command line first, all of it, before anything is loaded or drawn.
   uint32_t width = 0, height = 0;
-  if (!parseSize(a.size, width, height)) throw UsageError("--size", "expected WxH with both in 1..16384, e.g. 1280x720 (got '" + a.size + "')");
+  if (!parseSize(a.size, width, height))
+    throw UsageError("--size", "expected WxH with both in 1..16384, e.g. 1280x720 (got '" + a.size + "')");
   Traversal traversal = traversalNamed("--traversal", a.traversal);
   checkOutputPath("--output", a.output, {a.input}, ".png");
   if (!a.stats.empty()) checkOutputPath("--stats", a.stats, {a.input, a.output});
@@ -53,8 +63,10 @@ int runRender(const RenderArgs& a) {
   renderer.setFrameMemoryLimit(uint64_t(a.maxFrameMemoryMiB) << 20);
   if (a.workgroups) renderer.setPersistentWorkgroups(a.workgroups);
   if (a.queueCapacity || a.drawCapacity || a.triangleCapacity)
-    renderer.setCapacities(a.queueCapacity ? a.queueCapacity : renderer.queueCapacity(), a.drawCapacity ? a.drawCapacity : renderer.drawCapacity(),
-                           a.triangleCapacity ? a.triangleCapacity : renderer.triangleCapacity(), renderer.patchCapacity());
+    renderer.setCapacities(a.queueCapacity ? a.queueCapacity : renderer.queueCapacity(),
+                           a.drawCapacity ? a.drawCapacity : renderer.drawCapacity(),
+                           a.triangleCapacity ? a.triangleCapacity : renderer.triangleCapacity(),
+                           renderer.patchCapacity());
   FrameSettings settings;
   settings.drawView = makeView(*camera, width, height, scene.bounds);
   settings.cullView = makeView(*cullCamera, width, height, scene.bounds);
@@ -68,32 +80,36 @@ int runRender(const RenderArgs& a) {
   settings.triangleCull = !a.noTriangleCull;
   settings.patches = !a.noPatches;
   if (settings.instanceCulling == InstanceCulling::InTraversal && !renderer.cullsInTraversal(settings))
-    throw UsageError("--instance-culling", "traversal needs the persistent traversal, culling lanes " + std::to_string(VGEO_CULL_INSTANCE_LANES) +
-                                               " and at most " + std::to_string(GpuRenderer::kCullInTraversalMaxPerWorker) +
-                                               " instances a worker (" + std::to_string(renderer.persistentWorkgroups()) + " workers)");
+    throw UsageError("--instance-culling", "traversal needs the persistent traversal, culling lanes " +
+                                               std::to_string(VGEO_CULL_INSTANCE_LANES) + " and at most " +
+                                               std::to_string(GpuRenderer::kCullInTraversalMaxPerWorker) +
+                                               " instances a worker (" +
+                                               std::to_string(renderer.persistentWorkgroups()) + " workers)");
 
   // Frames until one is complete (an overflow grows the buffers for the next); the first frames warm
   // the shader cache (docs/gpu-notes.md, 4), the last one is reported.
   FrameResult result;
   uint32_t queueOverflows = 0, drawOverflows = 0, triangleOverflows = 0, patchOverflows = 0, frames = 0;
   for (uint32_t f = 0; f < std::max(a.frames, 1u) || !result.complete; f++) {
-    if (f >= a.frames + 12) throw std::runtime_error("frames keep overflowing after growing the buffers and the workers 12 times");
+    if (f >= a.frames + 12)
+      throw std::runtime_error("frames keep overflowing after growing the buffers and the workers 12 times");
     result = renderer.renderFrame(settings);
     frames++;
     if (result.workersRanOut) {
-      std::fprintf(stderr, "frame %u: the traversal's workers ran out of their iteration budget; %u workers next\n", frames,
-                   renderer.persistentWorkgroups());
+      std::fprintf(stderr, "frame %u: the traversal's workers ran out of their iteration budget; %u workers next\n",
+                   frames, renderer.persistentWorkgroups());
     } else if (!result.complete) {
       queueOverflows += result.counters.queueOverflow;
       drawOverflows += result.counters.drawOverflow;
       triangleOverflows += result.counters.triangleOverflow;
       patchOverflows += result.counters.patchOverflow;
       std::fprintf(stderr,
-                   "overflow in frame %u: %u queue items, %u draw entries, %u triangles and %u patches did not fit; grown to %u queue items, "
+                   "overflow in frame %u: %u queue items, %u draw entries, %u triangles and %u patches did not fit; "
+                   "grown to %u queue items, "
                    "%u draw entries, %u triangles, %u patches\n",
-                   frames, result.counters.queueOverflow, result.counters.drawOverflow, result.counters.triangleOverflow,
-                   result.counters.patchOverflow, renderer.queueCapacity(), renderer.drawCapacity(), renderer.triangleCapacity(),
-                   renderer.patchCapacity());
+                   frames, result.counters.queueOverflow, result.counters.drawOverflow,
+                   result.counters.triangleOverflow, result.counters.patchOverflow, renderer.queueCapacity(),
+                   renderer.drawCapacity(), renderer.triangleCapacity(), renderer.patchCapacity());
     }
   }
   writePng(a.output, width, height, result.rgba);
@@ -137,15 +153,21 @@ int runRender(const RenderArgs& a) {
     if (!equal) j["cpu_cut_difference"] = difference;
   }
   if (!a.stats.empty()) writeJson(a.stats, j, 2);  // before the summary: a failed write is the one line printed
-  std::printf("%s: %ux%u on %s, %s traversal, tau %g: %u of %zu instances visible, %u clusters, %u triangles in the cut of %llu virtual, "
-              "%u drawn (%.2f a covered pixel); instance culling %.2f ms, traversal %.2f ms, triangle culling %.2f ms, draw %.2f ms, frame %.2f ms (%s)\n",
-              a.output.c_str(), width, height, vk.deviceName().c_str(), a.traversal.c_str(), a.tau, c.visibleInstances,
-              scene.data.instances.size(), std::min(c.drawCount, renderer.drawCapacity()), c.triangles,
-              (unsigned long long)scene.virtualTriangles, drawn, j["triangles_per_covered_pixel"].get<double>(), result.instanceCullMs, result.traversalMs,
-              result.triangleCullMs, result.drawMs, result.frameMs, result.timing.c_str());
+  std::printf(
+      "%s: %ux%u on %s, %s traversal, tau %g: %u of %zu instances visible, %u clusters, %u triangles in the cut of "
+      "%llu virtual, "
+      "%u drawn (%.2f a covered pixel); instance culling %.2f ms, traversal %.2f ms, triangle culling %.2f ms, draw "
+      "%.2f ms, frame %.2f ms (%s)\n",
+      a.output.c_str(), width, height, vk.deviceName().c_str(), a.traversal.c_str(), a.tau, c.visibleInstances,
+      scene.data.instances.size(), std::min(c.drawCount, renderer.drawCapacity()), c.triangles,
+      (unsigned long long)scene.virtualTriangles, drawn, j["triangles_per_covered_pixel"].get<double>(),
+      result.instanceCullMs, result.traversalMs, result.triangleCullMs, result.drawMs, result.frameMs,
+      result.timing.c_str());
   if (a.compareCpu)
-    std::printf("cpu cut: %s (%zu clusters, %zu borderline)%s\n", j["cpu_cut_equal"].get<bool>() ? "equal" : "DIFFERENT",
-                size_t(j["cpu_clusters"]), size_t(j["borderline_clusters"]), j.contains("cpu_cut_difference") ? (": " + j["cpu_cut_difference"].get<std::string>()).c_str() : "");
+    std::printf("cpu cut: %s (%zu clusters, %zu borderline)%s\n",
+                j["cpu_cut_equal"].get<bool>() ? "equal" : "DIFFERENT", size_t(j["cpu_clusters"]),
+                size_t(j["borderline_clusters"]),
+                j.contains("cpu_cut_difference") ? (": " + j["cpu_cut_difference"].get<std::string>()).c_str() : "");
   if (vk.validationMessages() > 0) {
     std::fprintf(stderr, "validation: %u messages\n", vk.validationMessages());
     return kExitValidation;
@@ -163,39 +185,54 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("-o,--output", a->output, "Output PNG")->required();
   cmd->add_option("--size", a->size, "Image size WxH")->capture_default_str();
   cmd->add_option("--camera", a->camera, "eye_x,eye_y,eye_z,target_x,target_y,target_z (default: frames the scene)");
-  cmd->add_option("--fov", a->fov, "Vertical field of view, degrees")->capture_default_str()->check(finiteBetween(0.0, 180.0));
-  cmd->add_option("--tau", a->tau, "Allowed projected error, pixels (a tau below what the leaves reach draws the leaves)")
+  cmd->add_option("--fov", a->fov, "Vertical field of view, degrees")
+      ->capture_default_str()
+      ->check(finiteBetween(0.0, 180.0));
+  cmd->add_option("--tau", a->tau,
+                  "Allowed projected error, pixels (a tau below what the leaves reach draws the leaves)")
       ->capture_default_str()
       ->check(finiteBetween(0.0, INFINITY));
   std::vector<std::string> modes;
   for (const auto& [name, value] : kModes) modes.push_back(name);
   cmd->add_option("--mode", a->mode, "Debug view")->capture_default_str()->check(CLI::IsMember(modes));
-  cmd->add_option("--grid", a->grid, "N x N instances of the input")->capture_default_str()->check(CLI::Range(1u, 4096u));
+  cmd->add_option("--grid", a->grid, "N x N instances of the input")
+      ->capture_default_str()
+      ->check(CLI::Range(1u, 4096u));
   addTraversalOption(cmd, a->traversal);
-  cmd->add_option("--freeze-camera", a->freezeCamera, "Select and cull with this camera (six numbers), draw from --camera");
-  cmd->add_flag("--compare-cpu", a->compareCpu, "Compare the GPU draw list with the CPU reference cut (exit 4 if they differ)");
+  cmd->add_option("--freeze-camera", a->freezeCamera,
+                  "Select and cull with this camera (six numbers), draw from --camera");
+  cmd->add_flag("--compare-cpu", a->compareCpu,
+                "Compare the GPU draw list with the CPU reference cut (exit 4 if they differ)");
   cmd->add_option("--stats", a->stats, "Write frame statistics as JSON to this file");
   addDeviceOption(cmd, a->device);
-  cmd->add_flag("--validate", a->validate, "Khronos validation layer with synchronization validation (exit 3 on any message)");
+  cmd->add_flag("--validate", a->validate,
+                "Khronos validation layer with synchronization validation (exit 3 on any message)");
   cmd->add_option("--frames", a->frames, "Frames to render; the last is reported (the first warms shader caches)")
       ->capture_default_str()
       ->check(CLI::Range(1u, 100000u));
   cmd->add_option("--max-frame-memory", a->maxFrameMemoryMiB,
-                  "MiB the frame's growing lists (queue, draw, triangle, patch) may take; a cut that needs more stops with exit 5")
+                  "MiB the frame's growing lists (queue, draw, triangle, patch) may take; a cut that needs more stops "
+                  "with exit 5")
       ->capture_default_str()
       ->check(CLI::Range(1u, 1u << 20));
   cmd->add_option("--queue-capacity", a->queueCapacity, "Initial traversal queue capacity, items (debugging overflow)");
   cmd->add_option("--draw-capacity", a->drawCapacity, "Initial draw list capacity, clusters (debugging overflow)");
-  cmd->add_option("--triangle-capacity", a->triangleCapacity, "Initial triangle list capacity, triangles (debugging overflow)");
+  cmd->add_option("--triangle-capacity", a->triangleCapacity,
+                  "Initial triangle list capacity, triangles (debugging overflow)");
   cmd->add_flag("--no-triangle-cull", a->noTriangleCull,
-                "Draw every triangle of the listed clusters (default: drop those that cannot make a fragment first); implies --no-patches");
+                "Draw every triangle of the listed clusters (default: drop those that cannot make a fragment first); "
+                "implies --no-patches");
   cmd->add_flag("--no-patches", a->noPatches,
-                "Draw leaf clusters as their triangles even where their chord error projects above tau (default: tessellated limit-surface patches)");
-  cmd->add_option("--workgroups", a->workgroups, "Persistent traversal workgroups (default: as many as the device runs at once)");
-  cmd->add_option("--sweep-budget", a->sweepBudget, "Persistent traversal: cluster tests a frame may sweep instead of walking (0: none)")
+                "Draw leaf clusters as their triangles even where their chord error projects above tau (default: "
+                "tessellated limit-surface patches)");
+  cmd->add_option("--workgroups", a->workgroups,
+                  "Persistent traversal workgroups (default: as many as the device runs at once)");
+  cmd->add_option("--sweep-budget", a->sweepBudget,
+                  "Persistent traversal: cluster tests a frame may sweep instead of walking (0: none)")
       ->capture_default_str();
-  cmd->add_option("--cull-lanes", a->cullLanes, "Lanes instance culling gives an instance, 1 or " + std::to_string(VGEO_CULL_INSTANCE_LANES) +
-                                                  " (default: the renderer's; sweeps need " + std::to_string(VGEO_CULL_INSTANCE_LANES) + ")")
+  cmd->add_option("--cull-lanes", a->cullLanes,
+                  "Lanes instance culling gives an instance, 1 or " + std::to_string(VGEO_CULL_INSTANCE_LANES) +
+                      " (default: the renderer's; sweeps need " + std::to_string(VGEO_CULL_INSTANCE_LANES) + ")")
       ->check(CLI::IsMember({1u, uint32_t(VGEO_CULL_INSTANCE_LANES)}));
   addInstanceCullingOption(cmd, a->instanceCulling);
   cmd->callback([a, &exitCode] { exitCode = runRender(*a); });

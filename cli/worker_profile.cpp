@@ -16,7 +16,10 @@ nlohmann::ordered_json summarizeWorkerProfile(const std::vector<uint32_t>& words
            working = 0, recorded = 0, items = 0, tests = 0, busy = 0;
   std::vector<double> claim, take, rounds, whole;
   std::vector<uint64_t> begins;
-  struct Taken { uint64_t start; uint32_t items; };
+  struct Taken {
+    uint64_t start;
+    uint32_t items;
+  };
   std::vector<Taken> takenItems;
   for (uint32_t g = 0; g < workgroups; g++) {
     const size_t base = size_t(g) * VGEO_PROFILE_WORKER_WORDS;

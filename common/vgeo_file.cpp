@@ -60,7 +60,8 @@ struct SectionView {
 };
 
 std::vector<SectionView> views(const VgeoData& d) {
-#define VGEO_SECTION_VIEW(id, member, type, values, name) {d.member.data(), uint32_t(sizeof(type) * values), d.member.size() / values},
+#define VGEO_SECTION_VIEW(id, member, type, values, name) \
+  {d.member.data(), uint32_t(sizeof(type) * values), d.member.size() / values},
   return {VGEO_SECTIONS(VGEO_SECTION_VIEW)};
 #undef VGEO_SECTION_VIEW
 }
@@ -144,12 +145,15 @@ VgeoData readSections(const uint8_t* bytes, size_t size, const Fail& fail) {
   if (std::memcmp(bytes, kMagic, 8) != 0) fail("not a .vgeo file (bad magic)");
   uint32_t version = get<uint32_t>(bytes + 8);
   if (version != kVgeoVersion)
-    fail("unsupported .vgeo version " + std::to_string(version) + " (this build reads version " + std::to_string(kVgeoVersion) +
-         "); rebuild the file with this vgeo");
+    fail("unsupported .vgeo version " + std::to_string(version) + " (this build reads version " +
+         std::to_string(kVgeoVersion) + "); rebuild the file with this vgeo");
   uint32_t count = get<uint32_t>(bytes + 12);
   uint64_t fileSize = get<uint64_t>(bytes + 16);
-  if (fileSize != size) fail("truncated or padded: the header says " + std::to_string(fileSize) + " bytes, the file has " + std::to_string(size));
-  if (count > 64 || kHeaderSize + uint64_t(count) * kEntrySize > size) fail("corrupt section table (" + std::to_string(count) + " sections)");
+  if (fileSize != size)
+    fail("truncated or padded: the header says " + std::to_string(fileSize) + " bytes, the file has " +
+         std::to_string(size));
+  if (count > 64 || kHeaderSize + uint64_t(count) * kEntrySize > size)
+    fail("corrupt section table (" + std::to_string(count) + " sections)");
   std::vector<uint8_t> head(bytes, bytes + kHeaderSize + count * kEntrySize);
   uint64_t stored = get<uint64_t>(bytes + 24);
   std::memset(head.data() + 24, 0, 8);
@@ -165,7 +169,8 @@ VgeoData readSections(const uint8_t* bytes, size_t size, const Fail& fail) {
     const char* sname = sectionName(Section(e.id));
     if (seen[e.id - 1]) fail(std::string("section '") + sname + "' appears twice");
     seen[e.id - 1] = true;
-    if (e.elementSize != sections[e.id - 1].elementSize) fail(std::string("section '") + sname + "' has element size " + std::to_string(e.elementSize));
+    if (e.elementSize != sections[e.id - 1].elementSize)
+      fail(std::string("section '") + sname + "' has element size " + std::to_string(e.elementSize));
     if (e.offset % 16 || e.offset > size || e.count > (size - e.offset) / e.elementSize)
       fail(std::string("section '") + sname + "' lies outside the file");
     const uint8_t* src = bytes + e.offset;
@@ -182,7 +187,8 @@ VgeoData readSections(const uint8_t* bytes, size_t size, const Fail& fail) {
     break;
       VGEO_SECTIONS(VGEO_SECTION_COPY)
 #undef VGEO_SECTION_COPY
-      default: break;
+      default:
+        break;
     }
   }
   for (size_t i = 0; i < seen.size(); i++)
@@ -203,15 +209,18 @@ void checkReferences(const VgeoData& data, const Fail& fail) {
   for (size_t i = 0; i < data.geometries.size(); i++) {
     const auto& g = data.geometries[i];
     std::string what = "geometry " + std::to_string(i);
-    if (!within(g.clusterOffset, g.clusterCount, data.clusters.size()) || !within(g.groupOffset, g.groupCount, data.groups.size()) ||
-        !within(g.nodeOffset, g.nodeCount, data.nodes.size()) || g.nodeCount == 0 || !within(g.vertexOffset, g.vertexCount, vertices) ||
+    if (!within(g.clusterOffset, g.clusterCount, data.clusters.size()) ||
+        !within(g.groupOffset, g.groupCount, data.groups.size()) ||
+        !within(g.nodeOffset, g.nodeCount, data.nodes.size()) || g.nodeCount == 0 ||
+        !within(g.vertexOffset, g.vertexCount, vertices) ||
         !within(g.cageFaceOffset, g.cageFaceCount, data.cageFaces.size()))
       fail(what + " refers outside the file's arrays");
   }
   for (size_t i = 0; i < data.instances.size(); i++) {
     const auto& inst = data.instances[i];
     if (inst.geometry >= data.geometries.size()) fail("instance " + std::to_string(i) + " uses a missing geometry");
-    if (!(inst.maxScale > 0.0f) || !std::isfinite(inst.maxScale)) fail("instance " + std::to_string(i) + " has a bad scale");
+    if (!(inst.maxScale > 0.0f) || !std::isfinite(inst.maxScale))
+      fail("instance " + std::to_string(i) + " has a bad scale");
     for (int r = 0; r < 4; r++)
       if (!std::isfinite(inst.row0[r]) || !std::isfinite(inst.row1[r]) || !std::isfinite(inst.row2[r]))
         fail("instance " + std::to_string(i) + " has a non-finite transform");
@@ -220,8 +229,10 @@ void checkReferences(const VgeoData& data, const Fail& fail) {
     const auto& c = data.clusters[i];
     std::string what = "cluster " + std::to_string(i);
     uint32_t vc = shaderio::clusterVertexCount(c.counts), tc = shaderio::clusterTriangleCount(c.counts);
-    if (vc > VGEO_MAX_CLUSTER_VERTICES || tc > VGEO_MAX_CLUSTER_TRIANGLES) fail(what + " is larger than a cluster may be");
-    if (!within(c.vertexOffset, vc, data.clusterVertices.size()) || !within(c.triangleOffset, tc, data.clusterTriangles.size()) ||
+    if (vc > VGEO_MAX_CLUSTER_VERTICES || tc > VGEO_MAX_CLUSTER_TRIANGLES)
+      fail(what + " is larger than a cluster may be");
+    if (!within(c.vertexOffset, vc, data.clusterVertices.size()) ||
+        !within(c.triangleOffset, tc, data.clusterTriangles.size()) ||
         !within(c.cageFaceOffset, shaderio::clusterCageFaceCount(c.counts), data.cageFaces.size()))
       fail(what + " refers outside the file's arrays");
     if (c.group >= data.groups.size() || (c.producer != VGEO_NO_GROUP && c.producer >= data.groups.size()))
@@ -251,18 +262,21 @@ void checkBvh(const VgeoData& data, const Fail& fail) {
     while (!stack.empty()) {
       auto [n, depth] = stack.back();
       stack.pop_back();
-      if (n < g.nodeOffset || n - g.nodeOffset >= g.nodeCount) fail("BVH node " + std::to_string(n) + " belongs to another geometry");
+      if (n < g.nodeOffset || n - g.nodeOffset >= g.nodeCount)
+        fail("BVH node " + std::to_string(n) + " belongs to another geometry");
       if (reached[n]++) fail("BVH node " + std::to_string(n) + " is reached twice (the hierarchy is not a tree)");
       if (depth > kMaxBvhDepth) fail("the BVH is deeper than " + std::to_string(kMaxBvhDepth) + " levels");
       const auto& node = data.nodes[n];
       uint32_t children = node.childCountAndFlags & ~VGEO_NODE_LEAF_BIT;
-      if (children > (n == g.nodeOffset ? VGEO_BVH_ROOT_WIDTH : VGEO_BVH_WIDTH)) fail("BVH node " + std::to_string(n) + " has too many children");
+      if (children > (n == g.nodeOffset ? VGEO_BVH_ROOT_WIDTH : VGEO_BVH_WIDTH))
+        fail("BVH node " + std::to_string(n) + " has too many children");
       if (node.childCountAndFlags & VGEO_NODE_LEAF_BIT) {
         if (!within(node.childOffset, children, data.groups.size()) || node.childOffset < g.groupOffset ||
             node.childOffset + children > g.groupOffset + g.groupCount)
           fail("BVH node " + std::to_string(n) + " refers to groups outside its geometry");
       } else {
-        if (!within(node.childOffset, children, data.nodes.size())) fail("BVH node " + std::to_string(n) + " refers to missing nodes");
+        if (!within(node.childOffset, children, data.nodes.size()))
+          fail("BVH node " + std::to_string(n) + " refers to missing nodes");
         for (uint32_t k = 0; k < children; k++) stack.push_back({node.childOffset + k, depth + 1});
       }
     }
@@ -281,23 +295,27 @@ void checkGeometryOwnership(const VgeoData& data, const Fail& fail) {
       for (uint32_t k = 0; k < shaderio::clusterVertexCount(c.counts); k++)
         if (!in(data.clusterVertices[c.vertexOffset + k], g.vertexOffset, g.vertexCount))
           fail(what + ": cluster " + std::to_string(ci) + " uses a vertex of another geometry");
-      if (!in(c.group, g.groupOffset, g.groupCount) || (c.producer != VGEO_NO_GROUP && !in(c.producer, g.groupOffset, g.groupCount)))
+      if (!in(c.group, g.groupOffset, g.groupCount) ||
+          (c.producer != VGEO_NO_GROUP && !in(c.producer, g.groupOffset, g.groupCount)))
         fail(what + ": cluster " + std::to_string(ci) + " refers to a group of another geometry");
       // Coarser toward the root: the walks from a group up through its products end (no cycle).
       if (c.producer != VGEO_NO_GROUP && !(data.groups[c.producer].level < data.groups[c.group].level))
         fail(what + ": cluster " + std::to_string(ci) + " is produced by a group no finer than its own");
       const uint32_t faces = shaderio::clusterCageFaceCount(c.counts);
-      if (faces && (!in(c.cageFaceOffset, g.cageFaceOffset, g.cageFaceCount) || c.cageFaceOffset + faces > g.cageFaceOffset + g.cageFaceCount))
+      if (faces && (!in(c.cageFaceOffset, g.cageFaceOffset, g.cageFaceCount) ||
+                    c.cageFaceOffset + faces > g.cageFaceOffset + g.cageFaceCount))
         fail(what + ": cluster " + std::to_string(ci) + " refers to cage faces of another geometry");
     }
     for (uint32_t gi = g.groupOffset; gi < g.groupOffset + g.groupCount; gi++) {
       const auto& grp = data.groups[gi];
-      if (grp.clusterCount && (!in(grp.clusterOffset, g.clusterOffset, g.clusterCount) || grp.clusterOffset + grp.clusterCount > g.clusterOffset + g.clusterCount))
+      if (grp.clusterCount && (!in(grp.clusterOffset, g.clusterOffset, g.clusterCount) ||
+                               grp.clusterOffset + grp.clusterCount > g.clusterOffset + g.clusterCount))
         fail(what + ": group " + std::to_string(gi) + " refers to clusters of another geometry");
     }
     for (uint32_t fi = g.cageFaceOffset; fi < g.cageFaceOffset + g.cageFaceCount; fi++) {
       const auto& f = data.cageFaces[fi];
-      if (!within(f.firstVertex, f.vertexCount, data.cageFaceVertices.size()) || !in(f.leafCluster, g.clusterOffset, g.clusterCount))
+      if (!within(f.firstVertex, f.vertexCount, data.cageFaceVertices.size()) ||
+          !in(f.leafCluster, g.clusterOffset, g.clusterCount))
         fail(what + ": cage face " + std::to_string(fi) + " refers outside its geometry");
       for (uint32_t k = 0; k < f.vertexCount; k++)
         if (!in(data.cageFaceVertices[f.firstVertex + k], g.vertexOffset, g.vertexCount))
@@ -334,7 +352,9 @@ void checkPatches(const VgeoData& data, const Fail& fail) {
       if (p.firstPoint > data.patchPoints.size()) fail(what + " refers outside the patch points");
       const uint32_t* words = data.patchPoints.data() + p.firstPoint;
       bool inRange = true;
-      auto point = [&](size_t w) { inRange = inRange && p.pointBase < controlPoints && words[w] < controlPoints - p.pointBase; };
+      auto point = [&](size_t w) {
+        inRange = inRange && p.pointBase < controlPoints && words[w] < controlPoints - p.pointBase;
+      };
       if (!shaderio::forEachPatchPoint(p.info, words, data.patchPoints.size() - p.firstPoint, point))
         fail(what + " has malformed words (unknown kind, a node outside the patch points or a tree too deep)");
       if (!inRange) fail(what + " uses a control point out of range");
@@ -343,7 +363,8 @@ void checkPatches(const VgeoData& data, const Fail& fail) {
       if (n != VGEO_INVALID && (n >> 2) >= data.patches.size()) fail(what + " names a missing neighbour");
     if (!(p.faceError >= 0.0f) || !std::isfinite(p.faceError)) fail(what + " has a bad chord error");
     for (int k = 0; k < 4; k++)
-      if (!(p.edgeError[k] >= 0.0f) || !std::isfinite(p.edgeError[k]) || p.edgeError[k] > p.faceError) fail(what + " has a bad edge chord error");
+      if (!(p.edgeError[k] >= 0.0f) || !std::isfinite(p.edgeError[k]) || p.edgeError[k] > p.faceError)
+        fail(what + " has a bad edge chord error");
   }
 }
 
@@ -400,13 +421,15 @@ shaderio::Instance makeInstance(const glm::mat4& m, uint32_t geometry, bool geom
   const glm::mat3 a(m);
   const glm::mat3 gram = glm::transpose(a) * a;
   float bound = 0.0f;
-  for (int i = 0; i < 3; i++) bound = std::max(bound, std::abs(gram[i][0]) + std::abs(gram[i][1]) + std::abs(gram[i][2]));
+  for (int i = 0; i < 3; i++)
+    bound = std::max(bound, std::abs(gram[i][0]) + std::abs(gram[i][1]) + std::abs(gram[i][2]));
   inst.maxScale = std::sqrt(bound);
   // Normal cones turn with the transform only when it is a rotation (or a mirror) times one scale:
   // orthogonal columns of equal length. A mirror keeps the outward side outward, so it may cone-cull.
   const float tolerance = 1e-5f * bound;
   bool similarity = std::abs(gram[0][0] - gram[1][1]) <= tolerance && std::abs(gram[0][0] - gram[2][2]) <= tolerance &&
-                    std::abs(gram[0][1]) <= tolerance && std::abs(gram[0][2]) <= tolerance && std::abs(gram[1][2]) <= tolerance;
+                    std::abs(gram[0][1]) <= tolerance && std::abs(gram[0][2]) <= tolerance &&
+                    std::abs(gram[1][2]) <= tolerance;
   inst.flags = similarity && geometryClosed ? VGEO_INSTANCE_CONE_CULL : 0u;
   return inst;
 }
@@ -414,7 +437,8 @@ shaderio::Instance makeInstance(const glm::mat4& m, uint32_t geometry, bool geom
 uint32_t encodeNormal(glm::vec3 n) {
   n /= (std::abs(n.x) + std::abs(n.y) + std::abs(n.z) + 1e-30f);
   glm::vec2 e(n.x, n.y);
-  if (n.z < 0.0f) e = (1.0f - glm::abs(glm::vec2(n.y, n.x))) * glm::vec2(n.x >= 0.0f ? 1.0f : -1.0f, n.y >= 0.0f ? 1.0f : -1.0f);
+  if (n.z < 0.0f)
+    e = (1.0f - glm::abs(glm::vec2(n.y, n.x))) * glm::vec2(n.x >= 0.0f ? 1.0f : -1.0f, n.y >= 0.0f ? 1.0f : -1.0f);
   auto q = [](float f) { return uint32_t(int32_t(std::lround(glm::clamp(f, -1.0f, 1.0f) * 32767.0f)) & 0xffff); };
   return q(e.x) | q(e.y) << 16;
 }

@@ -18,10 +18,11 @@
 
 namespace vgeo {
 
-constexpr uint32_t kVgeoVersion = 6;  // 2: cluster normal cones; 3: leaves on the limit surface, control points, patches;
-                                      // 4: patches for every interior face (rings), chord errors, patch points;
-                                      // 5: boundary and tree patches, control points apart from vertices;
-                                      // 6: the BVH root has up to VGEO_BVH_ROOT_WIDTH children (the level roots)
+constexpr uint32_t kVgeoVersion =
+    6;  // 2: cluster normal cones; 3: leaves on the limit surface, control points, patches;
+        // 4: patches for every interior face (rings), chord errors, patch points;
+        // 5: boundary and tree patches, control points apart from vertices;
+        // 6: the BVH root has up to VGEO_BVH_ROOT_WIDTH children (the level roots)
 
 // The file's sections in file order, declared once: X(id, VgeoData member, value type, values an element,
 // name). This table makes the Section ids, VgeoData's arrays, the writer's section views and the loader's
@@ -34,21 +35,21 @@ constexpr uint32_t kVgeoVersion = 6;  // 2: cluster normal cones; 3: leaves on t
 //   clusterCones     normal cone and tight sphere a cluster
 //   controlPoints    float x, y, z: each subdivided geometry's level-N cage, then its phantom and tree points
 //   patches          a patch a cage face; patchPoints their words (shaderio.h, Patch)
-#define VGEO_SECTIONS(X)                                             \
-  X(Geometries, geometries, shaderio::Geometry, 1, "geometries")     \
-  X(Instances, instances, shaderio::Instance, 1, "instances")        \
-  X(Positions, positions, float, 3, "positions")                     \
-  X(Normals, normals, uint32_t, 1, "normals")                        \
-  X(Clusters, clusters, shaderio::Cluster, 1, "clusters")            \
-  X(ClusterVertices, clusterVertices, uint32_t, 1, "cluster vertices") \
-  X(ClusterTriangles, clusterTriangles, uint32_t, 1, "cluster triangles") \
-  X(Groups, groups, shaderio::Group, 1, "groups")                    \
-  X(BvhNodes, nodes, shaderio::BvhNode, 1, "BVH nodes")              \
-  X(CageFaces, cageFaces, shaderio::CageFace, 1, "cage faces")       \
+#define VGEO_SECTIONS(X)                                                   \
+  X(Geometries, geometries, shaderio::Geometry, 1, "geometries")           \
+  X(Instances, instances, shaderio::Instance, 1, "instances")              \
+  X(Positions, positions, float, 3, "positions")                           \
+  X(Normals, normals, uint32_t, 1, "normals")                              \
+  X(Clusters, clusters, shaderio::Cluster, 1, "clusters")                  \
+  X(ClusterVertices, clusterVertices, uint32_t, 1, "cluster vertices")     \
+  X(ClusterTriangles, clusterTriangles, uint32_t, 1, "cluster triangles")  \
+  X(Groups, groups, shaderio::Group, 1, "groups")                          \
+  X(BvhNodes, nodes, shaderio::BvhNode, 1, "BVH nodes")                    \
+  X(CageFaces, cageFaces, shaderio::CageFace, 1, "cage faces")             \
   X(CageFaceVertices, cageFaceVertices, uint32_t, 1, "cage face vertices") \
   X(ClusterCones, clusterCones, shaderio::ClusterCone, 1, "cluster cones") \
-  X(ControlPoints, controlPoints, float, 3, "control points")         \
-  X(Patches, patches, shaderio::Patch, 1, "patches")                 \
+  X(ControlPoints, controlPoints, float, 3, "control points")              \
+  X(Patches, patches, shaderio::Patch, 1, "patches")                       \
   X(PatchPoints, patchPoints, uint32_t, 1, "patch points")
 
 enum class Section : uint32_t {
@@ -56,7 +57,7 @@ enum class Section : uint32_t {
 #define VGEO_SECTION_ID(id, member, type, values, name) id,
   VGEO_SECTIONS(VGEO_SECTION_ID)
 #undef VGEO_SECTION_ID
-  Count_
+      Count_
 };
 const char* sectionName(Section s);
 

@@ -45,16 +45,20 @@ struct GeometryChecker {
       const shaderio::Cluster& c = d.clusters[i];
       std::string name = "cluster " + std::to_string(i);
       uint32_t tc = shaderio::clusterTriangleCount(c.counts);
-      if (tc == 0 || tc > VGEO_MAX_CLUSTER_TRIANGLES) return fail(name + " has " + std::to_string(tc) + " triangles (invariant 1)");
-      if (c.group < g.groupOffset || c.group >= g.groupOffset + g.groupCount) return fail(name + " belongs to another geometry's group");
+      if (tc == 0 || tc > VGEO_MAX_CLUSTER_TRIANGLES)
+        return fail(name + " has " + std::to_string(tc) + " triangles (invariant 1)");
+      if (c.group < g.groupOffset || c.group >= g.groupOffset + g.groupCount)
+        return fail(name + " belongs to another geometry's group");
       const shaderio::Group& grp = d.groups[c.group];
-      if (i < grp.clusterOffset || i >= grp.clusterOffset + grp.clusterCount) return fail(name + " lies outside its group's member run");
+      if (i < grp.clusterOffset || i >= grp.clusterOffset + grp.clusterCount)
+        return fail(name + " lies outside its group's member run");
       if (c.parentError != grp.error || !sameSphere(c.parentSphere, grp.sphere))
         return fail(name + ": parent (error, sphere) differs from its group's (invariant 2)");
       if (c.producer == VGEO_NO_GROUP) {
         // Leaves: the largest chord error of their faces against the limit surface (0 without patches).
         float chord = 0.0f;
-        for (uint32_t k = 0; k < shaderio::clusterCageFaceCount(c.counts); k++) chord = std::max(chord, d.patches[c.cageFaceOffset + k].faceError);
+        for (uint32_t k = 0; k < shaderio::clusterCageFaceCount(c.counts); k++)
+          chord = std::max(chord, d.patches[c.cageFaceOffset + k].faceError);
         if (c.selfError != chord) return fail(name + ": leaf self error is not its faces' largest chord error");
       } else {
         const shaderio::Group& prod = d.groups[c.producer];
@@ -62,8 +66,11 @@ struct GeometryChecker {
           return fail(name + ": self (error, sphere) differs from its producing group's (invariant 2)");
         firstProduct.emplace(c.producer, i);
       }
-      if (!(grp.error >= c.selfError)) return fail(name + ": its group's error " + std::to_string(grp.error) + " is below its self error " + std::to_string(c.selfError) + " (invariant 3)");
-      if (!encloses(grp.sphere, c.selfSphere)) return fail(name + ": its group's sphere does not enclose its self sphere (invariant 3)");
+      if (!(grp.error >= c.selfError))
+        return fail(name + ": its group's error " + std::to_string(grp.error) + " is below its self error " +
+                    std::to_string(c.selfError) + " (invariant 3)");
+      if (!encloses(grp.sphere, c.selfSphere))
+        return fail(name + ": its group's sphere does not enclose its self sphere (invariant 3)");
       for (uint32_t k = 0; k < shaderio::clusterVertexCount(c.counts); k++) {
         glm::vec3 p = d.position(d.clusterVertices[c.vertexOffset + k]);
         if (glm::distance(glm::dvec3(p), glm::dvec3(c.selfSphere)) > double(c.selfSphere.w))
@@ -75,9 +82,13 @@ struct GeometryChecker {
       const shaderio::Group& grp = d.groups[gr];
       if (grp.clusterCount == 0) return fail("group " + std::to_string(gr) + " is empty");
       for (uint32_t i = grp.clusterOffset; i < grp.clusterOffset + grp.clusterCount; i++)
-        if (d.clusters[i].group != gr) return fail("group " + std::to_string(gr) + "'s run holds cluster " + std::to_string(i) + " of another group");
-      if (std::isinf(grp.error) && firstProduct.count(gr)) return fail("root group " + std::to_string(gr) + " produced clusters");
-      if (!std::isinf(grp.error) && !firstProduct.count(gr)) return fail("group " + std::to_string(gr) + " produced no cluster");
+        if (d.clusters[i].group != gr)
+          return fail("group " + std::to_string(gr) + "'s run holds cluster " + std::to_string(i) +
+                      " of another group");
+      if (std::isinf(grp.error) && firstProduct.count(gr))
+        return fail("root group " + std::to_string(gr) + " produced clusters");
+      if (!std::isinf(grp.error) && !firstProduct.count(gr))
+        return fail("group " + std::to_string(gr) + " produced no cluster");
     }
     // BVH: spheres enclose, max errors bound, each group reached once.
     std::vector<uint32_t> reached(g.groupCount, 0);
@@ -89,7 +100,8 @@ struct GeometryChecker {
         glm::vec4 sphere;
         float error;
         if (node.childCountAndFlags & VGEO_NODE_LEAF_BIT) {
-          if (child < g.groupOffset || child >= g.groupOffset + g.groupCount) return fail("BVH node " + std::to_string(n) + " holds another geometry's group");
+          if (child < g.groupOffset || child >= g.groupOffset + g.groupCount)
+            return fail("BVH node " + std::to_string(n) + " holds another geometry's group");
           reached[child - g.groupOffset]++;
           sphere = d.groups[child].sphere;
           error = d.groups[child].error;
@@ -98,14 +110,18 @@ struct GeometryChecker {
           sphere = d.nodes[child].sphere;
           error = d.nodes[child].maxError;
         }
-        if (!encloses(node.sphere, sphere)) return fail("BVH node " + std::to_string(n) + "'s sphere does not enclose child " + std::to_string(k));
-        if (!(node.maxError >= error)) return fail("BVH node " + std::to_string(n) + "'s max error is below child " + std::to_string(k) + "'s");
+        if (!encloses(node.sphere, sphere))
+          return fail("BVH node " + std::to_string(n) + "'s sphere does not enclose child " + std::to_string(k));
+        if (!(node.maxError >= error))
+          return fail("BVH node " + std::to_string(n) + "'s max error is below child " + std::to_string(k) + "'s");
       }
       return true;
     };
     if (!walk(g.nodeOffset)) return false;
     for (uint32_t i = 0; i < g.groupCount; i++)
-      if (reached[i] != 1) return fail("group " + std::to_string(g.groupOffset + i) + " is reached " + std::to_string(reached[i]) + " times by the BVH");
+      if (reached[i] != 1)
+        return fail("group " + std::to_string(g.groupOffset + i) + " is reached " + std::to_string(reached[i]) +
+                    " times by the BVH");
     return true;
   }
 
@@ -118,7 +134,8 @@ struct GeometryChecker {
     // coordinates: a small part far from the origin (CGAL's fold.off: 0.4 wide at x = 43) evaluates
     // its patches to within a few units in the last place of those coordinates, not of its size.
     const double magnitude = glm::length(glm::dvec3(g.boundsSphere)) + double(g.boundsSphere.w);
-    const double tolerance = std::max(1e-5 * std::max(double(g.boundsSphere.w), 1e-6), 16.0 * double(FLT_EPSILON) * magnitude);
+    const double tolerance =
+        std::max(1e-5 * std::max(double(g.boundsSphere.w), 1e-6), 16.0 * double(FLT_EPSILON) * magnitude);
     for (uint32_t f = g.cageFaceOffset; f < g.cageFaceOffset + g.cageFaceCount; f++) {
       const shaderio::Patch& patch = d.patches[f];
       const std::string what = "cage face " + std::to_string(f);
@@ -127,11 +144,14 @@ struct GeometryChecker {
         uint32_t n = patch.neighbours[k];
         if (n == VGEO_INVALID) continue;
         const shaderio::Patch& other = d.patches[n >> 2];
-        if (other.neighbours[n & 3] != (f << 2 | k)) return fail(what + ": its neighbour across edge " + std::to_string(k) + " does not name it back");
-        if (other.edgeError[n & 3] != patch.edgeError[k]) return fail(what + ": the two faces of edge " + std::to_string(k) + " disagree on its chord error");
+        if (other.neighbours[n & 3] != (f << 2 | k))
+          return fail(what + ": its neighbour across edge " + std::to_string(k) + " does not name it back");
+        if (other.edgeError[n & 3] != patch.edgeError[k])
+          return fail(what + ": the two faces of edge " + std::to_string(k) + " disagree on its chord error");
         if (shaderio::patchEdgeLocked(other.info, n & 3) != shaderio::patchEdgeLocked(patch.info, k))
           return fail(what + ": the two faces of edge " + std::to_string(k) + " disagree on whether it is locked");
-        if ((kind == VGEO_PATCH_NONE || shaderio::patchKind(other.info) == VGEO_PATCH_NONE) && !shaderio::patchEdgeLocked(patch.info, k))
+        if ((kind == VGEO_PATCH_NONE || shaderio::patchKind(other.info) == VGEO_PATCH_NONE) &&
+            !shaderio::patchEdgeLocked(patch.info, k))
           return fail(what + ": edge " + std::to_string(k) + " touches a flat face but is not locked");
       }
       if (kind == VGEO_PATCH_NONE) continue;
@@ -177,7 +197,8 @@ struct GeometryChecker {
       const shaderio::Cluster& c = d.clusters[ci];
       for (uint32_t t = 0; t < shaderio::clusterTriangleCount(c.counts); t++) {
         uint32_t tri = d.clusterTriangles[c.triangleOffset + t], v[3];
-        for (int k = 0; k < 3; k++) v[k] = canonical[d.clusterVertices[c.vertexOffset + ((tri >> (8 * k)) & 0xff)] - g.vertexOffset];
+        for (int k = 0; k < 3; k++)
+          v[k] = canonical[d.clusterVertices[c.vertexOffset + ((tri >> (8 * k)) & 0xff)] - g.vertexOffset];
         for (int k = 0; k < 3; k++) edges.push_back(uint64_t(v[k]) << 32 | v[(k + 1) % 3]);
         triangles++;
       }
@@ -185,10 +206,12 @@ struct GeometryChecker {
     std::sort(edges.begin(), edges.end());
     const bool closed = g.flags & VGEO_GEOMETRY_CLOSED;
     auto edgeName = [&](uint64_t e) {
-      return "edge " + str(d.position(g.vertexOffset + uint32_t(e >> 32))) + "-" + str(d.position(g.vertexOffset + uint32_t(e)));
+      return "edge " + str(d.position(g.vertexOffset + uint32_t(e >> 32))) + "-" +
+             str(d.position(g.vertexOffset + uint32_t(e)));
     };
     for (size_t i = 0; i < edges.size(); i++) {
-      if (i + 1 < edges.size() && edges[i] == edges[i + 1]) return fail(name + ": " + edgeName(edges[i]) + " is covered twice in one direction (overlap, invariant 5)");
+      if (i + 1 < edges.size() && edges[i] == edges[i + 1])
+        return fail(name + ": " + edgeName(edges[i]) + " is covered twice in one direction (overlap, invariant 5)");
       uint64_t reverse = (edges[i] << 32) | (edges[i] >> 32);
       if (closed && !std::binary_search(edges.begin(), edges.end(), reverse))
         return fail(name + ": " + edgeName(edges[i]) + " has one triangle (crack, invariant 5)");
@@ -230,8 +253,9 @@ struct GeometryChecker {
       }
       if (count != 1)
         return fail(name + ": leaf cluster " + std::to_string(i) + " is covered " +
-                    (count == 0 ? std::string("zero times (hole)") : count == kUneven ? std::string("unevenly (a hole or overlap above it)")
-                                                                      : std::to_string(count) + " times (overlap)"));
+                    (count == 0         ? std::string("zero times (hole)")
+                     : count == kUneven ? std::string("unevenly (a hole or overlap above it)")
+                                        : std::to_string(count) + " times (overlap)"));
     }
     return true;
   }
@@ -279,11 +303,12 @@ CheckResult checkVgeo(const VgeoData& data, const CheckOptions& options) {
     }
   }
   std::ostringstream s;
-  s << "ok: " << data.geometries.size() << " geometries, " << data.instances.size() << " instances, " << totalClusters << " clusters, "
-    << totalGroups << " groups, up to " << maxLevels << " levels, " << result.rootClusters << " root clusters, " << result.checkedPatches
-    << " patches through their leaf vertices; " << checkedCuts
-    << " random cuts watertight and covering every leaf once (mean " << (checkedCuts ? result.cutClusters / checkedCuts : 0)
-    << " clusters, " << (checkedCuts ? result.cutTriangles / checkedCuts : 0) << " triangles)";
+  s << "ok: " << data.geometries.size() << " geometries, " << data.instances.size() << " instances, " << totalClusters
+    << " clusters, " << totalGroups << " groups, up to " << maxLevels << " levels, " << result.rootClusters
+    << " root clusters, " << result.checkedPatches << " patches through their leaf vertices; " << checkedCuts
+    << " random cuts watertight and covering every leaf once (mean "
+    << (checkedCuts ? result.cutClusters / checkedCuts : 0) << " clusters, "
+    << (checkedCuts ? result.cutTriangles / checkedCuts : 0) << " triangles)";
   result.summary = s.str();
   return result;
 }

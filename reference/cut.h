@@ -16,7 +16,7 @@ struct LodView {
   glm::vec3 eye{0.0f};
   float projScale = 1.0f;  // viewport height / (2 tan(fovY / 2))
   float znear = 0.01f;
-  float tau = 1.0f;        // allowed projected error, pixels
+  float tau = 1.0f;  // allowed projected error, pixels
 };
 
 // The cut of one geometry for one view: every cluster with project(self) <= tau < project(parent)
@@ -24,14 +24,14 @@ struct LodView {
 std::vector<uint32_t> selectCut(const VgeoData& data, uint32_t geometry, const LodView& view);
 
 struct CheckOptions {
-  uint32_t cuts = 32;     // random (camera, tau) pairs per geometry
+  uint32_t cuts = 32;  // random (camera, tau) pairs per geometry
   uint64_t seed = 1;
 };
 struct CheckResult {
   bool ok = true;
   std::string firstViolation;  // empty when ok
   std::string summary;
-  uint64_t cutClusters = 0;    // summed over the checked cuts
+  uint64_t cutClusters = 0;  // summed over the checked cuts
   uint64_t cutTriangles = 0;
   uint32_t rootClusters = 0;
   uint64_t checkedPatches = 0;  // patches (regular and ring) checked to pass through their leaf vertices

@@ -31,7 +31,8 @@ View makeView(const Camera& camera, uint32_t width, uint32_t height, glm::vec4 b
   v.projScale = float(height) / (2.0f * std::tan(0.5f * fov));
   glm::mat4 m = glm::transpose(v.viewProjection);  // rows of the matrix
   // Left, right, bottom, top, near; the far plane is at infinity and culls nothing.
-  glm::vec4 planes[6] = {m[3] + m[0], m[3] - m[0], m[3] + m[1], m[3] - m[1], m[3] - m[2], glm::vec4(0.0f, 0.0f, 0.0f, 1.0f)};
+  glm::vec4 planes[6] = {m[3] + m[0], m[3] - m[0], m[3] + m[1],
+                         m[3] - m[1], m[3] - m[2], glm::vec4(0.0f, 0.0f, 0.0f, 1.0f)};
   for (int i = 0; i < 5; i++) v.planes[i] = planes[i] / glm::length(glm::vec3(planes[i]));
   v.planes[5] = glm::vec4(0.0f, 1.0f, 0.0f, INFINITY);
   return v;

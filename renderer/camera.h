@@ -15,8 +15,8 @@ struct View {
   glm::mat4 viewProjection{1.0f};  // Vulkan clip space: y down, depth 0..1
   glm::vec4 planes[6];             // world-space frustum planes, normalised, pointing inwards
   glm::vec3 eye{0.0f};
-  float projScale = 1.0f;          // height / (2 tan(fovY / 2))
-  float znear = 0.01f;  // reversed depth, far plane at infinity
+  float projScale = 1.0f;  // height / (2 tan(fovY / 2))
+  float znear = 0.01f;     // reversed depth, far plane at infinity
 };
 
 // A view of `camera` for a width x height image; near and far planes fit a scene of `bounds` (sphere).

@@ -24,7 +24,8 @@
 namespace vgeo {
 void GpuRenderer::createTargets() {
   VkDevice dev = vk_.device();
-  auto makeImage = [&](VkFormat format, VkImageUsageFlags usage, VkImageAspectFlags aspect, VkImage& image, VkDeviceMemory& memory, VkImageView& view) {
+  auto makeImage = [&](VkFormat format, VkImageUsageFlags usage, VkImageAspectFlags aspect, VkImage& image,
+                       VkDeviceMemory& memory, VkImageView& view) {
     VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
     info.imageType = VK_IMAGE_TYPE_2D;
     info.format = format;
@@ -42,7 +43,8 @@ void GpuRenderer::createTargets() {
     VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     alloc.allocationSize = req.size;
     for (uint32_t i = 0; i < mem.memoryTypeCount; i++)
-      if ((req.memoryTypeBits & (1u << i)) && (mem.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) {
+      if ((req.memoryTypeBits & (1u << i)) &&
+          (mem.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) {
         alloc.memoryTypeIndex = i;
         break;
       }
@@ -55,8 +57,10 @@ void GpuRenderer::createTargets() {
     v.subresourceRange = {aspect, 0, 1, 0, 1};
     vkCheck(vkCreateImageView(dev, &v, nullptr, &view), "vkCreateImageView");
   };
-  makeImage(VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT, color_, colorMemory_, colorView_);
-  makeImage(VK_FORMAT_D32_SFLOAT, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT, depth_, depthMemory_, depthView_);
+  makeImage(VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+            VK_IMAGE_ASPECT_COLOR_BIT, color_, colorMemory_, colorView_);
+  makeImage(VK_FORMAT_D32_SFLOAT, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT, depth_,
+            depthMemory_, depthView_);
 
   VkAttachmentDescription attachments[2] = {};
   attachments[0].format = VK_FORMAT_R8G8B8A8_UNORM;
@@ -71,7 +75,8 @@ void GpuRenderer::createTargets() {
   attachments[1].format = VK_FORMAT_D32_SFLOAT;
   attachments[1].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
   attachments[1].finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-  VkAttachmentReference colorRef{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL}, depthRef{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+  VkAttachmentReference colorRef{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
+      depthRef{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
   VkSubpassDescription subpass{};
   subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
   subpass.colorAttachmentCount = 1;
@@ -111,21 +116,23 @@ void GpuRenderer::createTargets() {
   vkCheck(vkCreateFramebuffer(dev, &fb, nullptr, &framebuffer_), "vkCreateFramebuffer");
 }
 
-
 void GpuRenderer::createPipelines() {
   VkDevice dev = vk_.device();
   VkDescriptorSetLayoutBinding bindings[kRendererBindings];
   for (uint32_t i = 0; i < kRendererBindings; i++) {
-    bindings[i] = {i, i == VGEO_BINDING_FRAME ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
-                   VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT |
-                       (vk_.tessellation() ? VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT | VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT : 0u),
-                   nullptr};
+    bindings[i] = {
+        i, i == VGEO_BINDING_FRAME ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+        VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT |
+            (vk_.tessellation() ? VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT | VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT
+                                : 0u),
+        nullptr};
   }
   VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   setInfo.bindingCount = kRendererBindings;
   setInfo.pBindings = bindings;
   vkCheck(vkCreateDescriptorSetLayout(dev, &setInfo, nullptr, &setLayout_), "vkCreateDescriptorSetLayout");
-  VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1}, {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kRendererBindings - 1}};
+  VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kRendererBindings - 1}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = 1;
   poolInfo.poolSizeCount = 2;
@@ -144,7 +151,13 @@ void GpuRenderer::createPipelines() {
   auto compute = [&](const uint32_t* code, size_t bytes, const VkSpecializationInfo* specialization = nullptr) {
     VkShaderModule module = vk_.createShaderModule(code, bytes);
     VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-    info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, module, "main", specialization};
+    info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                  nullptr,
+                  0,
+                  VK_SHADER_STAGE_COMPUTE_BIT,
+                  module,
+                  "main",
+                  specialization};
     info.layout = layout_;
     VkPipeline pipeline;
     vkCheck(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline), "vkCreateComputePipelines");
@@ -159,7 +172,8 @@ void GpuRenderer::createPipelines() {
   const VkSpecializationInfo persistentSpecialization{1, &laneTestsEntry, sizeof(laneTests), &laneTests};
   persistent_ = compute(traverse_persistent_comp, sizeof(traverse_persistent_comp), &persistentSpecialization);
   if (vk_.deviceClock())
-    persistentProfile_ = compute(traverse_persistent_comp_profile, sizeof(traverse_persistent_comp_profile), &persistentSpecialization);
+    persistentProfile_ =
+        compute(traverse_persistent_comp_profile, sizeof(traverse_persistent_comp_profile), &persistentSpecialization);
   level_ = compute(traverse_level_comp, sizeof(traverse_level_comp));
   prepareLevel_ = compute(prepare_level_comp, sizeof(prepare_level_comp));
   flat_ = compute(traverse_flat_comp, sizeof(traverse_flat_comp));
@@ -171,9 +185,10 @@ void GpuRenderer::createPipelines() {
 
   VkShaderModule vert = vk_.createShaderModule(draw_vert, sizeof(draw_vert));
   VkShaderModule frag = vk_.createShaderModule(draw_frag, sizeof(draw_frag));
-  VkPipelineShaderStageCreateInfo stages[2] = {
-      {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, vert, "main", nullptr},
-      {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, frag, "main", nullptr}};
+  VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
+                                                VK_SHADER_STAGE_VERTEX_BIT, vert, "main", nullptr},
+                                               {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
+                                                VK_SHADER_STAGE_FRAGMENT_BIT, frag, "main", nullptr}};
   VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
   VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
   assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
@@ -220,7 +235,8 @@ void GpuRenderer::createPipelines() {
   blend.srcColorBlendFactor = blend.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
   blend.srcAlphaBlendFactor = blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
   blend.colorBlendOp = blend.alphaBlendOp = VK_BLEND_OP_ADD;
-  vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &drawOverdraw_), "vkCreateGraphicsPipelines");
+  vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &drawOverdraw_),
+          "vkCreateGraphicsPipelines");
 
   // The patch draw: the same state, one control point a patch, tessellated (patch.tesc, patch.tese).
   // Without tessellation shaders on the device, leaves stay triangles.
@@ -229,26 +245,31 @@ void GpuRenderer::createPipelines() {
     VkShaderModule tesc = vk_.createShaderModule(patch_tesc, sizeof(patch_tesc));
     VkShaderModule tese = vk_.createShaderModule(patch_tese, sizeof(patch_tese));
     VkPipelineShaderStageCreateInfo patchStages[4] = {
-        {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, patchVert, "main", nullptr},
-        {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT, tesc, "main", nullptr},
-        {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT, tese, "main", nullptr},
-        {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, frag, "main", nullptr}};
+        {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, patchVert, "main",
+         nullptr},
+        {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT,
+         tesc, "main", nullptr},
+        {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT,
+         tese, "main", nullptr},
+        {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, frag, "main",
+         nullptr}};
     VkPipelineTessellationStateCreateInfo tessellation{VK_STRUCTURE_TYPE_PIPELINE_TESSELLATION_STATE_CREATE_INFO};
     tessellation.patchControlPoints = 1;
     assembly.topology = VK_PRIMITIVE_TOPOLOGY_PATCH_LIST;
     info.stageCount = 4;
     info.pStages = patchStages;
     info.pTessellationState = &tessellation;
-    vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &drawPatchesOverdraw_), "vkCreateGraphicsPipelines (patches)");
+    vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &drawPatchesOverdraw_),
+            "vkCreateGraphicsPipelines (patches)");
     depth.depthTestEnable = VK_TRUE;
     depth.depthWriteEnable = VK_TRUE;
     blend.blendEnable = VK_FALSE;
-    vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &drawPatches_), "vkCreateGraphicsPipelines (patches)");
+    vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &drawPatches_),
+            "vkCreateGraphicsPipelines (patches)");
     for (VkShaderModule m : {patchVert, tesc, tese}) vkDestroyShaderModule(dev, m, nullptr);
   }
   vkDestroyShaderModule(dev, vert, nullptr);
   vkDestroyShaderModule(dev, frag, nullptr);
 }
-
 
 }  // namespace vgeo

@@ -24,7 +24,6 @@
 #include <cstring>
 #include <stdexcept>
 
-
 namespace vgeo {
 namespace {
 
@@ -49,7 +48,8 @@ constexpr uint32_t kLavapipePatchesPerInstance = 15, kPatchesPerInstance = 4096;
 // Frame start, then the end of instance culling, traversal, triangle culling and the draw.
 constexpr uint32_t kTimestamps = 5;
 
-void globalBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags srcAccess, VkPipelineStageFlags dst, VkAccessFlags dstAccess) {
+void globalBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags srcAccess, VkPipelineStageFlags dst,
+                   VkAccessFlags dstAccess) {
   VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
   b.srcAccessMask = srcAccess;
   b.dstAccessMask = dstAccess;
@@ -70,7 +70,9 @@ double msSince(std::chrono::steady_clock::time_point t) {
 // The draws' geometry stages that read what the compute passes wrote (lists, counters).
 VkPipelineStageFlags GpuRenderer::drawShaderStages() const {
   return VK_PIPELINE_STAGE_VERTEX_SHADER_BIT |
-         (vk_.tessellation() ? VK_PIPELINE_STAGE_TESSELLATION_CONTROL_SHADER_BIT | VK_PIPELINE_STAGE_TESSELLATION_EVALUATION_SHADER_BIT : 0u);
+         (vk_.tessellation()
+              ? VK_PIPELINE_STAGE_TESSELLATION_CONTROL_SHADER_BIT | VK_PIPELINE_STAGE_TESSELLATION_EVALUATION_SHADER_BIT
+              : 0u);
 }
 
 const char* traversalName(Traversal t) {
@@ -118,7 +120,8 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
     vk_.upload(sceneBuffers_.back(), s.data, s.bytes);
   }
   frameData_ = vk_.createBuffer(sizeof(shaderio::FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
-  counters_ = vk_.createBuffer(sizeof(shaderio::Counters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+  counters_ = vk_.createBuffer(sizeof(shaderio::Counters),
+                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
   workerProfile_ = vk_.createBuffer(16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
   countersReadback_ = vk_.createBuffer(sizeof(shaderio::Counters), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
   imageReadback_ = vk_.createBuffer(VkDeviceSize(width_) * height_ * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
@@ -132,10 +135,13 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
     // kFewWorkgroupsInstances instances, three in those of up to VGEO_CULL_SPREAD_INSTANCES; never all
     // the device holds: claiming past the frontier makes every extra workgroup a poller of empty slots.
     const size_t instances = scene_.data.instances.size();
-    const uint32_t perSm = instances <= VGEO_CULL_SPREAD_INSTANCES ? 3u : instances <= kFewWorkgroupsInstances ? 2u : 4u;
+    const uint32_t perSm = instances <= VGEO_CULL_SPREAD_INSTANCES ? 3u
+                           : instances <= kFewWorkgroupsInstances  ? 2u
+                                                                   : 4u;
     persistentWorkgroups_ = 128 * perSm;
     if (vk_.hasDeviceExtension(VK_NV_SHADER_SM_BUILTINS_EXTENSION_NAME)) {
-      VkPhysicalDeviceShaderSMBuiltinsPropertiesNV sm{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_SM_BUILTINS_PROPERTIES_NV};
+      VkPhysicalDeviceShaderSMBuiltinsPropertiesNV sm{
+          VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_SM_BUILTINS_PROPERTIES_NV};
       VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
       props.pNext = &sm;
       vkGetPhysicalDeviceProperties2(vk_.physicalDevice(), &props);
@@ -177,8 +183,9 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
 GpuRenderer::~GpuRenderer() {
   VkDevice dev = vk_.device();
   vkDeviceWaitIdle(dev);
-  for (VkPipeline p : {cull_, cullSerial_, persistent_, persistentProfile_, level_, prepareLevel_, flat_, prepareFlat_, resetFlat_, finalize_, cullTriangles_, finalizeTriangles_,
-                       draw_, drawOverdraw_, drawPatches_, drawPatchesOverdraw_})
+  for (VkPipeline p :
+       {cull_, cullSerial_, persistent_, persistentProfile_, level_, prepareLevel_, flat_, prepareFlat_, resetFlat_,
+        finalize_, cullTriangles_, finalizeTriangles_, draw_, drawOverdraw_, drawPatches_, drawPatchesOverdraw_})
     vkDestroyPipeline(dev, p, nullptr);
   vkDestroyPipelineLayout(dev, layout_, nullptr);
   vkDestroyDescriptorPool(dev, descriptorPool_, nullptr);
@@ -193,8 +200,8 @@ GpuRenderer::~GpuRenderer() {
   vkDestroyImage(dev, depth_, nullptr);
   vkFreeMemory(dev, colorMemory_, nullptr);
   vkFreeMemory(dev, depthMemory_, nullptr);
-  for (Buffer* b : {&frameData_, &counters_, &countersReadback_, &queue_, &drawList_, &drawListReadback_, &imageReadback_, &triangleList_, &patchList_,
-                    &workerProfile_})
+  for (Buffer* b : {&frameData_, &counters_, &countersReadback_, &queue_, &drawList_, &drawListReadback_,
+                    &imageReadback_, &triangleList_, &patchList_, &workerProfile_})
     vk_.destroyBuffer(*b);
   for (Buffer& b : sceneBuffers_) vk_.destroyBuffer(b);
 }
@@ -246,8 +253,16 @@ void GpuRenderer::writeDescriptors() {
   VkWriteDescriptorSet writes[kRendererBindings];
   for (uint32_t i = 0; i < kRendererBindings; i++) {
     infos[i] = {buffers[i]->buffer, 0, VK_WHOLE_SIZE};
-    writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, set_, i, 0, 1,
-                 i == 0 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, nullptr, &infos[i], nullptr};
+    writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                 nullptr,
+                 set_,
+                 i,
+                 0,
+                 1,
+                 i == 0 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                 nullptr,
+                 &infos[i],
+                 nullptr};
   }
   vkUpdateDescriptorSets(vk_.device(), kRendererBindings, writes, 0, nullptr);
 }
@@ -273,9 +288,11 @@ void GpuRenderer::recordInstanceCull(VkCommandBuffer cmd, const FrameSettings& s
     return;
   }
   recordCounterReset(cmd);
-  const uint32_t lanes = cullInstanceLanes(settings), instancesPerWorkgroup = lanes == 1 ? 64 : VGEO_CULL_SPREAD_WORKGROUP / lanes;
+  const uint32_t lanes = cullInstanceLanes(settings),
+                 instancesPerWorkgroup = lanes == 1 ? 64 : VGEO_CULL_SPREAD_WORKGROUP / lanes;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, lanes == 1 ? cullSerial_ : cull_);
-  vkCmdDispatch(cmd, (uint32_t(scene_.data.instances.size()) + instancesPerWorkgroup - 1) / instancesPerWorkgroup, 1, 1);
+  vkCmdDispatch(cmd, (uint32_t(scene_.data.instances.size()) + instancesPerWorkgroup - 1) / instancesPerWorkgroup, 1,
+                1);
   computeToCompute(cmd);
 }
 
@@ -316,7 +333,8 @@ void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& sett
   globalBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | drawShaderStages() |
                     VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT);
+                VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
+                    VK_ACCESS_TRANSFER_READ_BIT);
 }
 
 // 5. Triangle culling: the triangles of the listed clusters that can make a fragment, then the draw's arguments.
@@ -348,7 +366,8 @@ void GpuRenderer::recordDraw(VkCommandBuffer cmd, const FrameSettings& settings)
     VkBufferCopy list{0, 0, drawList_.size};
     vkCmdCopyBuffer(cmd, drawList_.buffer, drawListReadback_.buffer, 1, &list);
   }
-  globalBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+  globalBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                VK_ACCESS_HOST_READ_BIT);
 }
 
 void GpuRenderer::recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings) {
@@ -370,7 +389,8 @@ void GpuRenderer::recordRenderPass(VkCommandBuffer cmd, const FrameSettings& set
   // The leaf patches: one more indirect draw, tessellated (patch.tesc, patch.tese).
   if (patches) {
     if (statistics_) vkCmdBeginQuery(cmd, statistics_, 0, 0);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, settings.mode == VGEO_MODE_OVERDRAW ? drawPatchesOverdraw_ : drawPatches_);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                      settings.mode == VGEO_MODE_OVERDRAW ? drawPatchesOverdraw_ : drawPatches_);
     vkCmdDrawIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, patchDraw), 1, sizeof(VkDrawIndirectCommand));
     if (statistics_) vkCmdEndQuery(cmd, statistics_, 0);
   }
@@ -463,7 +483,8 @@ void GpuRenderer::runPasses(const FrameSettings& settings, const shaderio::Frame
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 4);
     vk_.submitAndWait(cmd);
     uint64_t t[kTimestamps];
-    vkCheck(vkGetQueryPoolResults(vk_.device(), queries_, 0, kTimestamps, sizeof(t), t, sizeof(uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+    vkCheck(vkGetQueryPoolResults(vk_.device(), queries_, 0, kTimestamps, sizeof(t), t, sizeof(uint64_t),
+                                  VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
             "vkGetQueryPoolResults");
     auto ms = [&](int from, int to) { return double(t[to] - t[from]) * period * 1e-6; };
     result.instanceCullMs = ms(0, 1);
@@ -476,7 +497,8 @@ void GpuRenderer::runPasses(const FrameSettings& settings, const shaderio::Frame
 
 // Copies what the frame left in host-visible memory into the result: counters, tessellator statistics,
 // image, draw list, worker profile.
-void GpuRenderer::readResults(const FrameSettings& settings, const shaderio::FrameData& frame, bool profile, FrameResult& result) {
+void GpuRenderer::readResults(const FrameSettings& settings, const shaderio::FrameData& frame, bool profile,
+                              FrameResult& result) {
   std::memcpy(&result.counters, countersReadback_.mapped, sizeof(result.counters));
   const auto& c = result.counters;
   const bool patches = frame.patches != 0u, cullTriangles = frame.triangleCull != 0u;
@@ -514,7 +536,8 @@ void GpuRenderer::readResults(const FrameSettings& settings, const shaderio::Fra
 bool GpuRenderer::checkDrained(FrameResult& result) {
   const auto& c = result.counters;
   bool drained = c.itemsDone == c.queueWrite;
-  result.complete = c.queueOverflow == 0 && c.drawOverflow == 0 && c.triangleOverflow == 0 && c.patchOverflow == 0 && drained;
+  result.complete =
+      c.queueOverflow == 0 && c.drawOverflow == 0 && c.triangleOverflow == 0 && c.patchOverflow == 0 && drained;
   // Every worker left on its iteration budget (lavapipe) before the queue drained: twice as many for the
   // next frame, and a fresh queue (this one still holds items).
   result.workersRanOut = !drained && c.queueOverflow == 0 && c.budgetExits == persistentWorkgroups_ &&
@@ -525,9 +548,11 @@ bool GpuRenderer::checkDrained(FrameResult& result) {
     return false;
   }
   if (!drained && c.queueOverflow == 0)
-    throw std::runtime_error("traversal did not drain its queue (" + std::to_string(c.itemsDone) + " of " + std::to_string(c.queueWrite) +
-                             " items done, " + std::to_string(c.queueRead) + " claimed; " + std::to_string(c.workgroupsExited) + " of " +
-                             std::to_string(persistentWorkgroups_) + " workers left, " + std::to_string(c.budgetExits) + " on their budget)");
+    throw std::runtime_error("traversal did not drain its queue (" + std::to_string(c.itemsDone) + " of " +
+                             std::to_string(c.queueWrite) + " items done, " + std::to_string(c.queueRead) +
+                             " claimed; " + std::to_string(c.workgroupsExited) + " of " +
+                             std::to_string(persistentWorkgroups_) + " workers left, " + std::to_string(c.budgetExits) +
+                             " on their budget)");
   return true;
 }
 
@@ -542,7 +567,8 @@ void GpuRenderer::growOverflowedLists(const shaderio::Counters& c, float tau) {
     uint32_t capacity;
     uint64_t needed, bytesEach, most;
   } lists[4] = {{"queue items", c.queueOverflow != 0, queueCapacity_, c.queueHighWater, 8, range / 8},
-                {"draw-list entries", c.drawOverflow != 0, drawCapacity_, c.drawCount, 8, std::min<uint64_t>(range / 8, VGEO_MAX_DRAW_ENTRIES)},
+                {"draw-list entries", c.drawOverflow != 0, drawCapacity_, c.drawCount, 8,
+                 std::min<uint64_t>(range / 8, VGEO_MAX_DRAW_ENTRIES)},
                 {"triangles", c.triangleOverflow != 0, triangleCapacity_, c.trianglesDrawn, 4, range / 4},
                 {"patches", c.patchOverflow != 0, patchCapacity_, c.patchesDrawn, 4, range / 4}};
   char tauText[32];
@@ -552,18 +578,25 @@ void GpuRenderer::growOverflowedLists(const shaderio::Counters& c, float tau) {
     const List& l = lists[i];
     const uint64_t needed = l.overflowed ? std::max<uint64_t>(l.needed, uint64_t(l.capacity) + 1) : l.capacity;
     if (needed > l.most)
-      throw FrameMemoryError(std::string("the cut at tau ") + tauText + " needs " + std::to_string(needed) + " " + l.name + ", more than one buffer of " +
-                             std::to_string(range >> 20) + " MiB (maxStorageBufferRange) holds on this device: raise --tau or render a smaller view");
-    want[i] = std::min<uint64_t>(l.overflowed ? std::max<uint64_t>(uint64_t(l.capacity) * 2, needed * 5 / 4) : l.capacity, std::min<uint64_t>(l.most, UINT32_MAX / 2));
+      throw FrameMemoryError(std::string("the cut at tau ") + tauText + " needs " + std::to_string(needed) + " " +
+                             l.name + ", more than one buffer of " + std::to_string(range >> 20) +
+                             " MiB (maxStorageBufferRange) holds on this device: raise --tau or render a smaller view");
+    want[i] =
+        std::min<uint64_t>(l.overflowed ? std::max<uint64_t>(uint64_t(l.capacity) * 2, needed * 5 / 4) : l.capacity,
+                           std::min<uint64_t>(l.most, UINT32_MAX / 2));
     neededBytes += needed * l.bytesEach;
     wantedBytes += want[i] * l.bytesEach;
   }
   if (neededBytes > frameMemoryLimit_)
-    throw FrameMemoryError(std::string("the cut at tau ") + tauText + " needs " + std::to_string(neededBytes >> 20) + " MiB of frame lists (" +
-                           std::to_string(c.drawCount) + " clusters, " + std::to_string(c.trianglesDrawn) + " triangles), past the limit of " +
-                           std::to_string(frameMemoryLimit_ >> 20) + " MiB (--max-frame-memory): raise --tau or the limit");
+    throw FrameMemoryError(std::string("the cut at tau ") + tauText + " needs " + std::to_string(neededBytes >> 20) +
+                           " MiB of frame lists (" + std::to_string(c.drawCount) + " clusters, " +
+                           std::to_string(c.trianglesDrawn) + " triangles), past the limit of " +
+                           std::to_string(frameMemoryLimit_ >> 20) +
+                           " MiB (--max-frame-memory): raise --tau or the limit");
   if (wantedBytes > frameMemoryLimit_)  // room to grow is a nicety: just what was asked for then
-    for (int i = 0; i < 4; i++) want[i] = lists[i].overflowed ? std::max<uint64_t>(lists[i].needed, uint64_t(lists[i].capacity) + 1) : lists[i].capacity;
+    for (int i = 0; i < 4; i++)
+      want[i] = lists[i].overflowed ? std::max<uint64_t>(lists[i].needed, uint64_t(lists[i].capacity) + 1)
+                                    : lists[i].capacity;
   setCapacities(uint32_t(want[0]), uint32_t(want[1]), uint32_t(want[2]), uint32_t(want[3]));
 }
 

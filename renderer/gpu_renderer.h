@@ -30,12 +30,12 @@ struct FrameMemoryError : std::runtime_error {
 };
 
 struct FrameSettings {
-  View drawView;             // the picture
-  View cullView;             // selection and culling (== drawView unless the cut is frozen)
+  View drawView;  // the picture
+  View cullView;  // selection and culling (== drawView unless the cut is frozen)
   float tau = 1.0f;
   uint32_t mode = VGEO_MODE_LIT;
   Traversal traversal = Traversal::Persistent;
-  bool readDrawList = false; // copy the draw list back (tests, --compare-cpu)
+  bool readDrawList = false;  // copy the draw list back (tests, --compare-cpu)
   bool readImage = true;
   bool draw = true;          // false: selection only (cut benchmarks); no image
   bool triangleCull = true;  // cull_triangles.comp before the draw (no change to the picture)
@@ -62,11 +62,11 @@ struct FrameResult {
   std::vector<uint8_t> rgba;       // when readImage: width x height x 4
   bool culledInTraversal = false;  // the persistent traversal culled the instances (instanceCullMs: the reset)
   double instanceCullMs = 0.0, traversalMs = 0.0, triangleCullMs = 0.0, drawMs = 0.0, frameMs = 0.0;
-  std::string timing;              // "gpu-timestamps" or "host-per-submission"
+  std::string timing;                   // "gpu-timestamps" or "host-per-submission"
   std::vector<uint32_t> workerProfile;  // when profiled: VGEO_PROFILE_WORKER_WORDS words a workgroup (shaderio.h)
-  bool complete = true;            // no overflow and the traversal drained its queue
-  bool workersRanOut = false;      // not drained: every persistent worker left on its iteration budget
-                                   // (lavapipe); the next frame runs twice as many
+  bool complete = true;                 // no overflow and the traversal drained its queue
+  bool workersRanOut = false;           // not drained: every persistent worker left on its iteration budget
+                                        // (lavapipe); the next frame runs twice as many
 };
 
 class GpuRenderer {
@@ -105,9 +105,12 @@ class GpuRenderer {
   static constexpr size_t kCullInTraversalPerWorker = 3, kCullInTraversalMaxPerWorker = 64;
   bool cullsInTraversal(const FrameSettings& s) const {
     const size_t instances = scene_.data.instances.size();
-    if (s.traversal != Traversal::Persistent || s.instanceCulling == InstanceCulling::Pass || s.cullLanes == 1) return false;
-    if (s.instanceCulling == InstanceCulling::InTraversal) return instances <= kCullInTraversalMaxPerWorker * persistentWorkgroups_;
-    return claimMode_ == 0 && cullInstanceLanes(s) != 1 && instances <= kCullInTraversalPerWorker * persistentWorkgroups_;
+    if (s.traversal != Traversal::Persistent || s.instanceCulling == InstanceCulling::Pass || s.cullLanes == 1)
+      return false;
+    if (s.instanceCulling == InstanceCulling::InTraversal)
+      return instances <= kCullInTraversalMaxPerWorker * persistentWorkgroups_;
+    return claimMode_ == 0 && cullInstanceLanes(s) != 1 &&
+           instances <= kCullInTraversalPerWorker * persistentWorkgroups_;
   }
 
  private:
@@ -130,7 +133,8 @@ class GpuRenderer {
   // from the spread).
   uint32_t cullInstanceLanes(const FrameSettings& settings) const {
     if (settings.cullLanes != 0) return settings.cullLanes == 1 ? 1 : VGEO_CULL_INSTANCE_LANES;
-    return !vk_.isLavapipe() && scene_.data.instances.size() <= VGEO_CULL_SPREAD_INSTANCES ? VGEO_CULL_INSTANCE_LANES : 1;
+    return !vk_.isLavapipe() && scene_.data.instances.size() <= VGEO_CULL_SPREAD_INSTANCES ? VGEO_CULL_INSTANCE_LANES
+                                                                                           : 1;
   }
   void recordTraversal(VkCommandBuffer cmd, const FrameSettings& settings);
   void recordTriangleCull(VkCommandBuffer cmd);
@@ -138,7 +142,9 @@ class GpuRenderer {
   void recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings);
   VkPipelineStageFlags drawShaderStages() const;
   // Whether a frame with these settings draws leaves as patches (the patch list is made by triangle culling).
-  bool drawsPatches(const FrameSettings& s) const { return s.draw && s.triangleCull && s.patches && drawPatches_ != VK_NULL_HANDLE; }
+  bool drawsPatches(const FrameSettings& s) const {
+    return s.draw && s.triangleCull && s.patches && drawPatches_ != VK_NULL_HANDLE;
+  }
 
   VulkanContext& vk_;
   const RenderScene& scene_;
@@ -146,10 +152,13 @@ class GpuRenderer {
   uint32_t queueCapacity_ = 1u << 20, drawCapacity_ = 1u << 20, triangleCapacity_ = 1u << 22, patchCapacity_ = 1u << 18;
   uint32_t persistentWorkgroups_ = 0, iterationBudget_ = 0, claimMode_ = 0;
   uint32_t lastCullItems_ = 0;
-  uint64_t frameMemoryLimit_ = uint64_t(kDefaultFrameMemoryMiB) << 20;  // the last frame's counters.cullItems: sizes the persistent traversal's first claim
+  uint64_t frameMemoryLimit_ =
+      uint64_t(kDefaultFrameMemoryMiB)
+      << 20;  // the last frame's counters.cullItems: sizes the persistent traversal's first claim
 
-  Buffer frameData_, counters_, countersReadback_, queue_, drawList_, drawListReadback_, imageReadback_, triangleList_, patchList_,
-      workerProfile_;  // host-visible; a placeholder until a frame is profiled
+  Buffer frameData_, counters_, countersReadback_, queue_, drawList_, drawListReadback_, imageReadback_, triangleList_,
+      patchList_,
+      workerProfile_;                    // host-visible; a placeholder until a frame is profiled
   std::vector<Buffer> sceneBuffers_;     // the scene's arrays, uploaded once
   std::vector<uint32_t> sceneBindings_;  // the binding of each (VGEO_BINDING_*)
   VkImage color_ = VK_NULL_HANDLE, depth_ = VK_NULL_HANDLE;
@@ -161,10 +170,12 @@ class GpuRenderer {
   VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
-  VkPipeline cull_ = VK_NULL_HANDLE, cullSerial_ = VK_NULL_HANDLE, persistent_ = VK_NULL_HANDLE, persistentProfile_ = VK_NULL_HANDLE, level_ = VK_NULL_HANDLE, prepareLevel_ = VK_NULL_HANDLE,
-             flat_ = VK_NULL_HANDLE, prepareFlat_ = VK_NULL_HANDLE, resetFlat_ = VK_NULL_HANDLE, finalize_ = VK_NULL_HANDLE, draw_ = VK_NULL_HANDLE,
-             cullTriangles_ = VK_NULL_HANDLE, finalizeTriangles_ = VK_NULL_HANDLE,
-             drawOverdraw_ = VK_NULL_HANDLE, drawPatches_ = VK_NULL_HANDLE, drawPatchesOverdraw_ = VK_NULL_HANDLE;
+  VkPipeline cull_ = VK_NULL_HANDLE, cullSerial_ = VK_NULL_HANDLE, persistent_ = VK_NULL_HANDLE,
+             persistentProfile_ = VK_NULL_HANDLE, level_ = VK_NULL_HANDLE, prepareLevel_ = VK_NULL_HANDLE,
+             flat_ = VK_NULL_HANDLE, prepareFlat_ = VK_NULL_HANDLE, resetFlat_ = VK_NULL_HANDLE,
+             finalize_ = VK_NULL_HANDLE, draw_ = VK_NULL_HANDLE, cullTriangles_ = VK_NULL_HANDLE,
+             finalizeTriangles_ = VK_NULL_HANDLE, drawOverdraw_ = VK_NULL_HANDLE, drawPatches_ = VK_NULL_HANDLE,
+             drawPatchesOverdraw_ = VK_NULL_HANDLE;
   VkQueryPool queries_ = VK_NULL_HANDLE;
   VkQueryPool statistics_ = VK_NULL_HANDLE;  // clipping invocations of the patch draw (its triangles)
 };

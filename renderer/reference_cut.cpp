@@ -32,16 +32,20 @@ SceneCut selectSceneCut(const RenderScene& scene, const View& cull, float tau, f
       const auto& cl = d.clusters[c];
       glm::vec4 self = shaderio::worldSphere(inst, cl.selfSphere);
       float margin = frustumMargin(cull, self);
-      float selfError = shaderio::projectedError(self, cl.selfError * inst.maxScale, cull.eye, cull.projScale, cull.znear);
-      float parentError = shaderio::projectedError(shaderio::worldSphere(inst, cl.parentSphere), cl.parentError * inst.maxScale, cull.eye,
-                                                   cull.projScale, cull.znear);
+      float selfError =
+          shaderio::projectedError(self, cl.selfError * inst.maxScale, cull.eye, cull.projScale, cull.znear);
+      float parentError =
+          shaderio::projectedError(shaderio::worldSphere(inst, cl.parentSphere), cl.parentError * inst.maxScale,
+                                   cull.eye, cull.projScale, cull.znear);
       const bool leaf = cl.producer == VGEO_NO_GROUP;
       bool drawn = margin >= 0.0f && shaderio::inCut(selfError, parentError, tau, leaf);
-      bool borderline = std::abs(margin) <= epsilon * std::max(self.w, 1e-30f) || std::abs(boundsMargin) <= epsilon * bounds.w ||
-                        (!leaf && std::abs(selfError - tau) <= epsilon * tau) || std::abs(parentError - tau) <= epsilon * tau;
+      bool borderline =
+          std::abs(margin) <= epsilon * std::max(self.w, 1e-30f) || std::abs(boundsMargin) <= epsilon * bounds.w ||
+          (!leaf && std::abs(selfError - tau) <= epsilon * tau) || std::abs(parentError - tau) <= epsilon * tau;
       if ((inst.flags & VGEO_INSTANCE_CONE_CULL) && drawn) {
         const shaderio::ClusterCone& cc = d.clusterCones[c];
-        glm::vec3 axis = glm::normalize(glm::vec3(glm::dot(glm::vec3(inst.row0), glm::vec3(cc.cone)), glm::dot(glm::vec3(inst.row1), glm::vec3(cc.cone)),
+        glm::vec3 axis = glm::normalize(glm::vec3(glm::dot(glm::vec3(inst.row0), glm::vec3(cc.cone)),
+                                                  glm::dot(glm::vec3(inst.row1), glm::vec3(cc.cone)),
                                                   glm::dot(glm::vec3(inst.row2), glm::vec3(cc.cone))));
         glm::vec4 tight = shaderio::worldSphere(inst, cc.sphere);
         drawn = !shaderio::clusterFacesAway(glm::vec4(axis, cc.cone.w), tight, cull.eye);
@@ -51,8 +55,10 @@ SceneCut selectSceneCut(const RenderScene& scene, const View& cull, float tau, f
           borderline = borderline || std::abs(coneMargin) <= epsilon * (glm::length(v) + tight.w);
         }
       }
-      if (borderline) cut.borderline.push_back({i, c});
-      else if (drawn) cut.entries.push_back({i, c});
+      if (borderline)
+        cut.borderline.push_back({i, c});
+      else if (drawn)
+        cut.entries.push_back({i, c});
     }
   }
   return cut;
@@ -69,18 +75,21 @@ bool compareCuts(const SceneCut& reference, std::vector<CutEntry> gpu, std::stri
   std::sort(got.begin(), got.end());
   if (std::adjacent_find(got.begin(), got.end()) != got.end()) {
     uint64_t k = *std::adjacent_find(got.begin(), got.end());
-    firstDifference = "GPU lists (instance " + std::to_string(k >> 32) + ", cluster " + std::to_string(uint32_t(k)) + ") twice";
+    firstDifference =
+        "GPU lists (instance " + std::to_string(k >> 32) + ", cluster " + std::to_string(uint32_t(k)) + ") twice";
     return false;
   }
   // Every reference entry must be listed; every listed entry must be in the reference or borderline.
   for (uint64_t k : want)
     if (!std::binary_search(got.begin(), got.end(), k)) {
-      firstDifference = "GPU misses (instance " + std::to_string(k >> 32) + ", cluster " + std::to_string(uint32_t(k)) + ")";
+      firstDifference =
+          "GPU misses (instance " + std::to_string(k >> 32) + ", cluster " + std::to_string(uint32_t(k)) + ")";
       return false;
     }
   for (uint64_t k : got)
     if (!std::binary_search(want.begin(), want.end(), k) && !std::binary_search(border.begin(), border.end(), k)) {
-      firstDifference = "GPU lists (instance " + std::to_string(k >> 32) + ", cluster " + std::to_string(uint32_t(k)) + ") which the CPU does not";
+      firstDifference = "GPU lists (instance " + std::to_string(k >> 32) + ", cluster " + std::to_string(uint32_t(k)) +
+                        ") which the CPU does not";
       return false;
     }
   return true;

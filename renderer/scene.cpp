@@ -31,7 +31,8 @@ uint32_t appendVgeo(VgeoData& dst, const VgeoData& src) {
                  clusterBase = uint32_t(dst.clusters.size()), groupBase = uint32_t(dst.groups.size()),
                  nodeBase = uint32_t(dst.nodes.size()), clusterVertexBase = uint32_t(dst.clusterVertices.size()),
                  clusterTriangleBase = uint32_t(dst.clusterTriangles.size()), cageBase = uint32_t(dst.cageFaces.size()),
-                 cageVertexBase = uint32_t(dst.cageFaceVertices.size()), patchPointBase = uint32_t(dst.patchPoints.size()),
+                 cageVertexBase = uint32_t(dst.cageFaceVertices.size()),
+                 patchPointBase = uint32_t(dst.patchPoints.size()),
                  controlPointBase = uint32_t(dst.controlPoints.size() / 3);
   for (auto g : src.geometries) {
     g.clusterOffset += clusterBase;
@@ -102,7 +103,8 @@ glm::mat4 instanceMatrix(const shaderio::Instance& inst) {
   throw InputError(path, where + ": " + cause);
 }
 
-void onlyKeys(const nlohmann::json& j, std::initializer_list<const char*> allowed, const std::string& path, const std::string& where) {
+void onlyKeys(const nlohmann::json& j, std::initializer_list<const char*> allowed, const std::string& path,
+              const std::string& where) {
   if (!j.is_object()) sceneError(path, where, "expected an object");
   for (const auto& [key, value] : j.items()) {
     bool known = false;
@@ -118,10 +120,12 @@ void onlyKeys(const nlohmann::json& j, std::initializer_list<const char*> allowe
   }
 }
 
-std::vector<float> numbers(const nlohmann::json& j, const char* key, size_t count, const std::string& path, const std::string& where) {
+std::vector<float> numbers(const nlohmann::json& j, const char* key, size_t count, const std::string& path,
+                           const std::string& where) {
   const auto& a = j.at(key);
   const std::string name = std::string("'").append(key).append("'");
-  if (!a.is_array() || a.size() != count) sceneError(path, where, name + " needs " + std::to_string(count) + " numbers");
+  if (!a.is_array() || a.size() != count)
+    sceneError(path, where, name + " needs " + std::to_string(count) + " numbers");
   std::vector<float> v;
   for (const auto& x : a) {
     if (!x.is_number() || !std::isfinite(x.get<double>()) || std::abs(x.get<double>()) > 1e30)
@@ -137,7 +141,8 @@ glm::mat4 parseTransform(const nlohmann::json& j, const std::string& path, const
       sceneError(path, where, "'matrix' and 'translation', 'rotation' or 'scale' together: give one or the other");
     std::vector<float> m = numbers(j, "matrix", 16, path, where);
     if (m[3] != 0.0f || m[7] != 0.0f || m[11] != 0.0f || m[15] != 1.0f)
-      sceneError(path, where, "'matrix' (column-major) must end each column with 0, 0, 0 and the last with 1: no projection");
+      sceneError(path, where,
+                 "'matrix' (column-major) must end each column with 0, 0, 0 and the last with 1: no projection");
     return glm::make_mat4(m.data());
   }
   glm::mat4 t(1.0f), r(1.0f), s(1.0f);
@@ -165,17 +170,21 @@ glm::mat4 parseTransform(const nlohmann::json& j, const std::string& path, const
 
 // A geometry's path: relative, inside the scene file's folder (no absolute path, no '..' out of it),
 // naming a regular file. Nothing outside the scene's folder is read.
-std::string geometryPath(const std::filesystem::path& folder, const std::string& name, const std::string& path, const std::string& where) {
+std::string geometryPath(const std::filesystem::path& folder, const std::string& name, const std::string& path,
+                         const std::string& where) {
   namespace fs = std::filesystem;
   fs::path p(name);
-  if (name.empty() || p.is_absolute() || p.has_root_name()) sceneError(path, where, "'" + name + "' must be a path relative to the scene file");
+  if (name.empty() || p.is_absolute() || p.has_root_name())
+    sceneError(path, where, "'" + name + "' must be a path relative to the scene file");
   fs::path normal = p.lexically_normal();
-  if (normal.empty() || *normal.begin() == "..") sceneError(path, where, "'" + name + "' leaves the scene file's folder");
+  if (normal.empty() || *normal.begin() == "..")
+    sceneError(path, where, "'" + name + "' leaves the scene file's folder");
   std::error_code ec;
   const fs::path root = folder.empty() ? fs::path(".") : folder, full = root / normal;
   const fs::path base = fs::weakly_canonical(root, ec), resolved = fs::weakly_canonical(full, ec);
   auto rel = resolved.lexically_relative(base);
-  if (ec || rel.empty() || *rel.begin() == "..") sceneError(path, where, "'" + name + "' leaves the scene file's folder (through a link)");
+  if (ec || rel.empty() || *rel.begin() == "..")
+    sceneError(path, where, "'" + name + "' leaves the scene file's folder (through a link)");
   if (!fs::is_regular_file(resolved, ec)) sceneError(path, where, "'" + name + "' is not a file");
   return full.string();
 }
@@ -184,7 +193,8 @@ RenderScene loadSceneFile(const std::string& path) {
   constexpr uintmax_t kMaxSceneFileBytes = 64u << 20;
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "cannot open: not a file");
-  if (std::filesystem::file_size(path, ec) > kMaxSceneFileBytes) throw InputError(path, "larger than the 64 MiB a scene file may be");
+  if (std::filesystem::file_size(path, ec) > kMaxSceneFileBytes)
+    throw InputError(path, "larger than the 64 MiB a scene file may be");
   std::ifstream in(path);
   if (!in) throw InputError(path, "cannot open");
   RenderScene scene;
@@ -223,12 +233,15 @@ RenderScene loadSceneFile(const std::string& path) {
       if (!placements[k].contains("geometry")) sceneError(path, where, "no 'geometry'");
       const auto& g = placements[k].at("geometry");
       if (!g.is_number_integer() || g.get<int64_t>() < 0 || uint64_t(g.get<int64_t>()) >= files.size())
-        sceneError(path, where, "'geometry' must be an index into 'geometries' (0.." + std::to_string(files.size() - 1) + "), got " + g.dump());
+        sceneError(path, where,
+                   "'geometry' must be an index into 'geometries' (0.." + std::to_string(files.size() - 1) + "), got " +
+                       g.dump());
       const size_t file = size_t(g.get<int64_t>());
       glm::mat4 m = parseTransform(placements[k], path, where);
       for (const auto& inst : files[file].instances) {
         uint32_t geometry = base[file] + inst.geometry;
-        shaderio::Instance placed = makeInstance(m * instanceMatrix(inst), geometry, merged.geometries[geometry].flags & VGEO_GEOMETRY_CLOSED);
+        shaderio::Instance placed =
+            makeInstance(m * instanceMatrix(inst), geometry, merged.geometries[geometry].flags & VGEO_GEOMETRY_CLOSED);
         const glm::mat3 linear(m * instanceMatrix(inst));
         if (!(placed.maxScale > 0.0f) || !std::isfinite(placed.maxScale) ||
             !(std::abs(glm::determinant(linear)) > 1e-9f * placed.maxScale * placed.maxScale * placed.maxScale))
@@ -265,7 +278,8 @@ void finishScene(RenderScene& scene) {
   // Each instance carries its geometry's BVH root (shaderio.h, Instance).
   for (auto& inst : scene.data.instances) {
     const auto& root = d.nodes[d.geometries[inst.geometry].nodeOffset];
-    inst.flags = (inst.flags & VGEO_INSTANCE_CONE_CULL) | ((root.childCountAndFlags & ~VGEO_NODE_LEAF_BIT) << VGEO_INSTANCE_ROOT_COUNT_SHIFT) |
+    inst.flags = (inst.flags & VGEO_INSTANCE_CONE_CULL) |
+                 ((root.childCountAndFlags & ~VGEO_NODE_LEAF_BIT) << VGEO_INSTANCE_ROOT_COUNT_SHIFT) |
                  (root.childCountAndFlags & VGEO_NODE_LEAF_BIT ? VGEO_INSTANCE_ROOT_LEAF : 0u);
     inst.rootChildOffset = root.childOffset;
   }
@@ -293,14 +307,17 @@ void finishScene(RenderScene& scene) {
         }
       };
       visit(root.childOffset + i);
-      if (count != 0 && end - first == count) scene.levelClusterRuns[root.childOffset + i] = glm::uvec2(first, uint32_t(count));
+      if (count != 0 && end - first == count)
+        scene.levelClusterRuns[root.childOffset + i] = glm::uvec2(first, uint32_t(count));
     }
   }
   // Bounds: centred on the AABB of the instances' spheres, with the radius that encloses them all.
   std::vector<uint64_t> leafTriangles(d.geometries.size(), 0);
   for (size_t g = 0; g < d.geometries.size(); g++)
-    for (uint32_t i = d.geometries[g].clusterOffset; i < d.geometries[g].clusterOffset + d.geometries[g].clusterCount; i++)
-      if (d.clusters[i].producer == VGEO_NO_GROUP) leafTriangles[g] += shaderio::clusterTriangleCount(d.clusters[i].counts);
+    for (uint32_t i = d.geometries[g].clusterOffset; i < d.geometries[g].clusterOffset + d.geometries[g].clusterCount;
+         i++)
+      if (d.clusters[i].producer == VGEO_NO_GROUP)
+        leafTriangles[g] += shaderio::clusterTriangleCount(d.clusters[i].counts);
   glm::vec3 lo(INFINITY), hi(-INFINITY);
   scene.virtualTriangles = 0;
   for (const auto& inst : d.instances) {
@@ -337,12 +354,14 @@ RenderScene makeBenchScene(const RenderScene& base, uint32_t count, bool scatter
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   for (uint32_t i = 0; i < count; i++) {
-    glm::vec3 at((float(i % side) - 0.5f * float(side - 1)) * spacing, 0.0f, (float(i / side) - 0.5f * float(side - 1)) * spacing);
+    glm::vec3 at((float(i % side) - 0.5f * float(side - 1)) * spacing, 0.0f,
+                 (float(i / side) - 0.5f * float(side - 1)) * spacing);
     glm::mat4 m = glm::translate(glm::mat4(1.0f), at - glm::vec3(g.boundsSphere));
     if (scatter) {
       at = glm::vec3((unit(rng) - 0.5f) * float(side) * spacing, 0.0f, (unit(rng) - 0.5f) * float(side) * spacing);
       float scale = 0.7f + 0.6f * unit(rng);
-      m = glm::translate(glm::mat4(1.0f), at) * glm::rotate(glm::mat4(1.0f), 6.2831853f * unit(rng), glm::vec3(0, 1, 0)) *
+      m = glm::translate(glm::mat4(1.0f), at) *
+          glm::rotate(glm::mat4(1.0f), 6.2831853f * unit(rng), glm::vec3(0, 1, 0)) *
           glm::scale(glm::mat4(1.0f), glm::vec3(scale)) * glm::translate(glm::mat4(1.0f), -glm::vec3(g.boundsSphere));
     }
     scene.data.instances.push_back(makeInstance(m, 0, closed));
@@ -354,8 +373,10 @@ RenderScene makeBenchScene(const RenderScene& base, uint32_t count, bool scatter
 RenderScene loadRenderScene(const std::string& path, uint32_t grid) {
   RenderScene scene;
   std::string ext = std::filesystem::path(path).extension().string();
-  if (ext == ".json") scene = loadSceneFile(path);
-  else scene.data = readVgeo(path);
+  if (ext == ".json")
+    scene = loadSceneFile(path);
+  else
+    scene.data = readVgeo(path);
   if (scene.data.instances.empty()) throw InputError(path, "the scene has no instances");
   finishScene(scene);
   if (grid > 1) {
@@ -368,8 +389,9 @@ RenderScene loadRenderScene(const std::string& path, uint32_t grid) {
         glm::mat4 t = glm::translate(glm::mat4(1.0f), glm::vec3((float(x) - 0.5f * float(grid - 1)) * spacing, 0.0f,
                                                                 (float(z) - 0.5f * float(grid - 1)) * spacing));
         for (const auto& inst : original)
-          scene.data.instances.push_back(makeInstance(t * instanceMatrix(inst), inst.geometry,
-                                                      scene.data.geometries[inst.geometry].flags & VGEO_GEOMETRY_CLOSED));
+          scene.data.instances.push_back(
+              makeInstance(t * instanceMatrix(inst), inst.geometry,
+                           scene.data.geometries[inst.geometry].flags & VGEO_GEOMETRY_CLOSED));
       }
     finishScene(scene);
   }

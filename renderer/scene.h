@@ -10,13 +10,13 @@
 namespace vgeo {
 
 struct RenderScene {
-  VgeoData data;                  // merged arrays, as uploaded to the GPU
-  std::vector<uint32_t> bvhDepth; // per geometry: levels of BVH nodes from the root to the groups
+  VgeoData data;                   // merged arrays, as uploaded to the GPU
+  std::vector<uint32_t> bvhDepth;  // per geometry: levels of BVH nodes from the root to the groups
   uint32_t maxBvhDepth = 0;
-  uint32_t maxClusters = 0;       // largest cluster count of a geometry
-  glm::vec4 bounds{0.0f};         // world-space sphere around every instance
+  uint32_t maxClusters = 0;              // largest cluster count of a geometry
+  glm::vec4 bounds{0.0f};                // world-space sphere around every instance
   glm::vec3 boxMin{0.0f}, boxMax{0.0f};  // world-space box around every instance's sphere
-  uint64_t virtualTriangles = 0;  // leaf triangles summed over instances
+  uint64_t virtualTriangles = 0;         // leaf triangles summed over instances
   // Per BVH node: for a simplification level's subtree root (a child of a geometry's root), the run of
   // clusters below it as (first cluster, count), what a sweep tests instead of walking the subtree;
   // (0, 0) for other nodes and for a subtree whose clusters are not one run.

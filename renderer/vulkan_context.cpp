@@ -13,16 +13,26 @@ namespace {
 
 const char* resultName(VkResult r) {
   switch (r) {
-    case VK_ERROR_OUT_OF_HOST_MEMORY: return "out of host memory";
-    case VK_ERROR_OUT_OF_DEVICE_MEMORY: return "out of device memory";
-    case VK_ERROR_DEVICE_LOST: return "the device was lost (a GPU fault or a reset)";
-    case VK_ERROR_INITIALIZATION_FAILED: return "initialization failed";
-    case VK_ERROR_LAYER_NOT_PRESENT: return "a layer is missing";
-    case VK_ERROR_EXTENSION_NOT_PRESENT: return "an extension is missing";
-    case VK_ERROR_FEATURE_NOT_PRESENT: return "a feature is missing";
-    case VK_ERROR_INCOMPATIBLE_DRIVER: return "no compatible driver";
-    case VK_TIMEOUT: return "timed out";
-    default: return "failed";
+    case VK_ERROR_OUT_OF_HOST_MEMORY:
+      return "out of host memory";
+    case VK_ERROR_OUT_OF_DEVICE_MEMORY:
+      return "out of device memory";
+    case VK_ERROR_DEVICE_LOST:
+      return "the device was lost (a GPU fault or a reset)";
+    case VK_ERROR_INITIALIZATION_FAILED:
+      return "initialization failed";
+    case VK_ERROR_LAYER_NOT_PRESENT:
+      return "a layer is missing";
+    case VK_ERROR_EXTENSION_NOT_PRESENT:
+      return "an extension is missing";
+    case VK_ERROR_FEATURE_NOT_PRESENT:
+      return "a feature is missing";
+    case VK_ERROR_INCOMPATIBLE_DRIVER:
+      return "no compatible driver";
+    case VK_TIMEOUT:
+      return "timed out";
+    default:
+      return "failed";
   }
 }
 
@@ -34,11 +44,14 @@ constexpr uint64_t kSubmitTimeoutNs = uint64_t(600) * 1000000000ull;
 
 void vkCheck(VkResult result, const char* what) {
   if (result != VK_SUCCESS)
-    throw std::runtime_error(std::string("vulkan: ") + what + ": " + resultName(result) + " (VkResult " + std::to_string(int(result)) + ")");
+    throw std::runtime_error(std::string("vulkan: ") + what + ": " + resultName(result) + " (VkResult " +
+                             std::to_string(int(result)) + ")");
 }
 
-VKAPI_ATTR VkBool32 VKAPI_CALL VulkanContext::debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT,
-                                                           const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
+VKAPI_ATTR VkBool32 VKAPI_CALL VulkanContext::debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                            VkDebugUtilsMessageTypeFlagsEXT,
+                                                            const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                            void* user) {
   if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
     static_cast<VulkanContext*>(user)->validationMessages_++;
     std::fprintf(stderr, "validation: %s\n", data->pMessage);
@@ -50,11 +63,16 @@ namespace {
 
 int deviceRank(VkPhysicalDeviceType type) {
   switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 4;
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 3;
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 1;
-    default: return 0;
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+      return 4;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+      return 3;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+      return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+      return 1;
+    default:
+      return 0;
   }
 }
 
@@ -72,7 +90,9 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
     vkEnumerateInstanceLayerProperties(&count, available.data());
     bool found = false;
     for (auto& l : available) found |= std::strcmp(l.layerName, "VK_LAYER_KHRONOS_validation") == 0;
-    if (!found) throw std::runtime_error("vulkan: --validate needs VK_LAYER_KHRONOS_validation (Debian: vulkan-validationlayers)");
+    if (!found)
+      throw std::runtime_error(
+          "vulkan: --validate needs VK_LAYER_KHRONOS_validation (Debian: vulkan-validationlayers)");
     layers.push_back("VK_LAYER_KHRONOS_validation");
     extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
   }
@@ -81,8 +101,10 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
   features.enabledValidationFeatureCount = 1;
   features.pEnabledValidationFeatures = enables;
   VkDebugUtilsMessengerCreateInfoEXT messengerInfo{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-  messengerInfo.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-  messengerInfo.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+  messengerInfo.messageSeverity =
+      VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  messengerInfo.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                              VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
                               VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
   messengerInfo.pfnUserCallback = debugCallback;
   messengerInfo.pUserData = this;
@@ -95,9 +117,11 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
   info.enabledExtensionCount = uint32_t(extensions.size());
   info.ppEnabledExtensionNames = extensions.data();
   if (options.validation) info.pNext = &features;
-  vkCheck(vkCreateInstance(&info, nullptr, &instance_), "vkCreateInstance (is a Vulkan driver installed? Debian: mesa-vulkan-drivers)");
+  vkCheck(vkCreateInstance(&info, nullptr, &instance_),
+          "vkCreateInstance (is a Vulkan driver installed? Debian: mesa-vulkan-drivers)");
   if (options.validation) {
-    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
+    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
     if (create) vkCheck(create(instance_, &messengerInfo, nullptr, &messenger_), "vkCreateDebugUtilsMessengerEXT");
   }
 
@@ -114,15 +138,18 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
     names += std::string(names.empty() ? "" : ", ") + p.deviceName;
     if (p.apiVersion < VK_API_VERSION_1_2) continue;
     int rank = deviceRank(p.deviceType);
-    if (!options.deviceSubstring.empty()) rank = std::strstr(p.deviceName, options.deviceSubstring.c_str()) ? 100 - int(&d - devices.data()) : -1;
+    if (!options.deviceSubstring.empty())
+      rank = std::strstr(p.deviceName, options.deviceSubstring.c_str()) ? 100 - int(&d - devices.data()) : -1;
     if (rank > bestRank) {
       bestRank = rank;
       physical_ = d;
     }
   }
   if (!physical_ || bestRank < 0)
-    throw std::runtime_error("vulkan: no Vulkan 1.2 device" + (options.deviceSubstring.empty() ? std::string() : " named like '" + options.deviceSubstring + "'") +
-                             " among: " + names);
+    throw std::runtime_error(
+        "vulkan: no Vulkan 1.2 device" +
+        (options.deviceSubstring.empty() ? std::string() : " named like '" + options.deviceSubstring + "'") +
+        " among: " + names);
   vkGetPhysicalDeviceProperties(physical_, &properties_);
   vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
   VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
@@ -134,8 +161,10 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
   driverId_ = driver.driverID;
   driverName_ = std::string(driver.driverName) + " " + driver.driverInfo;
   // The persistent traversal adds to shared counters once a subgroup (subgroupExclusiveAdd, elect, broadcast).
-  const VkSubgroupFeatureFlags neededSubgroupOps = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT;
-  if ((subgroup.supportedOperations & neededSubgroupOps) != neededSubgroupOps || !(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT))
+  const VkSubgroupFeatureFlags neededSubgroupOps =
+      VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT;
+  if ((subgroup.supportedOperations & neededSubgroupOps) != neededSubgroupOps ||
+      !(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT))
     throw std::runtime_error("vulkan: " + deviceName() + " lacks subgroup arithmetic and ballot in compute shaders");
 
   uint32_t families = 0;
@@ -144,12 +173,14 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
   vkGetPhysicalDeviceQueueFamilyProperties(physical_, &families, familyProps.data());
   queueFamily_ = UINT32_MAX;
   for (uint32_t i = 0; i < families; i++)
-    if ((familyProps[i].queueFlags & (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) == (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) {
+    if ((familyProps[i].queueFlags & (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) ==
+        (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) {
       queueFamily_ = i;
       timestampValidBits_ = familyProps[i].timestampValidBits;
       break;
     }
-  if (queueFamily_ == UINT32_MAX) throw std::runtime_error("vulkan: no queue with graphics and compute on " + deviceName());
+  if (queueFamily_ == UINT32_MAX)
+    throw std::runtime_error("vulkan: no queue with graphics and compute on " + deviceName());
 
   float priority = 1.0f;
   VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
@@ -210,7 +241,8 @@ VulkanContext::~VulkanContext() {
     vkDestroyDevice(device_, nullptr);
   }
   if (messenger_) {
-    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
     if (destroy) destroy(instance_, messenger_, nullptr);
   }
   if (instance_) vkDestroyInstance(instance_, nullptr);
@@ -233,8 +265,9 @@ Buffer VulkanContext::createBuffer(VkDeviceSize size, VkBufferUsageFlags usage, 
   vkGetBufferMemoryRequirements(device_, b.buffer, &req);
   VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   alloc.allocationSize = req.size;
-  alloc.memoryTypeIndex = memoryType(req.memoryTypeBits, hostVisible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
-                                                                     : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  alloc.memoryTypeIndex = memoryType(
+      req.memoryTypeBits, hostVisible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
+                                      : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   VkResult r = vkAllocateMemory(device_, &alloc, nullptr, &b.memory);
   if (r != VK_SUCCESS) {
     vkDestroyBuffer(device_, b.buffer, nullptr);
@@ -286,8 +319,8 @@ void VulkanContext::submitAndWait(VkCommandBuffer cmd) {
   vkCheck(vkQueueSubmit(queue_, 1, &submit, fence), "vkQueueSubmit");
   const VkResult waited = vkWaitForFences(device_, 1, &fence, VK_TRUE, kSubmitTimeoutNs);
   if (waited == VK_TIMEOUT)
-    throw std::runtime_error("vulkan: a submission did not finish within " + std::to_string(kSubmitTimeoutNs / 1000000000ull) +
-                             " s: the device hangs");
+    throw std::runtime_error("vulkan: a submission did not finish within " +
+                             std::to_string(kSubmitTimeoutNs / 1000000000ull) + " s: the device hangs");
   vkCheck(waited, "vkWaitForFences");
   vkDestroyFence(device_, fence, nullptr);
   vkFreeCommandBuffers(device_, pool_, 1, &cmd);

@@ -37,10 +37,10 @@ class VulkanContext {
   std::string deviceName() const { return properties_.deviceName; }
   std::string driverName() const { return driverName_; }
   bool isLavapipe() const { return driverId_ == VK_DRIVER_ID_MESA_LLVMPIPE; }
-  bool tessellation() const { return tessellation_; }            // tessellationShader enabled
+  bool tessellation() const { return tessellation_; }              // tessellationShader enabled
   bool pipelineStatistics() const { return pipelineStatistics_; }  // pipelineStatisticsQuery enabled
   bool deviceClock() const { return deviceClock_; }                // VK_KHR_shader_clock's device clock enabled
-  bool hasDeviceExtension(const char* name) const;                // the physical device offers it
+  bool hasDeviceExtension(const char* name) const;                 // the physical device offers it
   // Nanoseconds per timestamp tick; 0 when the queue has no timestamps.
   double timestampPeriod() const { return timestampValidBits_ ? double(properties_.limits.timestampPeriod) : 0.0; }
   // Validation messages seen so far (warnings and errors); each is also printed to stderr.
@@ -59,8 +59,8 @@ class VulkanContext {
   VkShaderModule createShaderModule(const uint32_t* code, size_t bytes);
 
   static VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-                                                     VkDebugUtilsMessageTypeFlagsEXT types,
-                                                     const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
+                                                      VkDebugUtilsMessageTypeFlagsEXT types,
+                                                      const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
 
  private:
   uint32_t memoryType(uint32_t bits, VkMemoryPropertyFlags flags) const;

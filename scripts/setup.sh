@@ -8,7 +8,7 @@ packages=(
   libmetis-dev libgtest-dev
   libvulkan-dev glslang-tools mesa-vulkan-drivers vulkan-validationlayers
   libcgal-demo assimp-testmodels python3 python3-matplotlib
-  clang libclang-rt-14-dev
+  clang libclang-rt-14-dev clang-format-14
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -34,7 +34,9 @@ VGEO_NAMESPACE_BEGIN
 // Uniform cubic B-spline basis at t, and its derivative.
 VGEO_INLINE void bsplineBasis(float t, VGEO_OUT(vec4) b, VGEO_OUT(vec4) d) {
   float s = 1.0f - t;
-  b = vec4(s * s * s, 3.0f * t * t * t - 6.0f * t * t + 4.0f, -3.0f * t * t * t + 3.0f * t * t + 3.0f * t + 1.0f, t * t * t) / 6.0f;
+  b = vec4(s * s * s, 3.0f * t * t * t - 6.0f * t * t + 4.0f, -3.0f * t * t * t + 3.0f * t * t + 3.0f * t + 1.0f,
+           t * t * t) /
+      6.0f;
   d = vec4(-0.5f * s * s, 1.5f * t * t - 2.0f * t, -1.5f * t * t + t + 0.5f, 0.5f * t * t);
 }
 
@@ -79,7 +81,8 @@ VGEO_INLINE vec3 ringLimit(vec3 ring[VGEO_MAX_RING], int n, VGEO_OUT(vec3) norma
 // 5 x 5 chart of new points around the sub-faces, grid[5 (y + 1) + x + 1] for x, y in -1..3 (v at
 // (0, 0), e_0 at (2, 0), e_1 at (0, 2), the patch the cell [0, 2]^2). The regular sub-patch of the
 // cell with lower corner (cx, cy) has the control points grid(cx - 1 + c, cy - 1 + r).
-VGEO_INLINE void subdivideRing(vec3 ring[VGEO_MAX_RING], int n, VGEO_OUT_ARRAY(vec3, next, VGEO_MAX_RING), VGEO_OUT_ARRAY(vec3, grid, 25)) {
+VGEO_INLINE void subdivideRing(vec3 ring[VGEO_MAX_RING], int n, VGEO_OUT_ARRAY(vec3, next, VGEO_MAX_RING),
+                               VGEO_OUT_ARRAY(vec3, grid, 25)) {
   // Face points of the sectors, then edge points of the spokes, then the vertex point.
   vec3 faceSum = vec3(0.0f), edgeSum = vec3(0.0f);
   for (int i = 0; i < n; i++) {
@@ -103,31 +106,31 @@ VGEO_INLINE void subdivideRing(vec3 ring[VGEO_MAX_RING], int n, VGEO_OUT_ARRAY(v
   vec3 ve0 = ((faceLast + face0 + fA + fB) * 0.25f + (4.0f * e0 + v + f0 + o1 + fLast) * 0.25f + e0) * 0.25f;
   vec3 vf0 = ((face0 + fA + fC + fD) * 0.25f + (4.0f * f0 + e0 + o2 + o4 + e1) * 0.25f + f0) * 0.25f;
   vec3 ve1 = ((face0 + face1 + fD + fE) * 0.25f + (4.0f * e1 + v + f0 + o5 + f1) * 0.25f + e1) * 0.25f;
-  grid[6] = next[0];                      // (0, 0)
-  grid[7] = next[1];                      // (1, 0) = e'_0
-  grid[11] = next[3];                     // (0, 1) = e'_1
-  grid[12] = face0;                       // (1, 1)
-  grid[1] = next[2 * n - 1];              // (0, -1) = e'_(n-1)
-  grid[2] = faceLast;                     // (1, -1)
-  grid[5] = next[5];                      // (-1, 0) = e'_2
-  grid[10] = face1;                       // (-1, 1)
+  grid[6] = next[0];                               // (0, 0)
+  grid[7] = next[1];                               // (1, 0) = e'_0
+  grid[11] = next[3];                              // (0, 1) = e'_1
+  grid[12] = face0;                                // (1, 1)
+  grid[1] = next[2 * n - 1];                       // (0, -1) = e'_(n-1)
+  grid[2] = faceLast;                              // (1, -1)
+  grid[5] = next[5];                               // (-1, 0) = e'_2
+  grid[10] = face1;                                // (-1, 1)
   grid[3] = 0.25f * (e0 + fLast + faceLast + fB);  // (2, -1): edge e_0 f_(n-1)
-  grid[8] = ve0;                                    // (2, 0)
-  grid[13] = 0.25f * (e0 + f0 + face0 + fA);        // (2, 1): edge e_0 f_0
-  grid[18] = vf0;                                   // (2, 2)
-  grid[17] = 0.25f * (e1 + f0 + face0 + fD);        // (1, 2): edge e_1 f_0
-  grid[16] = ve1;                                   // (0, 2)
-  grid[15] = 0.25f * (e1 + f1 + face1 + fE);        // (-1, 2): edge e_1 f_1
-  grid[4] = fB;                                     // (3, -1)
-  grid[9] = 0.25f * (e0 + o1 + fA + fB);            // (3, 0): edge e_0 o_1
-  grid[14] = fA;                                    // (3, 1)
-  grid[19] = 0.25f * (f0 + o2 + fA + fC);           // (3, 2): edge f_0 o_2
-  grid[24] = fC;                                    // (3, 3)
-  grid[23] = 0.25f * (f0 + o4 + fC + fD);           // (2, 3): edge f_0 o_4
-  grid[22] = fD;                                    // (1, 3)
-  grid[21] = 0.25f * (e1 + o5 + fD + fE);           // (0, 3): edge e_1 o_5
-  grid[20] = fE;                                    // (-1, 3)
-  grid[0] = grid[6];                                // (-1, -1): not part of any sub-patch
+  grid[8] = ve0;                                   // (2, 0)
+  grid[13] = 0.25f * (e0 + f0 + face0 + fA);       // (2, 1): edge e_0 f_0
+  grid[18] = vf0;                                  // (2, 2)
+  grid[17] = 0.25f * (e1 + f0 + face0 + fD);       // (1, 2): edge e_1 f_0
+  grid[16] = ve1;                                  // (0, 2)
+  grid[15] = 0.25f * (e1 + f1 + face1 + fE);       // (-1, 2): edge e_1 f_1
+  grid[4] = fB;                                    // (3, -1)
+  grid[9] = 0.25f * (e0 + o1 + fA + fB);           // (3, 0): edge e_0 o_1
+  grid[14] = fA;                                   // (3, 1)
+  grid[19] = 0.25f * (f0 + o2 + fA + fC);          // (3, 2): edge f_0 o_2
+  grid[24] = fC;                                   // (3, 3)
+  grid[23] = 0.25f * (f0 + o4 + fC + fD);          // (2, 3): edge f_0 o_4
+  grid[22] = fD;                                   // (1, 3)
+  grid[21] = 0.25f * (e1 + o5 + fD + fE);          // (0, 3): edge e_1 o_5
+  grid[20] = fE;                                   // (-1, 3)
+  grid[0] = grid[6];                               // (-1, -1): not part of any sub-patch
   // The next ring's outer points: (2, -1), (2, 0), (2, 1), (2, 2), (1, 2), (0, 2), (-1, 2).
   next[2 * n + 1] = grid[3];
   next[2 * n + 2] = grid[8];
@@ -190,7 +193,8 @@ VGEO_INLINE uint patchQuadrant(VGEO_INOUT(vec2) st) {
 
 // A patch (shaderio.h, Patch) of kind VGEO_PATCH_REGULAR, VGEO_PATCH_RING or VGEO_PATCH_NONE (bilinear
 // between points 0..3, the corners in order) at face parameters (s, t), with its unit normal.
-VGEO_INLINE vec3 evaluatePatch(uint kind, uint corner, int valence, vec3 points[VGEO_MAX_RING], float s, float t, VGEO_OUT(vec3) normal) {
+VGEO_INLINE vec3 evaluatePatch(uint kind, uint corner, int valence, vec3 points[VGEO_MAX_RING], float s, float t,
+                               VGEO_OUT(vec3) normal) {
   vec3 du, dv, p;
   if (kind == VGEO_PATCH_REGULAR) {
     vec3 grid[16];

@@ -13,7 +13,7 @@
 #define VGEO_NAMESPACE_END }
 #define VGEO_INLINE inline
 #define VGEO_OUT(T) T&
-#define VGEO_OUT_ARRAY(T, name, n) T (&name)[n]
+#define VGEO_OUT_ARRAY(T, name, n) T(&name)[n]
 #define VGEO_INOUT(T) T&
 namespace shaderio {
 using vec2 = glm::vec2;

@@ -88,35 +88,36 @@ VGEO_NAMESPACE_BEGIN
 // Per-frame constants (a uniform buffer). The cull camera selects the cut and culls; the draw camera
 // makes the picture. They differ only with --freeze-camera.
 struct FrameData {
-  mat4 viewProjection;   // draw camera
-  vec4 frustum[6];       // cull camera's planes in world space: dot(xyz, p) + w >= 0 inside
-  vec4 cullEye;          // xyz
-  vec4 drawEye;          // xyz
-  float projScale;       // viewport height / (2 tan(fovY / 2)): object size to pixels at unit distance
-  float tau;             // allowed projected error, pixels
+  mat4 viewProjection;  // draw camera
+  vec4 frustum[6];      // cull camera's planes in world space: dot(xyz, p) + w >= 0 inside
+  vec4 cullEye;         // xyz
+  vec4 drawEye;         // xyz
+  float projScale;      // viewport height / (2 tan(fovY / 2)): object size to pixels at unit distance
+  float tau;            // allowed projected error, pixels
   float znear;
   uint mode;
   uint instanceCount;
-  uint queueCapacity;    // items in the traversal queue
-  uint drawCapacity;     // entries in the draw list
-  uint iterationBudget;  // persistent traversal: leave after this many loop iterations (0: never)
-  uint maxClusters;      // largest cluster count of a geometry (flat traversal)
-  uint claimMode;        // persistent traversal: 0 claim past the frontier, 1 claim only reserved items
-  uint triangleCull;     // 1: cull_triangles.comp lists the triangles to draw; 0: every listed cluster's
-  uint triangleCapacity; // entries in the triangle list
-  float viewportWidth;   // pixels
+  uint queueCapacity;     // items in the traversal queue
+  uint drawCapacity;      // entries in the draw list
+  uint iterationBudget;   // persistent traversal: leave after this many loop iterations (0: never)
+  uint maxClusters;       // largest cluster count of a geometry (flat traversal)
+  uint claimMode;         // persistent traversal: 0 claim past the frontier, 1 claim only reserved items
+  uint triangleCull;      // 1: cull_triangles.comp lists the triangles to draw; 0: every listed cluster's
+  uint triangleCapacity;  // entries in the triangle list
+  float viewportWidth;    // pixels
   float viewportHeight;
-  uint patches;          // 1: leaf clusters whose chord error projects above tau are drawn as patches
-  uint patchCapacity;    // entries in the patch list
-  uint queueRoots;       // 1 (flat traversal): instance culling queues (instance, root) for each visible
-                         // instance; 0: it tests the root's children and queues those
-  uint sweepBudget;      // persistent traversal: cluster tests a frame may spend sweeping levels (0: none)
-  uint firstClaimItems;  // persistent traversal: the last frame's counters.cullItems (0: unknown), sizes the first claim
-  uint cullInTraversal;  // persistent traversal: its workers cull the instances first (worker w: instances w,
-                         // w + workers, ...) instead of cull_instances.comp; the host starts
-                         // counters.nodesPending at frame.instanceCount
-  uint patchesPerInstance; // the patch draw: instances of this many patches (patch.vert), so that no run of
-                           // lavapipe's tessellator outputs more vertices than its 16-bit indices address
+  uint patches;        // 1: leaf clusters whose chord error projects above tau are drawn as patches
+  uint patchCapacity;  // entries in the patch list
+  uint queueRoots;     // 1 (flat traversal): instance culling queues (instance, root) for each visible
+                       // instance; 0: it tests the root's children and queues those
+  uint sweepBudget;    // persistent traversal: cluster tests a frame may spend sweeping levels (0: none)
+  uint
+      firstClaimItems;  // persistent traversal: the last frame's counters.cullItems (0: unknown), sizes the first claim
+  uint cullInTraversal;     // persistent traversal: its workers cull the instances first (worker w: instances w,
+                            // w + workers, ...) instead of cull_instances.comp; the host starts
+                            // counters.nodesPending at frame.instanceCount
+  uint patchesPerInstance;  // the patch draw: instances of this many patches (patch.vert), so that no run of
+                            // lavapipe's tessellator outputs more vertices than its 16-bit indices address
   uint framePad[3];
 };
 
@@ -125,38 +126,38 @@ struct FrameData {
 // served one after another at the L2).
 #define VGEO_COUNTER_LINE_PAD 31
 struct Counters {
-  uint queueWrite;       // items reserved in the traversal queue
+  uint queueWrite;  // items reserved in the traversal queue
   uint linePad0[VGEO_COUNTER_LINE_PAD];
-  uint queueRead;        // items claimed by persistent workers
+  uint queueRead;  // items claimed by persistent workers
   uint linePad1[VGEO_COUNTER_LINE_PAD];
-  uint drawCount;        // draw list entries requested (may exceed the capacity: see drawOverflow)
+  uint drawCount;  // draw list entries requested (may exceed the capacity: see drawOverflow)
   uint linePad2[VGEO_COUNTER_LINE_PAD];
-  uint nodesPending;     // node items queued and not yet finished: only they produce items, so at 0 the
-                         // queue is final (persistent traversal termination)
+  uint nodesPending;  // node items queued and not yet finished: only they produce items, so at 0 the
+                      // queue is final (persistent traversal termination)
   uint linePad3[VGEO_COUNTER_LINE_PAD];
-  uint itemsDone;        // items processed (or dropped by overflow)
-  uint queueOverflow;    // items that did not fit the queue
-  uint drawOverflow;     // clusters that did not fit the draw list
-  uint nodesVisited;     // BVH nodes and groups processed
+  uint itemsDone;      // items processed (or dropped by overflow)
+  uint queueOverflow;  // items that did not fit the queue
+  uint drawOverflow;   // clusters that did not fit the draw list
+  uint nodesVisited;   // BVH nodes and groups processed
   uint clustersTested;
   uint visibleInstances;
-  uint triangles;        // triangles of the listed clusters
-  uint levelStart;       // levels traversal: the window of the queue processed by one dispatch
+  uint triangles;   // triangles of the listed clusters
+  uint levelStart;  // levels traversal: the window of the queue processed by one dispatch
   uint levelEnd;
-  uint queueHighWater;   // largest queueWrite seen
-  uint workgroupsExited; // persistent traversal: workers that left
-  uint budgetExits;      // of those, left on the iteration budget (lavapipe)
-  uint dispatch[4];      // indirect dispatch arguments (x, y, z): levels and flat traversal, triangle culling
-  uint draw[4];          // VkDrawIndirectCommand
-  uint trianglesDrawn;   // triangles that survived triangle culling (requested; see triangleOverflow)
-  uint triangleOverflow; // triangles that did not fit the triangle list
-  uint patchesDrawn;     // patches listed for the tessellated draw (requested; see patchOverflow)
-  uint patchOverflow;    // patches that did not fit the patch list
-  uint patchClusters;    // draw-list entries drawn as patches
-  uint patchDraw[4];     // VkDrawIndirectCommand of the patch draw (one vertex a patch)
-  uint sweepTests;       // cluster tests claimed for sweeps (may pass frame.sweepBudget: then not swept)
-  uint sweptTests;       // of those, swept
-  uint cullItems;        // queue items instance culling wrote: sizes the next frame's first claim
+  uint queueHighWater;    // largest queueWrite seen
+  uint workgroupsExited;  // persistent traversal: workers that left
+  uint budgetExits;       // of those, left on the iteration budget (lavapipe)
+  uint dispatch[4];       // indirect dispatch arguments (x, y, z): levels and flat traversal, triangle culling
+  uint draw[4];           // VkDrawIndirectCommand
+  uint trianglesDrawn;    // triangles that survived triangle culling (requested; see triangleOverflow)
+  uint triangleOverflow;  // triangles that did not fit the triangle list
+  uint patchesDrawn;      // patches listed for the tessellated draw (requested; see patchOverflow)
+  uint patchOverflow;     // patches that did not fit the patch list
+  uint patchClusters;     // draw-list entries drawn as patches
+  uint patchDraw[4];      // VkDrawIndirectCommand of the patch draw (one vertex a patch)
+  uint sweepTests;        // cluster tests claimed for sweeps (may pass frame.sweepBudget: then not swept)
+  uint sweptTests;        // of those, swept
+  uint cullItems;         // queue items instance culling wrote: sizes the next frame's first claim
 };
 
 // Triangle list entry: draw-list entry << 7 | triangle within its cluster. Patch list entry: draw-list

@@ -27,9 +27,9 @@ VGEO_NAMESPACE_BEGIN
 // parent = (error, sphere) of the group it belongs to (clusters of the last level: error = +inf).
 // Draw iff project(self) <= tau < project(parent) (docs/design.md, invariant 4).
 struct Cluster {
-  vec4 selfSphere;      // xyz centre, w radius; encloses the cluster's triangles
+  vec4 selfSphere;  // xyz centre, w radius; encloses the cluster's triangles
   vec4 parentSphere;
-  float selfError;      // object-space distance
+  float selfError;  // object-space distance
   float parentError;
   uint vertexOffset;    // into the cluster-vertex section (absolute vertex indices)
   uint triangleOffset;  // into the cluster-triangle section (one uint per triangle: 3 x 8-bit local indices)
@@ -41,11 +41,11 @@ struct Cluster {
 
 // A group: clusters of one level simplified together. Its members are contiguous in the cluster array.
 struct Group {
-  vec4 sphere;          // encloses the members' self spheres
-  float error;          // >= every member's self error; +inf for the root groups
-  uint clusterOffset;   // absolute cluster index of the first member
+  vec4 sphere;         // encloses the members' self spheres
+  float error;         // >= every member's self error; +inf for the root groups
+  uint clusterOffset;  // absolute cluster index of the first member
   uint clusterCount;
-  uint level;           // the simplification round that formed it
+  uint level;  // the simplification round that formed it
 };
 
 // BVH node over groups. Children are contiguous: nodes, or groups when VGEO_NODE_LEAF_BIT is set in
@@ -53,26 +53,26 @@ struct Group {
 struct BvhNode {
   vec4 sphere;
   float maxError;
-  uint childOffset;     // absolute node or group index
+  uint childOffset;  // absolute node or group index
   uint childCountAndFlags;
-  uint level;           // simplification level of the groups below; 0xffffffff for mixed (the root)
+  uint level;  // simplification level of the groups below; 0xffffffff for mixed (the root)
 };
 
 // A geometry: one mesh's DAG. Offsets are absolute indices into the file's sections.
 struct Geometry {
-  vec4 boundsSphere;    // encloses every cluster of the geometry
+  vec4 boundsSphere;  // encloses every cluster of the geometry
   uint clusterOffset;
   uint clusterCount;
   uint groupOffset;
   uint groupCount;
-  uint nodeOffset;      // the BVH root is nodes[nodeOffset]
+  uint nodeOffset;  // the BVH root is nodes[nodeOffset]
   uint nodeCount;
   uint vertexOffset;
   uint vertexCount;
   uint cageFaceOffset;  // into the cage-face section (the level-N cage, one entry per face)
   uint cageFaceCount;
   uint levelCount;
-  uint flags;           // VGEO_GEOMETRY_CLOSED: the repaired input had no boundary edge and no split vertex
+  uint flags;  // VGEO_GEOMETRY_CLOSED: the repaired input had no boundary edge and no split vertex
 };
 #define VGEO_GEOMETRY_CLOSED 1u
 
@@ -84,10 +84,10 @@ struct Instance {
   vec4 row2;
   uint geometry;
   float maxScale;
-  uint flags;           // VGEO_INSTANCE_CONE_CULL: uniform scale of a closed geometry (back-facing clusters may go);
-                        // and, set by the renderer (files hold 0), its geometry's BVH root: child count in
-                        // bits VGEO_INSTANCE_ROOT_COUNT_SHIFT.., VGEO_INSTANCE_ROOT_LEAF when its children are groups
-  uint rootChildOffset; // set by the renderer (files hold 0): the root's first child
+  uint flags;            // VGEO_INSTANCE_CONE_CULL: uniform scale of a closed geometry (back-facing clusters may go);
+                         // and, set by the renderer (files hold 0), its geometry's BVH root: child count in
+                         // bits VGEO_INSTANCE_ROOT_COUNT_SHIFT.., VGEO_INSTANCE_ROOT_LEAF when its children are groups
+  uint rootChildOffset;  // set by the renderer (files hold 0): the root's first child
 };
 #define VGEO_INSTANCE_CONE_CULL 1u
 // Instance culling tests the root's children straight from the instance record: the root (and the
@@ -115,8 +115,8 @@ VGEO_INLINE bool clusterFacesAway(vec4 cone, vec4 sphere, vec3 eye) {
 struct CageFace {
   uint firstVertex;
   uint vertexCount;
-  uint leafCluster;     // the leaf cluster holding the face
-  uint firstTriangle;   // its first triangle within that cluster (a face's triangles are consecutive)
+  uint leafCluster;    // the leaf cluster holding the face
+  uint firstTriangle;  // its first triangle within that cluster (a face's triangles are consecutive)
 };
 
 // The limit-surface patch of a face of the level-N cage (patch_eval.h evaluates it), one per cage face.
@@ -148,19 +148,20 @@ struct CageFace {
 #define VGEO_PATCH_TREE 3u
 #define VGEO_MAX_PATCH_DEPTH 6
 struct Patch {
-  uint firstPoint;      // into the patch-point section: the patch's words
-  uint info;            // kind (bits 0-1), ring: corner (bits 2-3), valence (bits 8-15); locked edges (bits 16-19)
-  float faceError;      // object-space chord error of the face's leaf triangles against the patch (>= edgeError)
-  uint pointBase;       // control point of index 0 in the patch's words (its geometry's first control point)
-  uint neighbours[4];   // across edge k: the face's absolute index << 2 | its edge; VGEO_INVALID on a boundary
-  vec4 edgeError;       // chord error of edge k's leaf segment against the limit curve, the same on both sides
+  uint firstPoint;     // into the patch-point section: the patch's words
+  uint info;           // kind (bits 0-1), ring: corner (bits 2-3), valence (bits 8-15); locked edges (bits 16-19)
+  float faceError;     // object-space chord error of the face's leaf triangles against the patch (>= edgeError)
+  uint pointBase;      // control point of index 0 in the patch's words (its geometry's first control point)
+  uint neighbours[4];  // across edge k: the face's absolute index << 2 | its edge; VGEO_INVALID on a boundary
+  vec4 edgeError;      // chord error of edge k's leaf segment against the limit curve, the same on both sides
 };
 VGEO_INLINE uint patchKind(uint info) { return info & 3u; }
 VGEO_INLINE uint patchCorner(uint info) { return (info >> 2u) & 3u; }
 VGEO_INLINE uint patchValence(uint info) { return (info >> 8u) & 0xffu; }
 VGEO_INLINE bool patchEdgeLocked(uint info, uint edge) { return ((info >> (16u + edge)) & 1u) != 0u; }
-VGEO_INLINE // Control points of a patch or tree node of this kind (a tree node: its 4 children).
-uint patchWordCount(uint info) {
+VGEO_INLINE  // Control points of a patch or tree node of this kind (a tree node: its 4 children).
+    uint
+    patchWordCount(uint info) {
   uint kind = patchKind(info);
   return kind == VGEO_PATCH_REGULAR ? 16u : kind == VGEO_PATCH_RING ? 2u * patchValence(info) + 8u : 4u;
 }

@@ -25,11 +25,13 @@ inline std::string hexagonalPrism(const std::string& dir) {
   std::string obj;
   for (int z = 0; z < 2; z++)
     for (int i = 0; i < 6; i++)
-      obj += "v " + std::to_string(std::cos(i * 1.0471976)) + " " + std::to_string(std::sin(i * 1.0471976)) + " " + std::to_string(z * 1.3) + "\n";
+      obj += "v " + std::to_string(std::cos(i * 1.0471976)) + " " + std::to_string(std::sin(i * 1.0471976)) + " " +
+             std::to_string(z * 1.3) + "\n";
   obj += "f 6 5 4 3 2 1\nf 7 8 9 10 11 12\n";
   for (int i = 0; i < 6; i++) {
     int a = i + 1, b = (i + 1) % 6 + 1;
-    obj += "f " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(b + 6) + " " + std::to_string(a + 6) + "\n";
+    obj += "f " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(b + 6) + " " +
+           std::to_string(a + 6) + "\n";
   }
   return writeFile(dir, "hexagonal_prism.obj", obj);
 }
@@ -48,7 +50,8 @@ inline std::string openBox(const std::string& dir) {
 inline std::string lSheet(const std::string& dir) {
   std::string obj;
   for (int y = 0; y < 3; y++)
-    for (int x = 0; x < 3; x++) obj += vertexLine(x, y, 0.4 * std::sin(1.3 * x) * std::cos(0.9 * y) + 0.2 * (x == 1 && y == 1));
+    for (int x = 0; x < 3; x++)
+      obj += vertexLine(x, y, 0.4 * std::sin(1.3 * x) * std::cos(0.9 * y) + 0.2 * (x == 1 && y == 1));
   obj += "f 1 2 5 4\nf 2 3 6 5\nf 4 5 8 7\n";
   return writeFile(dir, "l_sheet.obj", obj);
 }

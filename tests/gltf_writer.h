@@ -18,7 +18,8 @@ inline std::string base64(const std::vector<uint8_t>& bytes) {
   std::string out;
   for (size_t i = 0; i < bytes.size(); i += 3) {
     const size_t n = std::min<size_t>(3, bytes.size() - i);
-    uint32_t v = uint32_t(bytes[i]) << 16 | (n > 1 ? uint32_t(bytes[i + 1]) << 8 : 0u) | (n > 2 ? uint32_t(bytes[i + 2]) : 0u);
+    uint32_t v =
+        uint32_t(bytes[i]) << 16 | (n > 1 ? uint32_t(bytes[i + 1]) << 8 : 0u) | (n > 2 ? uint32_t(bytes[i + 2]) : 0u);
     out += table[v >> 18 & 63];
     out += table[v >> 12 & 63];
     out += n > 1 ? table[v >> 6 & 63] : '=';
@@ -31,7 +32,8 @@ inline std::string base64(const std::vector<uint8_t>& bytes) {
 // R"(, "scale": [-1, 1, 1])"). With corner normals, each corner becomes a vertex of its own with its
 // normal as NORMAL (as exporters write hard edges); without, vertices are shared and there is no NORMAL.
 // The buffer is a data URI: one file, nothing beside it.
-inline std::string gltfOf(const std::string& dir, const std::string& name, const PolygonMesh& mesh, const std::string& node) {
+inline std::string gltfOf(const std::string& dir, const std::string& name, const PolygonMesh& mesh,
+                          const std::string& node) {
   const bool withNormals = !mesh.cornerNormals.empty();
   std::vector<float> positions, normals;
   std::vector<uint32_t> indices;
@@ -44,7 +46,8 @@ inline std::string gltfOf(const std::string& dir, const std::string& name, const
   if (!withNormals) {
     for (const glm::vec3& p : mesh.positions) addPosition(p);
     for (size_t f = 0; f < mesh.faceCount(); f++)
-      for (uint32_t k = 2; k < mesh.faceSize(f); k++) indices.insert(indices.end(), {mesh.face(f)[0], mesh.face(f)[k - 1], mesh.face(f)[k]});
+      for (uint32_t k = 2; k < mesh.faceSize(f); k++)
+        indices.insert(indices.end(), {mesh.face(f)[0], mesh.face(f)[k - 1], mesh.face(f)[k]});
   } else {
     for (size_t f = 0; f < mesh.faceCount(); f++) {
       const uint32_t first = uint32_t(positions.size() / 3);
@@ -67,16 +70,26 @@ inline std::string gltfOf(const std::string& dir, const std::string& name, const
     return std::string(text);
   };
   const std::string vertices = std::to_string(positions.size() / 3);
-  std::string json = R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0)" + node + R"(}],
-    "meshes": [{"primitives": [{"attributes": {"POSITION": 0)" + std::string(n ? R"(, "NORMAL": 2)" : "") + R"(}, "indices": 1}]}],
-    "buffers": [{"byteLength": )" + std::to_string(bytes.size()) + R"(, "uri": "data:application/octet-stream;base64,)" + base64(bytes) + R"("}],
-    "bufferViews": [{"buffer": 0, "byteLength": )" + std::to_string(p) + R"(},
-                    {"buffer": 0, "byteOffset": )" + std::to_string(p + n) + R"(, "byteLength": )" + std::to_string(i) + "}" +
-                     (n ? R"(, {"buffer": 0, "byteOffset": )" + std::to_string(p) + R"(, "byteLength": )" + std::to_string(n) + "}" : std::string()) + R"(],
-    "accessors": [{"bufferView": 0, "componentType": 5126, "count": )" + vertices + R"(, "type": "VEC3", "min": )" + vec(lo) +
-                     R"(, "max": )" + vec(hi) + R"(},
-                  {"bufferView": 1, "componentType": 5125, "count": )" + std::to_string(indices.size()) + R"(, "type": "SCALAR"})" +
-                     (n ? R"(, {"bufferView": 2, "componentType": 5126, "count": )" + vertices + R"(, "type": "VEC3"})" : std::string()) + "]}";
+  std::string json =
+      R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0)" + node + R"(}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0)" +
+      std::string(n ? R"(, "NORMAL": 2)" : "") + R"(}, "indices": 1}]}],
+    "buffers": [{"byteLength": )" +
+      std::to_string(bytes.size()) + R"(, "uri": "data:application/octet-stream;base64,)" + base64(bytes) + R"("}],
+    "bufferViews": [{"buffer": 0, "byteLength": )" +
+      std::to_string(p) + R"(},
+                    {"buffer": 0, "byteOffset": )" +
+      std::to_string(p + n) + R"(, "byteLength": )" + std::to_string(i) + "}" +
+      (n ? R"(, {"buffer": 0, "byteOffset": )" + std::to_string(p) + R"(, "byteLength": )" + std::to_string(n) + "}"
+         : std::string()) +
+      R"(],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": )" +
+      vertices + R"(, "type": "VEC3", "min": )" + vec(lo) + R"(, "max": )" + vec(hi) + R"(},
+                  {"bufferView": 1, "componentType": 5125, "count": )" +
+      std::to_string(indices.size()) + R"(, "type": "SCALAR"})" +
+      (n ? R"(, {"bufferView": 2, "componentType": 5126, "count": )" + vertices + R"(, "type": "VEC3"})"
+         : std::string()) +
+      "]}";
   return writeFile(dir, name, json);
 }
 

@@ -15,13 +15,15 @@ inline Camera orbit(const RenderScene& scene, float azimuth, float elevation, fl
   Camera c;
   c.target = glm::vec3(scene.bounds);
   c.eye = c.target + scene.bounds.w * distanceInRadii *
-                         glm::vec3(std::cos(elevation) * std::cos(azimuth), std::sin(elevation), std::cos(elevation) * std::sin(azimuth));
+                         glm::vec3(std::cos(elevation) * std::cos(azimuth), std::sin(elevation),
+                                   std::cos(elevation) * std::sin(azimuth));
   return c;
 }
 
 // A frame of `scene` from `camera` at `width` x `height` (culling from the same view), tau `tau`, with its
 // draw list read back.
-inline FrameSettings frameSettings(const RenderScene& scene, const Camera& camera, float tau, uint32_t width, uint32_t height) {
+inline FrameSettings frameSettings(const RenderScene& scene, const Camera& camera, float tau, uint32_t width,
+                                   uint32_t height) {
   FrameSettings s;
   s.drawView = s.cullView = makeView(camera, width, height, scene.bounds);
   s.tau = tau;

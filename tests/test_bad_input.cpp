@@ -36,8 +36,9 @@ TEST_P(BadInput, FailsWithOneClearLineAndWritesNothing) {
   EXPECT_NE(r.output.find(c.expected), std::string::npos) << "expected '" << c.expected << "' in: " << r.output;
 }
 
-const char* kCube = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
-                    "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+const char* kCube =
+    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+    "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
 
 INSTANTIATE_TEST_SUITE_P(
     Files, BadInput,
@@ -53,20 +54,25 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"ObjInf", "inf.obj", "v 0 0 0\nv 1 inf 0\nv 0 1 0\nf 1 2 3\n", "non-finite position"},
         BadCase{"EmptyMesh", "e.obj", "v 0 0 0\nv 1 0 0\n", "empty mesh"},
         BadCase{"AllDegenerate", "d.obj", "v 0 0 0\nv 1 0 0\nf 1 2 2\nf 1 1 1\n", "empty mesh"},
-        BadCase{"PlyTruncatedBinary", "b.ply",
-                std::string("ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                            "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n") +
-                    std::string(20, '\0'),
-                "truncated"},
-        BadCase{"PlyNoVertexXYZ", "x.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float q\nend_header\n1\n", "lacks x, y or z"},
+        BadCase{
+            "PlyTruncatedBinary", "b.ply",
+            std::string("ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                        "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n") +
+                std::string(20, '\0'),
+            "truncated"},
+        BadCase{"PlyNoVertexXYZ", "x.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float q\nend_header\n1\n",
+                "lacks x, y or z"},
         BadCase{"TooLargeForIndices", "cube.obj", kCube, "too large for the format's 32-bit indices", "--subdiv 16"},
         BadCase{"GltfIndexOutOfRange", test::assimpModel("IndexOutOfRange/IndexOutOfRange.gltf"), "", "out of range"},
-        BadCase{"GltfAllIndicesOutOfRange", test::assimpModel("IndexOutOfRange/AllIndicesOutOfRange.gltf"), "", "out of range"},
+        BadCase{"GltfAllIndicesOutOfRange", test::assimpModel("IndexOutOfRange/AllIndicesOutOfRange.gltf"), "",
+                "out of range"},
         BadCase{"GltfMissingBin", test::assimpModel("MissingBin/BoxTextured.gltf"), "", "BoxTextured0.bin"},
         BadCase{"GltfSchemaFailure", test::assimpModel("SchemaFailures/sceneWrongType.gltf"), "", "BoxTextured0.bin"},
-        BadCase{"GltfInfinites", test::assimpModel("BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb"), "", "non-finite position"},
+        BadCase{"GltfInfinites", test::assimpModel("BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb"), "",
+                "non-finite position"},
         BadCase{"GltfRecursiveNodes", test::assimpModel("RecursiveNodes/RecursiveNodes.gltf"), "", "cyclic node graph"},
-        BadCase{"GltfIncorrectVertexArrays", test::assimpModel("IncorrectVertexArrays/Cube.gltf"), "", "not a whole number of triangles"},
+        BadCase{"GltfIncorrectVertexArrays", test::assimpModel("IncorrectVertexArrays/Cube.gltf"), "",
+                "not a whole number of triangles"},
         BadCase{"GltfNoScene", test::assimpModel("TestNoRootNode/NoScene.gltf"), "", "no meshes"},
         BadCase{"GltfBadJson", "bad.gltf", "{ \"asset\": { \"version\": \"2.0\" }, \"meshes\": [ { ", "parse error"},
         BadCase{"GltfTruncatedGlb", "t.glb", std::string("glTF\x02\0\0\0", 8), "truncated GLB"},
@@ -76,7 +82,8 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(GoodInput, BoxBadNormalsBuilds) {
   // Bad normals do not matter to the builder (it uses positions only): a correct build.
   std::string dir = test::tempDir();
-  test::RunResult r = test::runVgeo("build '" + test::assimpModel("BoxBadNormals-glTF-Binary/BoxBadNormals.glb") + "' -o " + dir + "/b.vgeo -q");
+  test::RunResult r = test::runVgeo("build '" + test::assimpModel("BoxBadNormals-glTF-Binary/BoxBadNormals.glb") +
+                                    "' -o " + dir + "/b.vgeo -q");
   EXPECT_EQ(r.exitCode, 0) << r.output;
   EXPECT_TRUE(std::filesystem::exists(dir + "/b.vgeo"));
 }

@@ -21,11 +21,13 @@ nlohmann::json benchRecords(const std::string& args, const std::string& output) 
 TEST(BenchCut, WritesRecordsOnWhichAllModesAgree) {
   std::string dir = test::tempDir();
   writeVgeo(test::build(test::asset("horned_cube.obj"), 2), dir + "/h.vgeo");
-  nlohmann::json records = benchRecords("cut " + dir + "/h.vgeo --sizes 1,9 --taus 1,4 --frames 1 --size 160x120", dir + "/cut.json");
+  nlohmann::json records =
+      benchRecords("cut " + dir + "/h.vgeo --sizes 1,9 --taus 1,4 --frames 1 --size 160x120", dir + "/cut.json");
   EXPECT_EQ(records.size(), 2u * 2u * 6u * 2u * 4u);  // layouts x sizes x cameras x taus x modes
   std::map<std::string, std::vector<uint64_t>> drawn;
   for (const auto& rec : records) {
-    for (const char* key : {"layout", "instances", "camera", "tau", "mode", "traversal_ms", "visible_clusters", "device", "commit"})
+    for (const char* key :
+         {"layout", "instances", "camera", "tau", "mode", "traversal_ms", "visible_clusters", "device", "commit"})
       EXPECT_TRUE(rec.contains(key)) << key;
     if (rec["mode"] != "cpu") {
       // lavapipe culls in a pass of its own (the persistent traversal culls itself on GPUs only)
@@ -34,8 +36,8 @@ TEST(BenchCut, WritesRecordsOnWhichAllModesAgree) {
         EXPECT_EQ(rec["instance_culling"], "pass");
       }
     }
-    std::string group = rec["layout"].get<std::string>() + std::to_string(rec["instances"].get<int>()) + rec["camera"].get<std::string>() +
-                        std::to_string(rec["tau"].get<double>());
+    std::string group = rec["layout"].get<std::string>() + std::to_string(rec["instances"].get<int>()) +
+                        rec["camera"].get<std::string>() + std::to_string(rec["tau"].get<double>());
     drawn[group].push_back(rec["visible_clusters"].get<uint64_t>());
   }
   for (const auto& [group, counts] : drawn)
@@ -45,13 +47,14 @@ TEST(BenchCut, WritesRecordsOnWhichAllModesAgree) {
 TEST(BenchFrame, SplitsTheFrameWithAndWithoutTriangleCullingAndPatches) {
   std::string dir = test::tempDir();
   writeVgeo(test::build(test::asset("horned_cube.obj"), 2), dir + "/h.vgeo");
-  nlohmann::json records =
-      benchRecords("frame " + dir + "/h.vgeo --grids 1,3 --sizes 160x120 --cameras corner,surface --frames 1", dir + "/frame.json");
+  nlohmann::json records = benchRecords(
+      "frame " + dir + "/h.vgeo --grids 1,3 --sizes 160x120 --cameras corner,surface --frames 1", dir + "/frame.json");
   ASSERT_EQ(records.size(), 2u * 2u * 3u);  // grids x cameras x (patches, triangle culling only, neither)
   for (size_t i = 0; i < records.size(); i += 3) {
     const auto &patches = records[i], &on = records[i + 1], &off = records[i + 2];
-    for (const char* key : {"instance_culling", "instance_cull_ms", "traversal_ms", "triangle_cull_ms", "draw_ms", "frame_ms", "pixels_covered", "patches_drawn",
-                            "patch_triangles", "patch_pixels", "device", "commit"})
+    for (const char* key :
+         {"instance_culling", "instance_cull_ms", "traversal_ms", "triangle_cull_ms", "draw_ms", "frame_ms",
+          "pixels_covered", "patches_drawn", "patch_triangles", "patch_pixels", "device", "commit"})
       EXPECT_TRUE(patches.contains(key)) << key;
     EXPECT_TRUE(patches["patches"].get<bool>() && patches["triangle_cull"].get<bool>());
     EXPECT_TRUE(on["triangle_cull"].get<bool>() && !on["patches"].get<bool>());
@@ -72,10 +75,12 @@ TEST(BenchFrame, SplitsTheFrameWithAndWithoutTriangleCullingAndPatches) {
 
 TEST(BenchBuild, OneRecordPerMeshSubdivAndThreads) {
   std::string dir = test::tempDir();
-  nlohmann::json records = benchRecords("build " + test::asset("horned_cube.obj") + " --subdiv 0,1 --threads 1,2 --repeat 1", dir + "/build.json");
+  nlohmann::json records = benchRecords(
+      "build " + test::asset("horned_cube.obj") + " --subdiv 0,1 --threads 1,2 --repeat 1", dir + "/build.json");
   ASSERT_EQ(records.size(), 4u);
   for (const auto& rec : records) {
-    for (const char* key : {"dag_seconds", "total_seconds", "mtri_per_second", "peak_rss_bytes", "levels", "root_clusters", "relaxed_groups"})
+    for (const char* key : {"dag_seconds", "total_seconds", "mtri_per_second", "peak_rss_bytes", "levels",
+                            "root_clusters", "relaxed_groups"})
       EXPECT_TRUE(rec.contains(key)) << key;
     EXPECT_GT(rec["peak_rss_bytes"].get<uint64_t>(), 0u);
     EXPECT_LE(rec["dag_seconds"].get<double>(), rec["total_seconds"].get<double>());

@@ -24,7 +24,8 @@ TEST(Check, FindsALeafVertexOffItsPatch) {
   EXPECT_GT(good.checkedPatches, data.patches.size() / 2);  // a subdivided quad torus: nearly all regular
   for (const auto& patch : data.patches)
     if (shaderio::patchKind(patch.info) == VGEO_PATCH_REGULAR) {
-      data.controlPoints[3 * (patch.pointBase + data.patchPoints[patch.firstPoint + 5])] += 0.01f * data.geometries[0].boundsSphere.w;
+      data.controlPoints[3 * (patch.pointBase + data.patchPoints[patch.firstPoint + 5])] +=
+          0.01f * data.geometries[0].boundsSphere.w;
       break;
     }
   expectViolation(data, "is not its leaf vertex");

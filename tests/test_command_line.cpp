@@ -33,7 +33,9 @@ class CommandLine : public ::testing::Test {
       EXPECT_LT(seconds, 5.0) << "a usage error is found before any work";
     }
   }
-  static std::string render(const std::string& options) { return "render " + *dir + "/cow.vgeo -o " + *dir + "/out.png " + options; }
+  static std::string render(const std::string& options) {
+    return "render " + *dir + "/cow.vgeo -o " + *dir + "/out.png " + options;
+  }
 
   static std::string* dir;
 };
@@ -55,14 +57,18 @@ TEST_F(CommandLine, BadValuesAreUsageErrorsBeforeAnyWork) {
   expectOneLine(render("--frames 0"), 2, "--frames");
   expectOneLine("render " + *dir + "/cow.vgeo -o " + *dir + "/missing/out.png", 2, "does not exist");
   expectOneLine("render " + *dir + "/cow.vgeo -o " + *dir + "/out.jpg", 2, "written as .png");
-  expectOneLine("render " + *dir + "/cow.vgeo -o " + *dir + "/out.png --stats " + *dir + "/missing/s.json", 2, "--stats");
+  expectOneLine("render " + *dir + "/cow.vgeo -o " + *dir + "/out.png --stats " + *dir + "/missing/s.json", 2,
+                "--stats");
   expectOneLine("build " + test::cgalMesh("cow.off") + " -o " + *dir + "/c.obj", 2, "written as .vgeo");
-  expectOneLine("build " + test::cgalMesh("cow.off") + " -o " + *dir + "/c.vgeo --subdiv 1 --crease-angle 30", 2, "--crease-angle");
-  expectOneLine("build " + test::cgalMesh("cow.off") + " -o " + *dir + "/c.vgeo --crease-angle 200", 2, "--crease-angle");
+  expectOneLine("build " + test::cgalMesh("cow.off") + " -o " + *dir + "/c.vgeo --subdiv 1 --crease-angle 30", 2,
+                "--crease-angle");
+  expectOneLine("build " + test::cgalMesh("cow.off") + " -o " + *dir + "/c.vgeo --crease-angle 200", 2,
+                "--crease-angle");
   expectOneLine("check " + *dir + "/cow.vgeo --cuts -1", 2, "--cuts");
   expectOneLine("render", 2, "input is required");
   // The input itself is never overwritten.
-  std::filesystem::copy_file(*dir + "/cow.vgeo", *dir + "/same.vgeo", std::filesystem::copy_options::overwrite_existing);
+  std::filesystem::copy_file(*dir + "/cow.vgeo", *dir + "/same.vgeo",
+                             std::filesystem::copy_options::overwrite_existing);
   expectOneLine("build " + *dir + "/same.vgeo -o " + *dir + "/same.vgeo", 2, "is an input of this command");
   // A bad file is the file's fault (exit 1, its name first), not the command line's.
   expectOneLine("render " + *dir + "/nothing.vgeo -o " + *dir + "/out.png", 1, *dir + "/nothing.vgeo: ");
@@ -82,18 +88,19 @@ TEST_F(CommandLine, OutputsAreNeverLinksOrDevicesAndInterruptionsLeaveNothing) {
   for (int i = 0; i < 12; i++) {
     std::filesystem::remove(out);
     const std::string sig = i % 2 ? "TERM" : "INT";
-    test::runShell(std::string(VGEO_BINARY) + " build " + test::cgalMesh("armadillo.off") + " -q -o " + out + " & pid=$!; sleep " +
-                   std::to_string(0.04 * i) + "; kill -" + sig + " $pid; wait $pid");
+    test::runShell(std::string(VGEO_BINARY) + " build " + test::cgalMesh("armadillo.off") + " -q -o " + out +
+                   " & pid=$!; sleep " + std::to_string(0.04 * i) + "; kill -" + sig + " $pid; wait $pid");
     for (const auto& entry : std::filesystem::directory_iterator(*dir))
-      EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << "after SIG" << sig << " at " << 0.04 * i << " s: " << entry.path();
+      EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos)
+          << "after SIG" << sig << " at " << 0.04 * i << " s: " << entry.path();
     if (std::filesystem::exists(out)) {
       EXPECT_EQ(test::runVgeo("check " + out + " --cuts 2").exitCode, 0);
     }
   }
   // Two builds of one output at once leave one whole file.
   std::filesystem::remove(out);
-  test::runShell(std::string(VGEO_BINARY) + " build " + test::cgalMesh("cow.off") + " -q -o " + out + " & " + std::string(VGEO_BINARY) + " build " +
-                 test::cgalMesh("cow.off") + " -q -o " + out + " & wait");
+  test::runShell(std::string(VGEO_BINARY) + " build " + test::cgalMesh("cow.off") + " -q -o " + out + " & " +
+                 std::string(VGEO_BINARY) + " build " + test::cgalMesh("cow.off") + " -q -o " + out + " & wait");
   EXPECT_EQ(test::runVgeo("check " + out).exitCode, 0);
 }
 
@@ -112,7 +119,8 @@ TEST_F(CommandLine, SceneFilesAreReadStrictly) {
     std::string json, expected;
   };
   const std::vector<SceneCase> cases = {
-      {R"({"geometries": ["cow.vgeo"], "instances": [{"geometry": 0, "tranlsation": [1, 0, 0]}]})", "unknown key 'tranlsation'"},
+      {R"({"geometries": ["cow.vgeo"], "instances": [{"geometry": 0, "tranlsation": [1, 0, 0]}]})",
+       "unknown key 'tranlsation'"},
       {R"({"geometries": ["cow.vgeo"], "instances": [{"geometry": 0.5}]})", "'geometry' must be an index"},
       {R"({"geometries": ["cow.vgeo"], "instances": [{"geometry": -1}]})", "got -1"},
       {R"({"geometries": ["cow.vgeo"], "instances": [{"geometry": 1}]})", "got 1"},
@@ -120,13 +128,15 @@ TEST_F(CommandLine, SceneFilesAreReadStrictly) {
        "'matrix' and"},
       {R"({"geometries": ["cow.vgeo"], "instances": [{"geometry": 0, "rotation": [0, 0, 0, 0]}]})", "zero quaternion"},
       {R"({"geometries": ["cow.vgeo"], "instances": [{"geometry": 0, "scale": [1, 0, 1]}]})", "degenerate transform"},
-      {R"({"geometries": ["cow.vgeo"], "instances": [{"geometry": 0, "matrix": [1,0,0,1, 0,1,0,0, 0,0,1,0, 0,0,0,1]}]})", "no projection"},
+      {R"({"geometries": ["cow.vgeo"], "instances": [{"geometry": 0, "matrix": [1,0,0,1, 0,1,0,0, 0,0,1,0, 0,0,0,1]}]})",
+       "no projection"},
       {R"({"geometries": ["cow.vgeo"], "extra": true})", "unknown key 'extra'"},
       {R"({"geometries": ["/etc/passwd"]})", "must be a path relative to the scene file"},
       {R"({"geometries": ["../outside.vgeo"]})", "leaves the scene file's folder"},
       {R"({"geometries": ["."]})", "is not a file"},
       {R"({"geometries": []})", "non-empty array"},
-      {R"({"geometries": ["cow.vgeo"], "instances": [{"geometry": 0, "translation": [1, 2]}]})", "'translation' needs 3 numbers"},
+      {R"({"geometries": ["cow.vgeo"], "instances": [{"geometry": 0, "translation": [1, 2]}]})",
+       "'translation' needs 3 numbers"},
   };
   for (const SceneCase& c : cases) {
     const std::string scene = test::writeFile(*dir, "scene.json", c.json);
@@ -134,7 +144,9 @@ TEST_F(CommandLine, SceneFilesAreReadStrictly) {
     expectOneLine("render " + scene + " -o " + *dir + "/out.png", 1, c.expected);
   }
   // A valid scene renders.
-  const std::string good = test::writeFile(*dir, "good.json", R"({"geometries": [{"path": "cow.vgeo"}], "instances": [{"geometry": 0, "scale": [-1, 1, 1]}]})");
+  const std::string good =
+      test::writeFile(*dir, "good.json",
+                      R"({"geometries": [{"path": "cow.vgeo"}], "instances": [{"geometry": 0, "scale": [-1, 1, 1]}]})");
   test::RunResult r = test::runVgeo("render " + good + " -o " + *dir + "/good.png --size 64x48");
   EXPECT_EQ(r.exitCode, 0) << r.output;
 }
@@ -144,15 +156,18 @@ TEST_F(CommandLine, FailedWritesLeaveNothingAndSaySo) {
   // write fails with EFBIG), as a full disk would: the PNG, the stats and the .vgeo fail with one line
   // and exit 1, and neither they nor a temporary file are left.
   auto limited = [](const std::string& args, int kib) {
-    return test::runShell("trap '' XFSZ; ulimit -f " + std::to_string(kib) + "; " + std::string(VGEO_BINARY) + " " + args);
+    return test::runShell("trap '' XFSZ; ulimit -f " + std::to_string(kib) + "; " + std::string(VGEO_BINARY) + " " +
+                          args);
   };
   struct WriteCase {
     std::string args;
     int kib;
   };
-  for (const WriteCase& c : {WriteCase{render("--size 640x480"), 8},
-                             WriteCase{"render " + *dir + "/cow.vgeo -o " + *dir + "/small.png --size 16x12 --stats " + *dir + "/big.json", 1},
-                             WriteCase{"build " + test::cgalMesh("armadillo.off") + " -o " + *dir + "/big.vgeo -q", 64}}) {
+  for (const WriteCase& c :
+       {WriteCase{render("--size 640x480"), 8},
+        WriteCase{"render " + *dir + "/cow.vgeo -o " + *dir + "/small.png --size 16x12 --stats " + *dir + "/big.json",
+                  1},
+        WriteCase{"build " + test::cgalMesh("armadillo.off") + " -o " + *dir + "/big.vgeo -q", 64}}) {
     SCOPED_TRACE(c.args);
     test::RunResult r = limited(c.args, c.kib);
     EXPECT_EQ(r.exitCode, 1) << r.output;

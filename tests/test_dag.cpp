@@ -51,30 +51,31 @@ TEST_P(Dag, InvariantsHold) {
 
 INSTANTIATE_TEST_SUITE_P(
     Meshes, Dag,
-    ::testing::Values(DagCase{"CubeQuad0", test::cgalMesh("cube_quad.off"), 0, true},
-                      DagCase{"CubeQuad2", test::cgalMesh("cube_quad.off"), 2, true},
-                      DagCase{"CubeQuad4", test::cgalMesh("cube_quad.off"), 4, true},
-                      DagCase{"TorusQuad0", test::cgalMesh("torus_quad.off"), 0, true},
-                      DagCase{"TorusQuad2", test::cgalMesh("torus_quad.off"), 2, true},
-                      DagCase{"TorusQuad4", test::cgalMesh("torus_quad.off"), 4, true},
-                      DagCase{"Bunny0", test::cgalMesh("bunny00.off"), 0, true},
-                      DagCase{"Bunny1", test::cgalMesh("bunny00.off"), 1, true},
-                      DagCase{"Bunny2", test::cgalMesh("bunny00.off"), 2, true},
-                      DagCase{"Armadillo0", test::cgalMesh("armadillo.off"), 0, true},
-                      DagCase{"Armadillo1", test::cgalMesh("armadillo.off"), 1, true},
-                      DagCase{"Armadillo2", test::cgalMesh("armadillo.off"), 2, true},
-                      // Faces wound inconsistently (CGAL's shuffled copies): oriented first, then reduced to one root.
-                      DagCase{"BlobbyShuffled0", test::cgalMesh("blobby-shuffled.off"), 0, true},
-                      DagCase{"OblongShuffled1", test::cgalMesh("oblong-shuffled.off"), 1, true},
-                      // Open surfaces: their boundary is simplified along with the rest.
-                      DagCase{"Lion0", test::cgalMesh("lion.off"), 0, false, true},
-                      DagCase{"Blade2", test::cgalMesh("blade.off"), 2, false, true},
-                      DagCase{"MeshWithBorder1", test::cgalMesh("mesh_with_border.off"), 1, false, true},
-                      DagCase{"HornedCube0", test::asset("horned_cube.obj"), 0, true},
-                      DagCase{"HornedCube2", test::asset("horned_cube.obj"), 2, true},
-                      DagCase{"HornedCube4", test::asset("horned_cube.obj"), 4, true},
-                      DagCase{"CylinderEngineGltf", test::assimpModel("2CylinderEngine-glTF-Binary/2CylinderEngine.glb"), 0, false},
-                      DagCase{"CylinderEngineGltf1", test::assimpModel("2CylinderEngine-glTF-Binary/2CylinderEngine.glb"), 1, false}),
+    ::testing::Values(
+        DagCase{"CubeQuad0", test::cgalMesh("cube_quad.off"), 0, true},
+        DagCase{"CubeQuad2", test::cgalMesh("cube_quad.off"), 2, true},
+        DagCase{"CubeQuad4", test::cgalMesh("cube_quad.off"), 4, true},
+        DagCase{"TorusQuad0", test::cgalMesh("torus_quad.off"), 0, true},
+        DagCase{"TorusQuad2", test::cgalMesh("torus_quad.off"), 2, true},
+        DagCase{"TorusQuad4", test::cgalMesh("torus_quad.off"), 4, true},
+        DagCase{"Bunny0", test::cgalMesh("bunny00.off"), 0, true},
+        DagCase{"Bunny1", test::cgalMesh("bunny00.off"), 1, true},
+        DagCase{"Bunny2", test::cgalMesh("bunny00.off"), 2, true},
+        DagCase{"Armadillo0", test::cgalMesh("armadillo.off"), 0, true},
+        DagCase{"Armadillo1", test::cgalMesh("armadillo.off"), 1, true},
+        DagCase{"Armadillo2", test::cgalMesh("armadillo.off"), 2, true},
+        // Faces wound inconsistently (CGAL's shuffled copies): oriented first, then reduced to one root.
+        DagCase{"BlobbyShuffled0", test::cgalMesh("blobby-shuffled.off"), 0, true},
+        DagCase{"OblongShuffled1", test::cgalMesh("oblong-shuffled.off"), 1, true},
+        // Open surfaces: their boundary is simplified along with the rest.
+        DagCase{"Lion0", test::cgalMesh("lion.off"), 0, false, true},
+        DagCase{"Blade2", test::cgalMesh("blade.off"), 2, false, true},
+        DagCase{"MeshWithBorder1", test::cgalMesh("mesh_with_border.off"), 1, false, true},
+        DagCase{"HornedCube0", test::asset("horned_cube.obj"), 0, true},
+        DagCase{"HornedCube2", test::asset("horned_cube.obj"), 2, true},
+        DagCase{"HornedCube4", test::asset("horned_cube.obj"), 4, true},
+        DagCase{"CylinderEngineGltf", test::assimpModel("2CylinderEngine-glTF-Binary/2CylinderEngine.glb"), 0, false},
+        DagCase{"CylinderEngineGltf1", test::assimpModel("2CylinderEngine-glTF-Binary/2CylinderEngine.glb"), 1, false}),
     [](const ::testing::TestParamInfo<DagCase>& info) { return info.param.name; });
 
 TEST(DagBuild, GltfMeshesUsedTwiceAreBuiltOnceAndInstanced) {
@@ -94,7 +95,8 @@ TEST(DagBuild, LeafClustersHoldWholeCageFaces) {
     ASSERT_EQ(leaf.producer, VGEO_NO_GROUP);
     ASSERT_LE(face.firstTriangle + 2, shaderio::clusterTriangleCount(leaf.counts));
     // The face's two triangles use exactly its four corners.
-    std::vector<uint32_t> corners(data.cageFaceVertices.begin() + face.firstVertex, data.cageFaceVertices.begin() + face.firstVertex + 4);
+    std::vector<uint32_t> corners(data.cageFaceVertices.begin() + face.firstVertex,
+                                  data.cageFaceVertices.begin() + face.firstVertex + 4);
     std::sort(corners.begin(), corners.end());
     std::vector<uint32_t> used;
     for (uint32_t t = face.firstTriangle; t < face.firstTriangle + 2; t++) {
@@ -127,14 +129,14 @@ TEST(DagBuild, BvhRootHoldsOneSubtreePerLevel) {
 
 TEST(DagBuild, StatsJsonHasEveryPromisedField) {
   std::string dir = test::tempDir();
-  test::RunResult r = test::runVgeo("build '" + test::asset("horned_cube.obj") + "' --subdiv 2 -o " + dir + "/h.vgeo --stats " + dir +
-                                    "/s.json --threads 2 -q");
+  test::RunResult r = test::runVgeo("build '" + test::asset("horned_cube.obj") + "' --subdiv 2 -o " + dir +
+                                    "/h.vgeo --stats " + dir + "/s.json --threads 2 -q");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   std::ifstream in(dir + "/s.json");
   nlohmann::json j = nlohmann::json::parse(in);
-  for (const char* key : {"input_triangles", "leaf_triangles", "levels", "clusters", "level_clusters", "level_triangles", "root_clusters",
-                          "avg_leaf_cluster_triangles", "avg_cluster_triangles", "relaxed_groups", "build_seconds", "total_seconds",
-                          "peak_rss_bytes", "threads"})
+  for (const char* key : {"input_triangles", "leaf_triangles", "levels", "clusters", "level_clusters",
+                          "level_triangles", "root_clusters", "avg_leaf_cluster_triangles", "avg_cluster_triangles",
+                          "relaxed_groups", "build_seconds", "total_seconds", "peak_rss_bytes", "threads"})
     EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_EQ(j["input_triangles"], 684);
   EXPECT_EQ(j["leaf_triangles"], 684 * 16);

@@ -129,7 +129,8 @@ TEST(Format, ChecksumsAreRecomputedButReferencesStillChecked) {
   data = smallScene();
   const uint32_t inner = data.nodes[0].childOffset;
   ASSERT_LT(inner, data.nodes.size());
-  data.nodes[inner].childCountAndFlags = (data.nodes[inner].childCountAndFlags & VGEO_NODE_LEAF_BIT) | (VGEO_BVH_WIDTH + 1);
+  data.nodes[inner].childCountAndFlags =
+      (data.nodes[inner].childCountAndFlags & VGEO_NODE_LEAF_BIT) | (VGEO_BVH_WIDTH + 1);
   bytes = serializeVgeo(data);
   try {
     parseVgeo(bytes.data(), bytes.size(), "wide.vgeo");
@@ -142,7 +143,10 @@ TEST(Format, ChecksumsAreRecomputedButReferencesStillChecked) {
 TEST(Format, MalformedPatchWordsAreRejected) {
   // Trees (a triangle cage after one round: every face is one) whose words lie: a child before its
   // parent (a cycle), a point past the control points, an unknown ring valence.
-  VgeoData good = test::build(test::writeFile(test::tempDir(), "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"), 1);
+  VgeoData good =
+      test::build(test::writeFile(test::tempDir(), "tri.obj",
+                                  "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"),
+                  1);
   const shaderio::Patch& tree = good.patches[0];
   ASSERT_EQ(shaderio::patchKind(tree.info), VGEO_PATCH_TREE);
   auto rejected = [](const VgeoData& data, const std::string& expected) {

@@ -16,7 +16,8 @@ namespace fs = std::filesystem;
 std::string input(const std::string& name) { return std::string(VGEO_SOURCE_DIR) + "/tests/inputs/" + name; }
 
 // Runs `args`; expects exit 1 within `seconds`, one line that starts with `file: ` and holds `expected`.
-void expectRefused(const std::string& args, const std::string& file, const std::string& expected, double seconds = 20.0) {
+void expectRefused(const std::string& args, const std::string& file, const std::string& expected,
+                   double seconds = 20.0) {
   SCOPED_TRACE(args);
   auto start = std::chrono::steady_clock::now();
   test::RunResult r = test::runVgeo(args);
@@ -82,7 +83,9 @@ TEST(HostileInputs, GltfBuffersStayInsideTheGltfsFolder) {
   std::string b64 = embedded.substr(uri + 37, end - uri - 37);
   std::string bytes;  // decode: the writer's own base64 back to bytes
   for (size_t i = 0; i + 3 < b64.size(); i += 4) {
-    auto val = [](char c) { return c == '=' ? 0 : c == '+' ? 62 : c == '/' ? 63 : c <= '9' ? c - '0' + 52 : c <= 'Z' ? c - 'A' : c - 'a' + 26; };
+    auto val = [](char c) {
+      return c == '=' ? 0 : c == '+' ? 62 : c == '/' ? 63 : c <= '9' ? c - '0' + 52 : c <= 'Z' ? c - 'A' : c - 'a' + 26;
+    };
     uint32_t v = uint32_t(val(b64[i]) << 18 | val(b64[i + 1]) << 12 | val(b64[i + 2]) << 6 | val(b64[i + 3]));
     bytes += char(v >> 16);
     if (b64[i + 2] != '=') bytes += char(v >> 8 & 255);
@@ -108,7 +111,8 @@ TEST(HostileInputs, CraftedPlyOffAndObjFilesAreRefusedOrBuildRight) {
   expectBuildRefused(input("ply_second_vertex_element_shrinks.ply"), "a second 'vertex' element");
   // An element without properties holds nothing, whatever its count: it is skipped, not looped over.
   const std::string dir = test::tempDir();
-  for (const std::string name : {"ply_element_without_properties_hang.ply", "off_small_faces_input_triangles_underflow.off"}) {
+  for (const std::string name :
+       {"ply_element_without_properties_hang.ply", "off_small_faces_input_triangles_underflow.off"}) {
     test::RunResult r = test::runVgeo("build " + input(name) + " -o " + dir + "/o.vgeo -q --stats " + dir + "/s.json");
     EXPECT_EQ(r.exitCode, 0) << r.output;
     EXPECT_EQ(r.output.find("18446744073709551"), std::string::npos) << "no wrapped count: " << r.output;
@@ -122,10 +126,11 @@ TEST(HostileInputs, EveryFileTheBuilderWritesPassesItsCheck) {
   // inconsistently wound tetrahedron, coordinates near 3e38): now a build passes check, or fails with
   // one line.
   const std::string dir = test::tempDir();
-  for (const std::string name : {"build_output_fails_check_huge_coords.obj", "build_output_fails_check_overlap.obj",
-                                 "build_output_fails_check_patch_corner.obj", "build_output_unloadable_nonfinite_error.obj",
-                                 "build_pipeline_fuzz_1.obj", "build_pipeline_fuzz_2.obj", "build_pipeline_fuzz_3.obj",
-                                 "build_pipeline_fuzz_bowtie.off"}) {
+  for (const std::string name :
+       {"build_output_fails_check_huge_coords.obj", "build_output_fails_check_overlap.obj",
+        "build_output_fails_check_patch_corner.obj", "build_output_unloadable_nonfinite_error.obj",
+        "build_pipeline_fuzz_1.obj", "build_pipeline_fuzz_2.obj", "build_pipeline_fuzz_3.obj",
+        "build_pipeline_fuzz_bowtie.off"}) {
     // The fuzzed files name normals they lack; without those references they reach the later steps.
     std::string text = test::readFile(input(name)), stripped;
     for (size_t i = 0; i < text.size(); i++) {
@@ -140,7 +145,8 @@ TEST(HostileInputs, EveryFileTheBuilderWritesPassesItsCheck) {
       for (int subdiv = 0; subdiv <= 2; subdiv++) {
         SCOPED_TRACE(file + " --subdiv " + std::to_string(subdiv));
         fs::remove(dir + "/o.vgeo");
-        test::RunResult r = test::runVgeo("build '" + file + "' -o " + dir + "/o.vgeo -q --subdiv " + std::to_string(subdiv));
+        test::RunResult r =
+            test::runVgeo("build '" + file + "' -o " + dir + "/o.vgeo -q --subdiv " + std::to_string(subdiv));
         if (r.exitCode != 0) {
           EXPECT_EQ(r.exitCode, 1) << r.output;
           EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
@@ -154,8 +160,10 @@ TEST(HostileInputs, EveryFileTheBuilderWritesPassesItsCheck) {
 }
 
 TEST(HostileInputs, CraftedVgeoAndSceneFilesAreRefused) {
-  expectRefused("check " + input("check_cluster_vertex_underflow.vgeo"), input("check_cluster_vertex_underflow.vgeo"), "another geometry");
-  expectRefused("check " + input("check_cluster_vertex_other_geometry.vgeo"), input("check_cluster_vertex_other_geometry.vgeo"), "another geometry");
+  expectRefused("check " + input("check_cluster_vertex_underflow.vgeo"), input("check_cluster_vertex_underflow.vgeo"),
+                "another geometry");
+  expectRefused("check " + input("check_cluster_vertex_other_geometry.vgeo"),
+                input("check_cluster_vertex_other_geometry.vgeo"), "another geometry");
   // A BVH of 30,000 nodes in a chain: refused on load, before any walk over it.
   VgeoData d = test::build(test::cgalMesh("cube_quad.off"), 0);
   const shaderio::BvhNode root = d.nodes[0];
@@ -168,7 +176,8 @@ TEST(HostileInputs, CraftedVgeoAndSceneFilesAreRefused) {
   d.nodes.back() = root;
   d.geometries[0].nodeCount = uint32_t(d.nodes.size());
   const std::string dir = test::tempDir(), chain = dir + "/chain.vgeo";
-  test::writeFile(dir, "chain.vgeo", std::string(reinterpret_cast<const char*>(serializeVgeo(d).data()), serializeVgeo(d).size()));
+  test::writeFile(dir, "chain.vgeo",
+                  std::string(reinterpret_cast<const char*>(serializeVgeo(d).data()), serializeVgeo(d).size()));
   expectRefused("check " + chain, chain, "deeper than");
   expectRefused("render " + chain + " -o " + dir + "/o.png", chain, "deeper than");
   // Scenes with a geometry index of 1.8e20 and instances at +-3e38.

@@ -80,7 +80,8 @@ TEST(Limit, ControlPointsConvergeToTheLimit) {
     for (uint32_t i = 0; i < 4; i++) {
       uint32_t v = fine.face(f)[i];
       if (v >= coarse.positions.size()) continue;
-      glm::vec3 p = fine.positions[v], a = fine.positions[fine.face(f)[(i + 1) % 4]], b = fine.positions[fine.face(f)[(i + 3) % 4]];
+      glm::vec3 p = fine.positions[v], a = fine.positions[fine.face(f)[(i + 1) % 4]],
+                b = fine.positions[fine.face(f)[(i + 3) % 4]];
       faceNormalSum[v] += glm::cross(a - p, b - p);
     }
   const float d = diagonal(coarse);

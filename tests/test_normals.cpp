@@ -32,7 +32,8 @@ std::vector<Corner> corners(const VgeoData& d) {
       glm::vec3 n = glm::cross(d.position(v[1]) - d.position(v[0]), d.position(v[2]) - d.position(v[0]));
       if (glm::length(n) == 0.0f) continue;
       n = glm::normalize(n);
-      for (int k = 0; k < 3; k++) out.push_back({shaderio::decodeNormal(d.normals[v[k]]), n, shaderio::clusterLevel(c.counts)});
+      for (int k = 0; k < 3; k++)
+        out.push_back({shaderio::decodeNormal(d.normals[v[k]]), n, shaderio::clusterLevel(c.counts)});
     }
   return out;
 }
@@ -91,20 +92,26 @@ TEST(Normals, GltfFaceNormalsStayFlatAndTheBoxIsDrawnWithSharpEdges) {
 TEST(Normals, ObjAndPlyNormalsAreKept) {
   const std::string dir = test::tempDir();
   // A cube whose faces name one vn each (hard edges), and a PLY tetrahedron with radial vertex normals.
-  std::string obj = "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
-                    "vn 0 0 -1\nvn 0 0 1\nvn 0 -1 0\nvn 1 0 0\nvn 0 1 0\nvn -1 0 0\n"
-                    "f 1//1 4//1 3//1 2//1\nf 5//2 6//2 7//2 8//2\nf 1//3 2//3 6//3 5//3\nf 2//4 3//4 7//4 6//4\nf 3//5 4//5 8//5 7//5\nf 4//6 1//6 5//6 8//6\n";
+  std::string obj =
+      "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+      "vn 0 0 -1\nvn 0 0 1\nvn 0 -1 0\nvn 1 0 0\nvn 0 1 0\nvn -1 0 0\n"
+      "f 1//1 4//1 3//1 2//1\nf 5//2 6//2 7//2 8//2\nf 1//3 2//3 6//3 5//3\nf 2//4 3//4 7//4 6//4\nf 3//5 4//5 8//5 "
+      "7//5\nf 4//6 1//6 5//6 8//6\n";
   VgeoData cube = test::build(test::writeFile(dir, "cube.obj", obj), 0);
   EXPECT_EQ(cube.vertexCount(), 24u);
   EXPECT_EQ(fractionBent(cube, 1.0f), 0.0);
-  std::string ply = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
-                    "property float nx\nproperty float ny\nproperty float nz\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
-                    "1 1 1 0.57735 0.57735 0.57735\n1 -1 -1 0.57735 -0.57735 -0.57735\n-1 1 -1 -0.57735 0.57735 -0.57735\n-1 -1 1 -0.57735 -0.57735 0.57735\n"
-                    "3 0 1 2\n3 0 3 1\n3 0 2 3\n3 1 3 2\n";
+  std::string ply =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "property float nx\nproperty float ny\nproperty float nz\nelement face 4\nproperty list uchar int "
+      "vertex_indices\nend_header\n"
+      "1 1 1 0.57735 0.57735 0.57735\n1 -1 -1 0.57735 -0.57735 -0.57735\n-1 1 -1 -0.57735 0.57735 -0.57735\n-1 -1 1 "
+      "-0.57735 -0.57735 0.57735\n"
+      "3 0 1 2\n3 0 3 1\n3 0 2 3\n3 1 3 2\n";
   VgeoData tetra = test::build(test::writeFile(dir, "tetra.ply", ply), 0);
   ASSERT_EQ(tetra.vertexCount(), 4u);
   for (uint32_t v = 0; v < 4; v++)
-    EXPECT_GT(glm::dot(shaderio::decodeNormal(tetra.normals[v]), glm::normalize(tetra.position(v))), 0.9999f) << "vertex " << v;
+    EXPECT_GT(glm::dot(shaderio::decodeNormal(tetra.normals[v]), glm::normalize(tetra.position(v))), 0.9999f)
+        << "vertex " << v;
 }
 
 TEST(Normals, GltfWithoutNormalsIsFlatAndWithThemSmooth) {
@@ -118,7 +125,8 @@ TEST(Normals, GltfWithoutNormalsIsFlatAndWithThemSmooth) {
   std::vector<glm::vec3> vertexNormal(withNormals.positions.size(), glm::vec3(0.0f));
   for (size_t f = 0; f < withNormals.faceCount(); f++) {
     const uint32_t* c = withNormals.face(f);
-    glm::vec3 n = glm::cross(withNormals.positions[c[1]] - withNormals.positions[c[0]], withNormals.positions[c[2]] - withNormals.positions[c[0]]);
+    glm::vec3 n = glm::cross(withNormals.positions[c[1]] - withNormals.positions[c[0]],
+                             withNormals.positions[c[2]] - withNormals.positions[c[0]]);
     for (uint32_t k = 0; k < withNormals.faceSize(f); k++) vertexNormal[c[k]] += n;
   }
   for (uint32_t v : withNormals.faceVertices) withNormals.cornerNormals.push_back(glm::normalize(vertexNormal[v]));
@@ -148,7 +156,8 @@ TEST(Normals, CreaseAngleGivesCadEdgesAtEveryLevel) {
   CheckResult check = checkVgeo(creased, {16, 5});
   EXPECT_TRUE(check.ok) << check.firstViolation;
   // A subdivided cage keeps the limit surface's normals whatever the crease angle.
-  VgeoData cage = buildWithCrease(test::asset("horned_cube.obj"), 10.0f, 2), cageSmooth = buildWithCrease(test::asset("horned_cube.obj"), 180.0f, 2);
+  VgeoData cage = buildWithCrease(test::asset("horned_cube.obj"), 10.0f, 2),
+           cageSmooth = buildWithCrease(test::asset("horned_cube.obj"), 180.0f, 2);
   EXPECT_EQ(serializeVgeo(cage), serializeVgeo(cageSmooth));
 }
 

@@ -36,10 +36,14 @@ float degrees(glm::vec3 a, glm::vec3 b) {
 // Face parameters of t along edge k (from corner k to corner k + 1).
 glm::vec2 onEdge(int k, float t) {
   switch (k) {
-    case 0: return {t, 0.0f};
-    case 1: return {1.0f, t};
-    case 2: return {1.0f - t, 1.0f};
-    default: return {0.0f, 1.0f - t};
+    case 0:
+      return {t, 0.0f};
+    case 1:
+      return {1.0f, t};
+    case 2:
+      return {1.0f - t, 1.0f};
+    default:
+      return {0.0f, 1.0f - t};
   }
 }
 
@@ -65,7 +69,8 @@ struct PointGrid {
  private:
   glm::ivec3 cellOf(glm::vec3 p) const { return glm::ivec3(glm::floor(p / cell_)); }
   static uint64_t key(glm::ivec3 c) {
-    return (uint64_t(uint32_t(c.x) & 0x1fffff) << 42) | (uint64_t(uint32_t(c.y) & 0x1fffff) << 21) | (uint32_t(c.z) & 0x1fffff);
+    return (uint64_t(uint32_t(c.x) & 0x1fffff) << 42) | (uint64_t(uint32_t(c.y) & 0x1fffff) << 21) |
+           (uint32_t(c.z) & 0x1fffff);
   }
   const std::vector<glm::vec3>& points_;
   float cell_;
@@ -87,7 +92,8 @@ bool onBoundary(const MeshPatches& patches, uint32_t face) {
 // (distances relative to the diagonal) and that vertex's normal. At a tree's corners the patch is bilinear
 // over its last 1/64 (the renderer shades corners with the leaf normals instead), so there the normal 1/64
 // inside stands for it, against a looser bound (treeCornerNormalWorst).
-Accuracy compare(const PolygonMesh& coarse, const std::vector<glm::vec3>& fine, const std::vector<glm::vec3>& fineNormals, int steps) {
+Accuracy compare(const PolygonMesh& coarse, const std::vector<glm::vec3>& fine,
+                 const std::vector<glm::vec3>& fineNormals, int steps) {
   const MeshPatches patches = buildPatches(coarse, coarse.positions, 2);
   const float d = diagonal(coarse.positions);
   PointGrid grid(fine, d * 2e-3f);
@@ -98,7 +104,10 @@ Accuracy compare(const PolygonMesh& coarse, const std::vector<glm::vec3>& fine, 
       a.none++;
       continue;
     }
-    (kind == VGEO_PATCH_TREE ? a.tree : kind == VGEO_PATCH_RING ? a.ring : onBoundary(patches, f) ? a.boundary : a.regular)++;
+    (kind == VGEO_PATCH_TREE   ? a.tree
+     : kind == VGEO_PATCH_RING ? a.ring
+     : onBoundary(patches, f)  ? a.boundary
+                               : a.regular)++;
     float& worst = kind == VGEO_PATCH_REGULAR ? a.regularWorst : kind == VGEO_PATCH_RING ? a.ringWorst : a.treeWorst;
     for (int i = 0; i <= steps; i++)
       for (int j = 0; j <= steps; j++) {
@@ -134,7 +143,8 @@ TEST(Patch, PatchesAreTheLimitSurfaceAtDyadicParameters) {
   Accuracy a = compareDeeper(test::asset("horned_cube.obj"), 2, 2, 4, true);
   EXPECT_GT(a.regular, 1000u) << "most faces of a subdivided cage are regular";
   EXPECT_GT(a.ring, 0u) << "faces at the cube's corners (valence 3) are rings";
-  EXPECT_EQ(a.boundary + a.tree + a.none, 0u) << "a closed cage after two rounds has a B-spline or ring patch on every face";
+  EXPECT_EQ(a.boundary + a.tree + a.none, 0u)
+      << "a closed cage after two rounds has a B-spline or ring patch on every face";
   EXPECT_LT(a.regularWorst, 1e-6f);
   EXPECT_LT(a.ringWorst, 2e-6f);
   EXPECT_LT(a.normalWorst, 0.05f);  // float derivatives shrink towards an extraordinary vertex
@@ -144,8 +154,10 @@ TEST(Patch, BoundaryAndTreePatchesAreTheLimitSurfaceAtDyadicParameters) {
   // Boundaries (regular, corners, an extraordinary boundary vertex) and faces with two extraordinary
   // corners, against the limit points of two more rounds with subdivide.cpp's boundary rules.
   const std::string dir = test::tempDir();
-  Accuracy box = compareDeeper(test::openBox(dir), 2, 2, 4, true), sheet = compareDeeper(test::lSheet(dir), 2, 2, 4, true);
-  Accuracy fan = compareDeeper(test::triangleFan(dir), 1, 2, 4, true), tetra = compareDeeper(test::tetrahedron(dir), 1, 2, 4, true);
+  Accuracy box = compareDeeper(test::openBox(dir), 2, 2, 4, true),
+           sheet = compareDeeper(test::lSheet(dir), 2, 2, 4, true);
+  Accuracy fan = compareDeeper(test::triangleFan(dir), 1, 2, 4, true),
+           tetra = compareDeeper(test::tetrahedron(dir), 1, 2, 4, true);
   EXPECT_GT(box.boundary, 10u);
   EXPECT_GT(box.ring, 0u);
   EXPECT_EQ(box.tree, 0u) << "a boundary of regular vertices needs no local subdivision";
@@ -177,20 +189,23 @@ TEST(Patch, PatchesMatchTheCageSubdividedSixLevelsDeeper) {
   EXPECT_LT(a.regularWorst, 1e-4f);
   EXPECT_LT(a.ringWorst, 1e-3f);
   EXPECT_LT(a.normalWorst, 1.0f);
-  std::printf("six levels deeper: regular %.2e, ring %.2e of the diagonal, normals %.3f deg\n", a.regularWorst, a.ringWorst, a.normalWorst);
+  std::printf("six levels deeper: regular %.2e, ring %.2e of the diagonal, normals %.3f deg\n", a.regularWorst,
+              a.ringWorst, a.normalWorst);
 }
 
 TEST(Patch, BoundaryAndTreePatchesMatchTheCageSubdividedSixLevelsDeeper) {
   const std::string dir = test::tempDir();
   for (const auto& [path, levels] : {std::pair{test::lSheet(dir), 2}, std::pair{test::triangleFan(dir), 1}}) {
     Accuracy a = compareDeeper(path, levels, 6, 8, false);
-    EXPECT_GT(a.boundary + (levels == 1 ? 1u : 0u), 0u) << path << ": regular boundary faces (none at --subdiv 1 of the fan)";
+    EXPECT_GT(a.boundary + (levels == 1 ? 1u : 0u), 0u)
+        << path << ": regular boundary faces (none at --subdiv 1 of the fan)";
     EXPECT_GT(a.tree, 0u) << path;
     EXPECT_EQ(a.none, 0u) << path;
     EXPECT_LT(a.regularWorst, 1e-4f) << path;
     EXPECT_LT(a.treeWorst, 1e-3f) << path;
     EXPECT_LT(a.normalWorst, 1.0f) << path;
-    std::printf("%s six levels deeper: regular %.2e, tree %.2e of the diagonal, normals %.3f deg\n", path.c_str(), a.regularWorst, a.treeWorst, a.normalWorst);
+    std::printf("%s six levels deeper: regular %.2e, tree %.2e of the diagonal, normals %.3f deg\n", path.c_str(),
+                a.regularWorst, a.treeWorst, a.normalWorst);
   }
 }
 
@@ -222,7 +237,8 @@ Continuity continuity(const PolygonMesh& coarse) {
         glm::vec3 pa = patches.evaluate(f, a.x, a.y, &na), pb = patches.evaluate(n >> 2, b.x, b.y, &nb);
         c.worst = std::max(c.worst, glm::distance(pa, pb) / d);
         // Normals at the edge's ends are the leaf vertices' in the renderer (see compare()).
-        if ((s > 0 && s < 16) || (kinds[0] != VGEO_PATCH_TREE && kinds[1] != VGEO_PATCH_TREE)) c.worstNormal = std::max(c.worstNormal, degrees(na, nb));
+        if ((s > 0 && s < 16) || (kinds[0] != VGEO_PATCH_TREE && kinds[1] != VGEO_PATCH_TREE))
+          c.worstNormal = std::max(c.worstNormal, degrees(na, nb));
       }
     }
   return c;
@@ -237,7 +253,8 @@ TEST(Patch, NeighbouringPatchesMeetWithTheSameNormal) {
   EXPECT_LT(c.worstNormal, 0.05f);
   // Boundary patches, and trees against each other and against B-splines and rings.
   const std::string dir = test::tempDir();
-  for (const auto& [path, levels] : {std::pair{test::openBox(dir), 2}, std::pair{test::lSheet(dir), 2}, std::pair{test::triangleFan(dir), 1}, std::pair{test::tetrahedron(dir), 1}}) {
+  for (const auto& [path, levels] : {std::pair{test::openBox(dir), 2}, std::pair{test::lSheet(dir), 2},
+                                     std::pair{test::triangleFan(dir), 1}, std::pair{test::tetrahedron(dir), 1}}) {
     c = continuity(cage(path, levels));
     EXPECT_GT(c.shared, 20u) << path;
     EXPECT_LT(c.worst, 1e-6f) << path;
@@ -250,7 +267,8 @@ TEST(Patch, NeighbouringPatchesMeetWithTheSameNormal) {
 
 TEST(Patch, ChordErrorsBoundTheLeafTriangles) {
   const std::string dir = test::tempDir();
-  for (const auto& [path, levels] : {std::pair{test::asset("horned_cube.obj"), 2}, std::pair{test::lSheet(dir), 2}, std::pair{test::triangleFan(dir), 1}}) {
+  for (const auto& [path, levels] : {std::pair{test::asset("horned_cube.obj"), 2}, std::pair{test::lSheet(dir), 2},
+                                     std::pair{test::triangleFan(dir), 1}}) {
     PolygonMesh coarse = cage(path, levels), limit = coarse;
     std::vector<glm::vec3> normals;
     ASSERT_TRUE(moveToLimit(limit, normals));
@@ -268,7 +286,8 @@ TEST(Patch, ChordErrorsBoundTheLeafTriangles) {
         for (int j = 0; j <= 16; j++) {
           glm::dvec3 p(patches.evaluate(f, float(i) / 16.0f, float(j) / 16.0f));
           auto x = [&](int k) { return glm::dvec3(limit.positions[tris[size_t(k)]]); };
-          worst = std::max(worst, std::min(pointTriangleDistance(p, x(0), x(1), x(2)), pointTriangleDistance(p, x(3), x(4), x(5))));
+          worst = std::max(
+              worst, std::min(pointTriangleDistance(p, x(0), x(1), x(2)), pointTriangleDistance(p, x(3), x(4), x(5))));
         }
       if (errors[f].face > 0.0f) positive++;
       worstRatio = std::max(worstRatio, worst / std::max(double(errors[f].face), 1e-30));
@@ -288,7 +307,8 @@ TEST(Patch, ChordErrorsBoundTheLeafTriangles) {
 TEST(Patch, TheVgeoCarriesPatchesAndLeafErrors) {
   VgeoData data = test::build(test::asset("horned_cube.obj"), 2);
   ASSERT_EQ(data.patches.size(), data.cageFaces.size());
-  ASSERT_EQ(data.controlPoints.size(), data.positions.size()) << "a closed cage after two rounds needs no phantom or tree points";
+  ASSERT_EQ(data.controlPoints.size(), data.positions.size())
+      << "a closed cage after two rounds needs no phantom or tree points";
   float worst = 0.0f;
   size_t locked = 0;
   for (uint32_t f = 0; f < data.patches.size(); f++) {
@@ -308,7 +328,8 @@ TEST(Patch, TheVgeoCarriesPatchesAndLeafErrors) {
   for (const auto& c : data.clusters) {
     if (c.producer != VGEO_NO_GROUP) continue;
     float largest = 0.0f;
-    for (uint32_t i = 0; i < shaderio::clusterCageFaceCount(c.counts); i++) largest = std::max(largest, data.patches[c.cageFaceOffset + i].faceError);
+    for (uint32_t i = 0; i < shaderio::clusterCageFaceCount(c.counts); i++)
+      largest = std::max(largest, data.patches[c.cageFaceOffset + i].faceError);
     EXPECT_EQ(c.selfError, largest);
     EXPECT_GT(c.selfError, 0.0f);
     EXPECT_GE(c.parentError, c.selfError);
@@ -329,7 +350,8 @@ TEST(Patch, ScenesOfSeveralFilesKeepEveryPatch) {
   const std::string dir = test::tempDir();
   writeVgeo(test::build(test::asset("horned_cube.obj"), 2), dir + "/a.vgeo");
   writeVgeo(test::build(test::triangleFan(dir), 1), dir + "/b.vgeo");
-  test::writeFile(dir, "scene.json", R"({"geometries": ["a.vgeo", "b.vgeo"], "instances": [{"geometry": 1}, {"geometry": 0}]})");
+  test::writeFile(dir, "scene.json",
+                  R"({"geometries": ["a.vgeo", "b.vgeo"], "instances": [{"geometry": 1}, {"geometry": 0}]})");
   RenderScene scene = loadRenderScene(dir + "/scene.json");
   const VgeoData& data = scene.data;
   ASSERT_EQ(data.geometries.size(), 2u);

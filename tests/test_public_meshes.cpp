@@ -19,7 +19,8 @@ std::vector<std::string> filesUnder(const std::string& dir, const std::vector<st
     if (!entry.is_regular_file()) continue;
     std::string ext = entry.path().extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    if (std::find(extensions.begin(), extensions.end(), ext) != extensions.end()) files.push_back(entry.path().string());
+    if (std::find(extensions.begin(), extensions.end(), ext) != extensions.end())
+      files.push_back(entry.path().string());
   }
   std::sort(files.begin(), files.end());
   return files;
@@ -35,7 +36,8 @@ void buildAndCheck(const std::string& file, int subdiv, const std::string& dir, 
   const std::string out = dir + "/out.vgeo", stats = dir + "/stats.json";
   std::filesystem::remove(out);
   std::filesystem::remove(stats);
-  test::RunResult r = test::runVgeo("build '" + file + "' -o " + out + " --subdiv " + std::to_string(subdiv) + " --stats " + stats + " -q");
+  test::RunResult r = test::runVgeo("build '" + file + "' -o " + out + " --subdiv " + std::to_string(subdiv) +
+                                    " --stats " + stats + " -q");
   if (r.exitCode != 0) {
     counts.refused++;
     EXPECT_EQ(r.exitCode, 1) << r.output;
@@ -54,7 +56,8 @@ void buildAndCheck(const std::string& file, int subdiv, const std::string& dir, 
     ASSERT_FALSE(j["unreduced"].empty()) << roots << " roots for " << components << " components, and no reason given";
     for (const auto& u : j["unreduced"]) {
       EXPECT_FALSE(u["reason"].get<std::string>().empty());
-      const std::string note = "note: " + u["mesh"].get<std::string>() + " keeps " + std::to_string(u["root_clusters"].get<uint64_t>());
+      const std::string note =
+          "note: " + u["mesh"].get<std::string>() + " keeps " + std::to_string(u["root_clusters"].get<uint64_t>());
       EXPECT_NE(r.output.find(note), std::string::npos) << "the summary says so: " << r.output;
     }
   }
@@ -63,7 +66,8 @@ void buildAndCheck(const std::string& file, int subdiv, const std::string& dir, 
 TEST(PublicMeshes, EveryCgalDemoMeshBuildsAndChecksOrIsRefusedClearly) {
   const std::string dir = test::tempDir();
   SweepCounts counts;
-  for (const std::string& file : filesUnder(std::string(VGEO_TEST_DATA) + "/data", {".off", ".obj", ".ply", ".stl"})) buildAndCheck(file, 0, dir, counts);
+  for (const std::string& file : filesUnder(std::string(VGEO_TEST_DATA) + "/data", {".off", ".obj", ".ply", ".stl"}))
+    buildAndCheck(file, 0, dir, counts);
   std::printf("CGAL demo meshes: %d built, %d refused\n", counts.built, counts.refused);
   EXPECT_GE(counts.built, 120);
 }

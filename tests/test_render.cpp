@@ -36,8 +36,8 @@ class Render : public ::testing::Test {
   }
   void TearDown() override { EXPECT_EQ(vk->validationMessages(), 0u) << "validation messages (see stderr)"; }
 
-  static FrameSettings settingsFor(const RenderScene& scene, const Camera& camera, float tau, Traversal t = Traversal::Persistent,
-                                   uint32_t width = kW, uint32_t height = kH) {
+  static FrameSettings settingsFor(const RenderScene& scene, const Camera& camera, float tau,
+                                   Traversal t = Traversal::Persistent, uint32_t width = kW, uint32_t height = kH) {
     FrameSettings s = test::frameSettings(scene, camera, tau, width, height);
     s.traversal = t;
     return s;
@@ -68,8 +68,8 @@ TEST_F(Render, GpuDrawListEqualsCpuCutForAllTraversals) {
     GpuRenderer renderer(*vk, *scene, kW, kH);
     glm::vec3 c(scene->bounds);
     float r = scene->bounds.w;
-    std::vector<Camera> cameras = {defaultCamera(scene->bounds, scene->boxMin, scene->boxMax, 60.0f), test::orbit(*scene, 0.7f, 0.4f, 1.4f),
-                                   test::orbit(*scene, 2.5f, -0.3f, 6.0f)};
+    std::vector<Camera> cameras = {defaultCamera(scene->bounds, scene->boxMin, scene->boxMax, 60.0f),
+                                   test::orbit(*scene, 0.7f, 0.4f, 1.4f), test::orbit(*scene, 2.5f, -0.3f, 6.0f)};
     Camera inside;  // inside the scene, looking along it
     inside.eye = c + glm::vec3(0.1f, 0.05f, 0.2f) * r;
     inside.target = c + glm::vec3(1.0f, 0.0f, 0.3f) * r;
@@ -113,7 +113,8 @@ TEST_F(Render, SweptLevelsGiveTheSameCutWhateverTheBudget) {
   Camera inside;
   inside.eye = glm::vec3(grid->bounds) + glm::vec3(0.1f, 0.05f, 0.2f) * r;
   inside.target = glm::vec3(grid->bounds) + glm::vec3(1.0f, 0.0f, 0.3f) * r;
-  for (const Camera& camera : {defaultCamera(grid->bounds, grid->boxMin, grid->boxMax, 60.0f), test::orbit(*grid, 0.7f, 0.4f, 1.4f), inside})
+  for (const Camera& camera :
+       {defaultCamera(grid->bounds, grid->boxMin, grid->boxMax, 60.0f), test::orbit(*grid, 0.7f, 0.4f, 1.4f), inside})
     for (float tau : {1.0f, 4.0f}) {
       FrameSettings s = settingsFor(*grid, camera, tau);
       s.cullLanes = VGEO_CULL_INSTANCE_LANES;
@@ -144,12 +145,14 @@ TEST_F(Render, CullingInsideTheTraversalGivesTheSameCut) {
   // for 16 instances. On lavapipe the workers run a few at a time, so one waiting on a later culling worker
   // leaves on its iteration budget (made small here) and a later one carries on.
   for (auto [sceneOf, fewWorkers] : {std::pair(single, false), std::pair(grid, false), std::pair(grid, true)}) {
-    const RenderScene* scene = sceneOf;  // a plain variable: lambdas below capture it (C++20 lambdas may not capture bindings in clang 14)
+    const RenderScene* scene =
+        sceneOf;  // a plain variable: lambdas below capture it (C++20 lambdas may not capture bindings in clang 14)
     GpuRenderer renderer(*vk, *scene, kW, kH);
     renderer.setPersistentWorkgroups(fewWorkers ? 3 : uint32_t(scene->data.instances.size()) + 3);
     renderer.setIterationBudget(2000);
     FrameSettings probe = settingsFor(*scene, test::orbit(*scene, 0.7f, 0.4f, 1.4f), 1.0f);
-    EXPECT_EQ(renderer.cullsInTraversal(probe), !vk->isLavapipe() && !fewWorkers) << "auto: on GPUs, up to 3 instances a worker";
+    EXPECT_EQ(renderer.cullsInTraversal(probe), !vk->isLavapipe() && !fewWorkers)
+        << "auto: on GPUs, up to 3 instances a worker";
     probe.instanceCulling = InstanceCulling::InTraversal;
     ASSERT_TRUE(renderer.cullsInTraversal(probe));
     probe.cullLanes = 1;
@@ -161,7 +164,8 @@ TEST_F(Render, CullingInsideTheTraversalGivesTheSameCut) {
     Camera away;
     away.eye = glm::vec3(scene->bounds) + glm::vec3(0.0f, 0.0f, 2.0f) * r;
     away.target = glm::vec3(scene->bounds) + glm::vec3(0.0f, 0.0f, 4.0f) * r;
-    for (const Camera& camera : {defaultCamera(scene->bounds, scene->boxMin, scene->boxMax, 60.0f), test::orbit(*scene, 0.7f, 0.4f, 1.4f), away})
+    for (const Camera& camera : {defaultCamera(scene->bounds, scene->boxMin, scene->boxMax, 60.0f),
+                                 test::orbit(*scene, 0.7f, 0.4f, 1.4f), away})
       for (float tau : {1.0f, 4.0f}) {
         FrameSettings s = settingsFor(*scene, camera, tau);
         s.readImage = false;
@@ -172,8 +176,9 @@ TEST_F(Render, CullingInsideTheTraversalGivesTheSameCut) {
         EXPECT_FALSE(pass.culledInTraversal);
         s.instanceCulling = InstanceCulling::InTraversal;
         auto run = [&](uint32_t budget) {
-          SCOPED_TRACE(std::string(scene == grid ? "grid" : "single") + " workers " + std::to_string(renderer.persistentWorkgroups()) +
-                       " sweep budget " + std::to_string(budget) + " tau " + std::to_string(tau));
+          SCOPED_TRACE(std::string(scene == grid ? "grid" : "single") + " workers " +
+                       std::to_string(renderer.persistentWorkgroups()) + " sweep budget " + std::to_string(budget) +
+                       " tau " + std::to_string(tau));
           s.sweepBudget = budget;
           const FrameResult result = renderEqualToCut(renderer, s, reference);
           EXPECT_TRUE(result.culledInTraversal);
@@ -189,7 +194,8 @@ TEST_F(Render, CullingInsideTheTraversalGivesTheSameCut) {
       }
   }
   // Forced, up to kCullInTraversalMaxPerWorker (64) instances a worker.
-  const RenderScene many = loadRenderScene(std::filesystem::temp_directory_path() / "vgeo_render_tests" / "horned.vgeo", 9);
+  const RenderScene many =
+      loadRenderScene(std::filesystem::temp_directory_path() / "vgeo_render_tests" / "horned.vgeo", 9);
   GpuRenderer manyRenderer(*vk, many, kW, kH);
   FrameSettings manyProbe = settingsFor(many, test::orbit(many, 0.7f, 0.4f, 1.4f), 1.0f);
   manyProbe.instanceCulling = InstanceCulling::InTraversal;
@@ -219,7 +225,8 @@ TEST_F(Render, WorkerProfileAccountsForEveryItem) {
     uint64_t items = 0;
     for (uint32_t g = 0; g < workgroups; g++) {
       const size_t base = size_t(g) * VGEO_PROFILE_WORKER_WORDS;
-      const uint32_t recorded = result.workerProfile[base], iterations = result.workerProfile[base + 1], polls = result.workerProfile[base + 2];
+      const uint32_t recorded = result.workerProfile[base], iterations = result.workerProfile[base + 1],
+                     polls = result.workerProfile[base + 2];
       ASSERT_EQ(recorded, iterations - polls) << "workgroup " << g << " took items in more iterations than it recorded";
       uint64_t last = at(base + 4);
       for (uint32_t i = 0; i < recorded; i++) {
@@ -276,7 +283,8 @@ TEST_F(Render, LargeSceneDrawListEqualsCpuCut) {
     for (Traversal t : {Traversal::Persistent, Traversal::Levels})
       for (float tau : {1.0f, 4.0f}) {
         const uint32_t lanes = t == Traversal::Persistent ? uint32_t(VGEO_CULL_INSTANCE_LANES) : 1u;
-        SCOPED_TRACE(std::string(traversalName(t)) + " tau " + std::to_string(tau) + " culling lanes " + std::to_string(lanes));
+        SCOPED_TRACE(std::string(traversalName(t)) + " tau " + std::to_string(tau) + " culling lanes " +
+                     std::to_string(lanes));
         FrameSettings s = settingsFor(large, camera, tau, t);
         s.cullLanes = lanes;
         s.readImage = false;
@@ -307,7 +315,8 @@ TEST_F(Render, NoCracksAtTau1And8) {
       std::vector<uint8_t> full = test::coverage(renderer.renderFrame(leaves));
       for (float tau : {1.0f, 8.0f}) {
         std::vector<uint8_t> lod = test::coverage(renderer.renderFrame(settingsFor(*scene, camera, tau)));
-        EXPECT_EQ(test::leaks(full, lod, int(kW), int(kH), int(std::ceil(tau)) + 1), 0) << "view " << view << " tau " << tau;
+        EXPECT_EQ(test::leaks(full, lod, int(kW), int(kH), int(std::ceil(tau)) + 1), 0)
+            << "view " << view << " tau " << tau;
         EXPECT_EQ(test::leaks(background(full), background(lod), int(kW), int(kH), int(std::ceil(tau)) + 1), 0)
             << "view " << view << " tau " << tau << ": covered pixels beyond the full-detail outline";
       }
@@ -393,7 +402,8 @@ TEST_F(Render, EveryDebugModeRenders) {
     FrameResult r = renderer.renderFrame(s);
     std::vector<uint8_t> mask = test::coverage(r);
     EXPECT_GT(std::count(mask.begin(), mask.end(), 1), 500) << "mode " << mode << " drew almost nothing";
-    for (size_t k = 0; k < images.size(); k++) EXPECT_NE(images[k], r.rgba) << "mode " << mode << " looks like mode " << k;
+    for (size_t k = 0; k < images.size(); k++)
+      EXPECT_NE(images[k], r.rgba) << "mode " << mode << " looks like mode " << k;
     images.push_back(r.rgba);
   }
 }
@@ -439,7 +449,8 @@ TEST_F(Render, ConeCullingDropsOnlyClustersThatFaceAway) {
 // Pixels whose colour differs between two frames.
 size_t differingPixels(const FrameResult& a, const FrameResult& b) {
   size_t differ = 0;
-  for (size_t i = 0; i + 3 < a.rgba.size(); i += 4) differ += a.rgba[i] != b.rgba[i] || a.rgba[i + 1] != b.rgba[i + 1] || a.rgba[i + 2] != b.rgba[i + 2];
+  for (size_t i = 0; i + 3 < a.rgba.size(); i += 4)
+    differ += a.rgba[i] != b.rgba[i] || a.rgba[i + 1] != b.rgba[i + 1] || a.rgba[i + 2] != b.rgba[i + 2];
   return differ;
 }
 
@@ -460,7 +471,8 @@ TEST_F(Render, TriangleCullingKeepsThePicture) {
   for (const Case& k : cases) {
     GpuRenderer renderer(*vk, *k.scene, kW, kH);
     for (int view = 0; view < 4; view++) {
-      Camera camera = test::orbit(*k.scene, 0.8f + 1.3f * float(view), 0.5f * std::cos(float(view)), view == 3 ? 0.5f : 1.2f + float(view));
+      Camera camera = test::orbit(*k.scene, 0.8f + 1.3f * float(view), 0.5f * std::cos(float(view)),
+                                  view == 3 ? 0.5f : 1.2f + float(view));
       for (uint32_t mode : {VGEO_MODE_LIT, VGEO_MODE_TRIANGLE}) {
         FrameSettings s = settingsFor(*k.scene, camera, 1.0f);
         s.mode = mode;

@@ -59,7 +59,8 @@ class RenderInstances : public ::testing::Test {
         if (ca != cb) onlyOne++;
         if (!(ca && cb)) continue;
         both++;
-        difference += std::abs(int(a[0]) - (255 - int(b[0]))) + std::abs(int(a[1]) - int(b[1])) + std::abs(int(a[2]) - int(b[2]));
+        difference +=
+            std::abs(int(a[0]) - (255 - int(b[0]))) + std::abs(int(a[1]) - int(b[1])) + std::abs(int(a[2]) - int(b[2]));
       }
     EXPECT_GT(covered, uint64_t(kW * kH / 20)) << "the object is in view";
     EXPECT_LE(double(onlyOne), coverageSlack * double(covered)) << "covered pixels that are not the mirror image";
@@ -67,7 +68,8 @@ class RenderInstances : public ::testing::Test {
   }
 
   static std::string scene(const std::string& name, const std::string& vgeo, const std::string& placement) {
-    return test::writeFile(*dir, name, "{\"geometries\": [\"" + vgeo + "\"], \"instances\": [{\"geometry\": 0" + placement + "}]}");
+    return test::writeFile(*dir, name,
+                           "{\"geometries\": [\"" + vgeo + "\"], \"instances\": [{\"geometry\": 0" + placement + "}]}");
   }
 
   static VulkanContext* vk;
@@ -107,8 +109,10 @@ TEST_F(RenderInstances, MirroredInstancesLookLikeTheirMirrorImage) {
   };
   const std::vector<Case> cases = {
       {"scale [-1, 1, 1]", "cow0.vgeo", "", ", \"scale\": [-1, 1, 1]", onMirrorPlane(0.0f, 0.0f, 1.3f), 1.0f, false},
-      {"a turned mirror matrix", "cow0.vgeo", matrix(turn), matrix(mirror), onMirrorPlane(0.0f, 0.0f, 1.3f), 1.0f, false},
-      {"patches, scale [-1, 1, 1]", "cow1.vgeo", "", ", \"scale\": [-1, 1, 1]", onMirrorPlane(0.1f, 0.0f, 0.45f), 0.5f, true},
+      {"a turned mirror matrix", "cow0.vgeo", matrix(turn), matrix(mirror), onMirrorPlane(0.0f, 0.0f, 1.3f), 1.0f,
+       false},
+      {"patches, scale [-1, 1, 1]", "cow1.vgeo", "", ", \"scale\": [-1, 1, 1]", onMirrorPlane(0.1f, 0.0f, 0.45f), 0.5f,
+       true},
   };
   for (const Case& c : cases) {
     FrameResult plain = render(scene("plain.json", c.vgeo, c.plain), c.camera, c.tau, c.patches);
@@ -116,14 +120,16 @@ TEST_F(RenderInstances, MirroredInstancesLookLikeTheirMirrorImage) {
     if (c.patches) {
       EXPECT_GT(mirrored.patchesDrawn, 200u) << c.what;
     }
-    EXPECT_EQ(plain.counters.drawCount, mirrored.counters.drawCount) << c.what << ": the mirrored cut has as many clusters";
+    EXPECT_EQ(plain.counters.drawCount, mirrored.counters.drawCount)
+        << c.what << ": the mirrored cut has as many clusters";
     EXPECT_LT(mirrorDifference(mirrored, plain, 0.01), 4.0) << c.what << ": mean channel difference of the normal view";
   }
 
   // The same through a glTF node: the builder keeps the mirrored node's transform.
   SourceScene cow = loadMeshFile(test::cgalMesh("cow.off"));
   writeVgeo(test::build(test::gltfOf(*dir, "plain.gltf", cow.meshes[0], ""), 0), *dir + "/plain_gltf.vgeo");
-  writeVgeo(test::build(test::gltfOf(*dir, "mirrored.gltf", cow.meshes[0], R"(, "scale": [-1, 1, 1])"), 0), *dir + "/mirrored_gltf.vgeo");
+  writeVgeo(test::build(test::gltfOf(*dir, "mirrored.gltf", cow.meshes[0], R"(, "scale": [-1, 1, 1])"), 0),
+            *dir + "/mirrored_gltf.vgeo");
   FrameResult plain = render(*dir + "/plain_gltf.vgeo", onMirrorPlane(0.0f, 0.0f, 1.3f), 1.0f, false);
   FrameResult mirrored = render(*dir + "/mirrored_gltf.vgeo", onMirrorPlane(0.0f, 0.0f, 1.3f), 1.0f, false);
   EXPECT_LT(mirrorDifference(mirrored, plain, 0.01), 4.0) << "glTF node scale [-1, 1, 1]";

@@ -71,7 +71,8 @@ TEST_F(RenderPatches, NoCracksCloseUpAndAtTheTransition) {
   GpuRenderer renderer(*vk, *horned, kW, kH), fine(*vk, *hornedFine, kW, kH);
   int closeViews = 0, transitionViews = 0;
   for (int view = 0; view < 8; view++) {
-    Camera camera = test::orbit(*horned, 0.8f * float(view), 0.7f * std::sin(1.3f * float(view)), view % 2 ? 0.75f : 1.3f);
+    Camera camera =
+        test::orbit(*horned, 0.8f * float(view), 0.7f * std::sin(1.3f * float(view)), view % 2 ? 0.75f : 1.3f);
     std::vector<uint8_t> full = test::coverage(fine.renderFrame(settings(*hornedFine, camera, 0.0f, false)));
     for (float tau : {0.5f, 1.0f, 4.0f}) {
       FrameResult r = renderer.renderFrame(settings(*horned, camera, tau, true));
@@ -188,8 +189,10 @@ TEST_F(RenderPatches, SilhouetteWithinAPixelOfSixLevelsDeeper) {
     Camera camera = test::orbit(coarse, 0.5f + 1.7f * float(view), 0.35f * float(view % 3) - 0.3f, 1.35f);
     FrameResult r = withPatches.renderFrame(settings(coarse, camera, 1.0f, true));
     ASSERT_GT(r.patchesDrawn, 0u) << "view " << view;
-    std::vector<uint8_t> a = test::coverage(r), b = test::coverage(reference.renderFrame(settings(deep, camera, 0.0f, false)));
-    EXPECT_EQ(farFrom(a, b, 1, true), 0) << "view " << view << ": covered pixels more than a pixel outside the deep silhouette";
+    std::vector<uint8_t> a = test::coverage(r),
+                         b = test::coverage(reference.renderFrame(settings(deep, camera, 0.0f, false)));
+    EXPECT_EQ(farFrom(a, b, 1, true), 0) << "view " << view
+                                         << ": covered pixels more than a pixel outside the deep silhouette";
     EXPECT_EQ(farFrom(a, b, 1, false), 0) << "view " << view << ": background more than a pixel inside it";
     // Drawn as its leaf triangles instead, the same cage is visibly off: the test can fail.
     std::vector<uint8_t> flat = test::coverage(withPatches.renderFrame(settings(coarse, camera, 1.0f, false)));
@@ -202,7 +205,8 @@ TEST_F(RenderPatches, BoundaryAndTreePatchesWithinAPixelOfSixLevelsDeeper) {
   // triangle cage after one round (every face a tree): close up with patches against the cage 6 rounds
   // deeper. Background inside the deep silhouette would be a crack; coverage outside it a wrong surface.
   const std::string tmp = test::tempDir();
-  for (const auto& [cage, levels] : {std::pair{test::lSheet(tmp), 1}, std::pair{test::triangleFan(tmp), 1}, std::pair{test::openBox(tmp), 1}}) {
+  for (const auto& [cage, levels] :
+       {std::pair{test::lSheet(tmp), 1}, std::pair{test::triangleFan(tmp), 1}, std::pair{test::openBox(tmp), 1}}) {
     writeVgeo(test::build(cage, levels), *dir + "/open_coarse.vgeo");
     writeVgeo(test::build(cage, levels + 6), *dir + "/open_deep.vgeo");
     RenderScene coarse = loadRenderScene(*dir + "/open_coarse.vgeo"), deep = loadRenderScene(*dir + "/open_deep.vgeo");
@@ -213,8 +217,10 @@ TEST_F(RenderPatches, BoundaryAndTreePatchesWithinAPixelOfSixLevelsDeeper) {
       FrameResult r = withPatches.renderFrame(settings(coarse, camera, 1.0f, true));
       ASSERT_TRUE(r.complete);
       EXPECT_GT(r.patchesDrawn, 0u) << cage << " view " << view;
-      std::vector<uint8_t> a = test::coverage(r), b = test::coverage(reference.renderFrame(settings(deep, camera, 0.0f, false)));
-      EXPECT_EQ(farFrom(a, b, 1, true), 0) << cage << " view " << view << ": covered pixels more than a pixel outside the deep surface";
+      std::vector<uint8_t> a = test::coverage(r),
+                           b = test::coverage(reference.renderFrame(settings(deep, camera, 0.0f, false)));
+      EXPECT_EQ(farFrom(a, b, 1, true), 0)
+          << cage << " view " << view << ": covered pixels more than a pixel outside the deep surface";
       EXPECT_EQ(farFrom(a, b, 1, false), 0) << cage << " view " << view << ": background more than a pixel inside it";
       std::vector<uint8_t> flat = test::coverage(withPatches.renderFrame(settings(coarse, camera, 1.0f, false)));
       flatMisses += farFrom(flat, b, 1, true) + farFrom(flat, b, 1, false);

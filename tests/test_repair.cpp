@@ -13,7 +13,8 @@ void expectManifold(const PolygonMesh& m) {
   std::map<std::pair<uint32_t, uint32_t>, int> directed;
   for (size_t f = 0; f < m.faceCount(); f++)
     for (uint32_t i = 0; i < m.faceSize(f); i++) directed[{m.face(f)[i], m.face(f)[(i + 1) % m.faceSize(f)]}]++;
-  for (auto& [e, n] : directed) EXPECT_EQ(n, 1) << "directed edge " << e.first << "-" << e.second << " used " << n << " times";
+  for (auto& [e, n] : directed)
+    EXPECT_EQ(n, 1) << "directed edge " << e.first << "-" << e.second << " used " << n << " times";
 }
 
 TEST(Repair, SplitsANonManifoldEdgeOfThreeFaces) {
@@ -61,8 +62,10 @@ TEST(Repair, TurnsFacesToAgreeWithTheirComponent) {
   // one face reversed: each becomes consistent, keeping the orientation most of its area has.
   PolygonMesh m;
   for (float offset : {0.0f, 5.0f})
-    for (int i = 0; i < 8; i++) m.positions.push_back({float(i & 1) + offset, float((i >> 1) & 1), float((i >> 2) & 1)});
-  const uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};  // outward
+    for (int i = 0; i < 8; i++)
+      m.positions.push_back({float(i & 1) + offset, float((i >> 1) & 1), float((i >> 2) & 1)});
+  const uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};  // outward
   size_t face = 0;
   for (uint32_t base : {0u, 8u})
     for (const auto& q : quads)

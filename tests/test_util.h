@@ -21,7 +21,8 @@ inline std::string asset(const std::string& name) { return std::string(VGEO_SOUR
 // A fresh directory for one test's files.
 inline std::string tempDir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  std::filesystem::path dir = std::filesystem::temp_directory_path() / ("vgeo_test_" + std::string(info->test_suite_name()) + "_" + info->name());
+  std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                              ("vgeo_test_" + std::string(info->test_suite_name()) + "_" + info->name());
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir.string();

@@ -52,7 +52,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         const uint32_t faces[4][3] = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
         for (const auto& f : faces) m.addFace(f, 3);
         std::string obj;
-        for (const auto& p : m.positions) obj += "v " + std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
+        for (const auto& p : m.positions)
+          obj += "v " + std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z) + "\n";
         obj += "f 1 2 3\nf 1 4 2\nf 1 3 4\nf 2 4 3\n";
         writeBytes(folder() + "/t.obj", reinterpret_cast<const uint8_t*>(obj.data()), obj.size());
         vgeo::SceneBuildStats stats;

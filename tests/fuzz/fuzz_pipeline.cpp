@@ -16,7 +16,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1 || size > 4096) return 0;  // small cages keep executions fast; size is not the point
   static const std::string dir = [] {
-    std::string d = (std::filesystem::temp_directory_path() / ("vgeo_fuzz_pipeline_" + std::to_string(::getpid()))).string();
+    std::string d =
+        (std::filesystem::temp_directory_path() / ("vgeo_fuzz_pipeline_" + std::to_string(::getpid()))).string();
     std::filesystem::create_directories(d);
     return d;
   }();
