@@ -1,14 +1,40 @@
-// render_util.h: what the GPU renderer tests share (test_render.cpp, test_render_patches.cpp): cameras
+// render_util.h: what the GPU renderer tests share (test_render*.cpp): one device a suite, cameras
 // orbiting a scene and coverage masks of frames.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <cmath>
+#include <filesystem>
+#include <string>
 #include <vector>
 
 #include "../renderer/gpu_renderer.h"
 #include "../renderer/image.h"
 
 namespace vgeo::test {
+
+// A suite of GPU tests: one Vulkan device with the validation layer (synchronization validation on) for
+// the whole suite, a scratch folder for the files it writes, and no validation message after any test.
+// A suite calls openSuite in its SetUpTestSuite and closeSuite in its TearDownTestSuite.
+class GpuSuite : public ::testing::Test {
+ protected:
+  static void openSuite(const std::string& folder) {
+    vk = new VulkanContext({"", true});
+    dir = new std::string(std::filesystem::temp_directory_path() / folder);
+    std::filesystem::create_directories(*dir);
+  }
+  static void closeSuite() {
+    delete vk;
+    delete dir;
+    vk = nullptr;
+    dir = nullptr;
+  }
+  void TearDown() override { EXPECT_EQ(vk->validationMessages(), 0u) << "validation messages (see stderr)"; }
+
+  static inline VulkanContext* vk = nullptr;
+  static inline std::string* dir = nullptr;
+};
 
 // A camera at `distanceInRadii` bounding radii from the scene's centre, looking at it.
 inline Camera orbit(const RenderScene& scene, float azimuth, float elevation, float distanceInRadii) {

@@ -13,28 +13,25 @@ namespace {
 constexpr uint32_t kW = 256, kH = 192;
 
 // One Vulkan device (with validation) for the whole suite, and the scenes it draws.
-class Render : public ::testing::Test {
+class Render : public test::GpuSuite {
  protected:
   static void SetUpTestSuite() {
-    vk = new VulkanContext({"", true});
-    std::string dir = std::filesystem::temp_directory_path() / "vgeo_render_tests";
-    std::filesystem::create_directories(dir);
-    writeVgeo(test::build(test::asset("horned_cube.obj"), 3), dir + "/horned.vgeo");
-    writeVgeo(test::build(test::cgalMesh("armadillo.off"), 0), dir + "/armadillo.vgeo");
-    writeVgeo(test::build(test::cgalMesh("lion.off"), 0), dir + "/lion.vgeo");
-    single = new RenderScene(loadRenderScene(dir + "/horned.vgeo"));
-    grid = new RenderScene(loadRenderScene(dir + "/horned.vgeo", 4));
-    armadillo = new RenderScene(loadRenderScene(dir + "/armadillo.vgeo"));
-    openLion = new RenderScene(loadRenderScene(dir + "/lion.vgeo"));
+    openSuite("vgeo_render_tests");
+    writeVgeo(test::build(test::asset("horned_cube.obj"), 3), *dir + "/horned.vgeo");
+    writeVgeo(test::build(test::cgalMesh("armadillo.off"), 0), *dir + "/armadillo.vgeo");
+    writeVgeo(test::build(test::cgalMesh("lion.off"), 0), *dir + "/lion.vgeo");
+    single = new RenderScene(loadRenderScene(*dir + "/horned.vgeo"));
+    grid = new RenderScene(loadRenderScene(*dir + "/horned.vgeo", 4));
+    armadillo = new RenderScene(loadRenderScene(*dir + "/armadillo.vgeo"));
+    openLion = new RenderScene(loadRenderScene(*dir + "/lion.vgeo"));
   }
   static void TearDownTestSuite() {
     delete single;
     delete grid;
     delete armadillo;
     delete openLion;
-    delete vk;
+    closeSuite();
   }
-  void TearDown() override { EXPECT_EQ(vk->validationMessages(), 0u) << "validation messages (see stderr)"; }
 
   static FrameSettings settingsFor(const RenderScene& scene, const Camera& camera, float tau,
                                    Traversal t = Traversal::Persistent, uint32_t width = kW, uint32_t height = kH) {
@@ -54,10 +51,8 @@ class Render : public ::testing::Test {
     return result;
   }
 
-  static VulkanContext* vk;
   static RenderScene *single, *grid, *armadillo, *openLion;  // openLion: an open surface (CGAL's lion.off)
 };
-VulkanContext* Render::vk = nullptr;
 RenderScene* Render::single = nullptr;
 RenderScene* Render::grid = nullptr;
 RenderScene* Render::armadillo = nullptr;

@@ -19,18 +19,10 @@ namespace {
 
 constexpr uint32_t kW = 320, kH = 240;
 
-class RenderInstances : public ::testing::Test {
+class RenderInstances : public test::GpuSuite {
  protected:
-  static void SetUpTestSuite() {
-    vk = new VulkanContext({"", true});
-    dir = new std::string(std::filesystem::temp_directory_path() / "vgeo_render_instance_tests");
-    std::filesystem::create_directories(*dir);
-  }
-  static void TearDownTestSuite() {
-    delete vk;
-    delete dir;
-  }
-  void TearDown() override { EXPECT_EQ(vk->validationMessages(), 0u) << "validation messages (see stderr)"; }
+  static void SetUpTestSuite() { openSuite("vgeo_render_instance_tests"); }
+  static void TearDownTestSuite() { closeSuite(); }
 
   static FrameResult render(const std::string& path, const Camera& camera, float tau, bool patches) {
     RenderScene scene = loadRenderScene(path);
@@ -71,12 +63,7 @@ class RenderInstances : public ::testing::Test {
     return test::writeFile(*dir, name,
                            "{\"geometries\": [\"" + vgeo + "\"], \"instances\": [{\"geometry\": 0" + placement + "}]}");
   }
-
-  static VulkanContext* vk;
-  static std::string* dir;
 };
-VulkanContext* RenderInstances::vk = nullptr;
-std::string* RenderInstances::dir = nullptr;
 
 // A camera on the plane x = 0 looking at a point of it, at `distance` from it.
 Camera onMirrorPlane(float y, float z, float distance) {

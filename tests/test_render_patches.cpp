@@ -16,12 +16,10 @@ namespace {
 
 constexpr uint32_t kW = 256, kH = 192;
 
-class RenderPatches : public ::testing::Test {
+class RenderPatches : public test::GpuSuite {
  protected:
   static void SetUpTestSuite() {
-    vk = new VulkanContext({"", true});
-    dir = new std::string(std::filesystem::temp_directory_path() / "vgeo_render_patch_tests");
-    std::filesystem::create_directories(*dir);
+    openSuite("vgeo_render_patch_tests");
     // The shipped cage at --subdiv 2 (patches) and at --subdiv 5 (leaves fine enough to stand for the surface).
     writeVgeo(test::build(test::asset("horned_cube.obj"), 2), *dir + "/horned2.vgeo");
     writeVgeo(test::build(test::asset("horned_cube.obj"), 5), *dir + "/horned5.vgeo");
@@ -31,10 +29,8 @@ class RenderPatches : public ::testing::Test {
   static void TearDownTestSuite() {
     delete horned;
     delete hornedFine;
-    delete vk;
-    delete dir;
+    closeSuite();
   }
-  void TearDown() override { EXPECT_EQ(vk->validationMessages(), 0u) << "validation messages (see stderr)"; }
 
   static FrameSettings settings(const RenderScene& scene, const Camera& camera, float tau, bool patches) {
     FrameSettings s = test::frameSettings(scene, camera, tau, kW, kH);
@@ -55,12 +51,8 @@ class RenderPatches : public ::testing::Test {
     return count;
   }
 
-  static VulkanContext* vk;
-  static std::string* dir;
   static RenderScene *horned, *hornedFine;
 };
-VulkanContext* RenderPatches::vk = nullptr;
-std::string* RenderPatches::dir = nullptr;
 RenderScene* RenderPatches::horned = nullptr;
 RenderScene* RenderPatches::hornedFine = nullptr;
 
