@@ -13,7 +13,7 @@
 
 #include "../../builder/build_scene.h"
 #include "../../common/vgeo_file.h"
-#include "../../renderer/cut.h"
+#include "../../reference/cut.h"
 #include "../../renderer/scene.h"
 
 namespace {

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "../../builder/build_scene.h"
-#include "../../renderer/cut.h"
+#include "../../reference/cut.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1 || size > 4096) return 0;  // small cages keep executions fast; size is not the point
