@@ -40,6 +40,14 @@ struct Element {
   std::vector<Property> properties;
 };
 
+// The value of type T in the first sizeof(T) bytes (host byte order), as a double.
+template <class T>
+double as(const unsigned char* bytes) {
+  T v;
+  std::memcpy(&v, bytes, sizeof v);
+  return double(v);
+}
+
 // Reads values one at a time from either the ASCII body or a binary body of either byte order.
 class ValueReader {
  public:
@@ -57,43 +65,22 @@ class ValueReader {
     if (format_ == 2)
       for (size_t i = 0; i < size / 2; i++) std::swap(bytes[i], bytes[size - 1 - i]);
     switch (t) {
-      case Type::Int8: {
-        int8_t v;
-        std::memcpy(&v, bytes, 1);
-        return v;
-      }
+      case Type::Int8:
+        return as<int8_t>(bytes);
       case Type::Uint8:
-        return bytes[0];
-      case Type::Int16: {
-        int16_t v;
-        std::memcpy(&v, bytes, 2);
-        return v;
-      }
-      case Type::Uint16: {
-        uint16_t v;
-        std::memcpy(&v, bytes, 2);
-        return v;
-      }
-      case Type::Int32: {
-        int32_t v;
-        std::memcpy(&v, bytes, 4);
-        return v;
-      }
-      case Type::Uint32: {
-        uint32_t v;
-        std::memcpy(&v, bytes, 4);
-        return v;
-      }
-      case Type::Float32: {
-        float v;
-        std::memcpy(&v, bytes, 4);
-        return v;
-      }
-      case Type::Float64: {
-        double v;
-        std::memcpy(&v, bytes, 8);
-        return v;
-      }
+        return as<uint8_t>(bytes);
+      case Type::Int16:
+        return as<int16_t>(bytes);
+      case Type::Uint16:
+        return as<uint16_t>(bytes);
+      case Type::Int32:
+        return as<int32_t>(bytes);
+      case Type::Uint32:
+        return as<uint32_t>(bytes);
+      case Type::Float32:
+        return as<float>(bytes);
+      case Type::Float64:
+        return as<double>(bytes);
       default:
         return 0;
     }

@@ -41,13 +41,15 @@ inline InstanceCulling instanceCullingNamed(const std::string& name) {
 }
 
 // --traversal persistent|levels|flat (render and bench frame) and its value; bench cut lists several.
-inline const std::vector<std::string> kTraversalNames = {"persistent", "levels", "flat"};
+inline constexpr Traversal kTraversals[] = {Traversal::Persistent, Traversal::Levels, Traversal::Flat};
 inline void addTraversalOption(CLI::App* cmd, std::string& name) {
-  cmd->add_option("--traversal", name, "Cut selection")->capture_default_str()->check(CLI::IsMember(kTraversalNames));
+  std::vector<std::string> names;
+  for (Traversal t : kTraversals) names.push_back(traversalName(t));
+  cmd->add_option("--traversal", name, "Cut selection")->capture_default_str()->check(CLI::IsMember(names));
 }
-// Throws std::runtime_error("OPTION: unknown traversal 'NAME'") for a name not in kTraversalNames.
+// Throws std::runtime_error("OPTION: unknown traversal 'NAME'") for a name traversalName gives none.
 inline Traversal traversalNamed(const std::string& option, const std::string& name) {
-  for (Traversal t : {Traversal::Persistent, Traversal::Levels, Traversal::Flat})
+  for (Traversal t : kTraversals)
     if (name == traversalName(t)) return t;
   throw std::runtime_error(option + ": unknown traversal '" + name + "'");
 }
