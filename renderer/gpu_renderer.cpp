@@ -115,9 +115,8 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
     if (s.bytes > range)
       throw std::runtime_error("scene too large for this device: a buffer of " + std::to_string(s.bytes >> 20) +
                                " MiB exceeds maxStorageBufferRange (" + std::to_string(range >> 20) + " MiB)");
-    sceneBuffers_.push_back(vk_.createBuffer(s.bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT));
-    sceneBindings_.push_back(s.binding);
-    vk_.upload(sceneBuffers_.back(), s.data, s.bytes);
+    sceneBuffers_.push_back({s.binding, vk_.createBuffer(s.bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT)});
+    vk_.upload(sceneBuffers_.back().second, s.data, s.bytes);
   }
   frameData_ = vk_.createBuffer(sizeof(shaderio::FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
   counters_ = vk_.createBuffer(sizeof(shaderio::Counters),
@@ -203,7 +202,7 @@ GpuRenderer::~GpuRenderer() {
   for (Buffer* b : {&frameData_, &counters_, &countersReadback_, &queue_, &drawList_, &drawListReadback_,
                     &imageReadback_, &triangleList_, &patchList_, &workerProfile_})
     vk_.destroyBuffer(*b);
-  for (Buffer& b : sceneBuffers_) vk_.destroyBuffer(b);
+  for (auto& [binding, b] : sceneBuffers_) vk_.destroyBuffer(b);
 }
 
 void GpuRenderer::writeDescriptors() {
@@ -215,7 +214,7 @@ void GpuRenderer::writeDescriptors() {
   buffers[VGEO_BINDING_TRIANGLE_LIST] = &triangleList_;
   buffers[VGEO_BINDING_PATCH_LIST] = &patchList_;
   buffers[VGEO_BINDING_WORKER_PROFILE] = &workerProfile_;
-  for (size_t k = 0; k < sceneBuffers_.size(); k++) buffers[sceneBindings_[k]] = &sceneBuffers_[k];
+  for (const auto& [binding, b] : sceneBuffers_) buffers[binding] = &b;
   for (uint32_t i = 0; i < kRendererBindings; i++)
     if (!buffers[i]) throw std::logic_error("binding " + std::to_string(i) + " has no buffer");
   VkDescriptorBufferInfo infos[kRendererBindings];

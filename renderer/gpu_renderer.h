@@ -5,6 +5,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "camera.h"
@@ -158,9 +159,8 @@ class GpuRenderer {
 
   Buffer frameData_, counters_, countersReadback_, queue_, drawList_, drawListReadback_, imageReadback_, triangleList_,
       patchList_,
-      workerProfile_;                    // host-visible; a placeholder until a frame is profiled
-  std::vector<Buffer> sceneBuffers_;     // the scene's arrays, uploaded once
-  std::vector<uint32_t> sceneBindings_;  // the binding of each (VGEO_BINDING_*)
+      workerProfile_;                                      // host-visible; a placeholder until a frame is profiled
+  std::vector<std::pair<uint32_t, Buffer>> sceneBuffers_;  // the scene's arrays, uploaded once, by binding
   VkImage color_ = VK_NULL_HANDLE, depth_ = VK_NULL_HANDLE;
   VkDeviceMemory colorMemory_ = VK_NULL_HANDLE, depthMemory_ = VK_NULL_HANDLE;
   VkImageView colorView_ = VK_NULL_HANDLE, depthView_ = VK_NULL_HANDLE;
