@@ -106,6 +106,7 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
       {VGEO_BINDING_PATCHES, d.patches.data(), bytes(d.patches)},
       {VGEO_BINDING_PATCH_POINTS, d.patchPoints.data(), bytes(d.patchPoints)},
       {VGEO_BINDING_LEVEL_CLUSTER_RUNS, scene.levelClusterRuns.data(), bytes(scene.levelClusterRuns)},
+      {VGEO_BINDING_INSTANCE_ROOTS, scene.instanceRoots.data(), bytes(scene.instanceRoots)},
   };
   // Sweep runs carry their length above the instance index (shaderio.h, VGEO_ITEM_RUN_BIT).
   if (d.instances.size() >= (size_t(1) << VGEO_RUN_INSTANCE_BITS))

@@ -275,13 +275,10 @@ void finishScene(RenderScene& scene) {
     scene.maxBvhDepth = std::max(scene.maxBvhDepth, scene.bvhDepth[g]);
     scene.maxClusters = std::max(scene.maxClusters, d.geometries[g].clusterCount);
   }
-  // Each instance carries its geometry's BVH root (shaderio.h, Instance).
-  for (auto& inst : scene.data.instances) {
+  scene.instanceRoots.clear();
+  for (const auto& inst : d.instances) {
     const auto& root = d.nodes[d.geometries[inst.geometry].nodeOffset];
-    inst.flags = (inst.flags & VGEO_INSTANCE_CONE_CULL) |
-                 ((root.childCountAndFlags & ~VGEO_NODE_LEAF_BIT) << VGEO_INSTANCE_ROOT_COUNT_SHIFT) |
-                 (root.childCountAndFlags & VGEO_NODE_LEAF_BIT ? VGEO_INSTANCE_ROOT_LEAF : 0u);
-    inst.rootChildOffset = root.childOffset;
+    scene.instanceRoots.push_back(glm::uvec2(root.childCountAndFlags, root.childOffset));
   }
   // Level subtrees' cluster runs (the layout stores groups in BVH leaf order and clusters in group order,
   // so each is one run; checked here, not assumed).

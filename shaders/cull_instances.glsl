@@ -7,8 +7,8 @@
 // cullInstancesSpread: VGEO_CULL_INSTANCE_LANES lanes an instance (workgroups of VGEO_CULL_WORKGROUP lanes,
 // defined by the includer) test the children side by side and the workgroup queues them with one
 // reservation (one lane testing ~20 children in a row puts a chain of ~20 loads in front of the
-// traversal). The root's children come from the instance record
-// (Instance::rootChildOffset), not from the root's.
+// traversal). The root's children come from instanceRoots (shaderio_frame.h, VGEO_BINDING_INSTANCE_ROOTS),
+// loaded beside the instance record, not from the geometry's root.
 // Sweeps (persistent traversal): a kept level subtree whose clusters are one run may be queued as runs of
 // up to VGEO_SWEEP_RUN clusters instead, tested in one step rather than down a chain of node steps. The
 // workgroup claims the cluster tests of all its candidates from frame.sweepBudget with one atomic; when the
@@ -39,6 +39,7 @@ shared uint sKeptInstance[kMaxKept], sKeptCode[kMaxKept], sKeptSlot[kMaxKept];
 shared uint sKeptRunFirst[kMaxKept], sKeptRunCount[kMaxKept];  // the level's cluster run (count 0: none)
 shared uint sSweptList[kMaxKept], sSweptStart[kMaxKept];  // swept items, and their first run in the reservation
 layout(set = 0, binding = VGEO_BINDING_LEVEL_CLUSTER_RUNS, std430) readonly buffer LevelRunBuffer { uvec2 levelClusterRuns[]; };
+layout(set = 0, binding = VGEO_BINDING_INSTANCE_ROOTS, std430) readonly buffer InstanceRootBuffer { uvec2 instanceRoots[]; };
 
 // Instances [firstInstance, firstInstance + kCullInstances), by the whole workgroup (it has barriers).
 // The node items it queues count in counters.nodesPending before they are written, so that a traversal
@@ -61,14 +62,14 @@ void cullInstancesSpread(uint firstInstance, bool inTraversal) {
   uint instance = firstInstance + lane / lanes;
   Instance inst;
   Geometry g;
+  // The root beside the instance record, not after the geometry's (a load less in a row).
+  const uvec2 root = instance < frame.instanceCount ? instanceRoots[instance] : uvec2(0u);
   const bool visible = instanceVisible(instance, inst, g);
   if (frame.queueRoots == 0u && visible) {
-    // The root's children from the instance record (not from the root's record: a load less in a row),
-    // once the instance is known to be visible: an instance out of view loads none.
-    const uint count = (inst.flags >> VGEO_INSTANCE_ROOT_COUNT_SHIFT) & 0xffu;
-    const bool leaf = (inst.flags & VGEO_INSTANCE_ROOT_LEAF) != 0u;
+    const uint count = root.x & ~VGEO_NODE_LEAF_BIT;
+    const bool leaf = (root.x & VGEO_NODE_LEAF_BIT) != 0u;
     for (uint i = part; i < count; i += lanes) {
-      uint child = inst.rootChildOffset + i;
+      uint child = root.y + i;
       uvec2 run = frame.sweepBudget != 0u && !leaf ? levelClusterRuns[child] : uvec2(0u);
       if (run.y > kMaxSweptLevel) run = uvec2(0u);
       if (childMayHoldDrawn(inst, child, leaf)) {

@@ -60,6 +60,9 @@ VGEO_NAMESPACE_BEGIN
 // shaders (common.glsl and the passes declare their buffers with these). 0 is the frame's uniform
 // buffer; the scene's arrays come from the .vgeo (and the renderer's per-level cluster runs); the rest
 // are the frame's working buffers.
+// VGEO_BINDING_INSTANCE_ROOTS, made by the renderer: an instance's geometry's BVH root as uvec2
+// (childCountAndFlags, childOffset) of its BvhNode. Instance culling tests the root's children from it
+// and the instance record, two loads side by side instead of instance -> geometry -> root in a row.
 #define VGEO_BINDING_FRAME 0
 #define VGEO_BINDING_GEOMETRIES 1
 #define VGEO_BINDING_INSTANCES 2
@@ -83,7 +86,8 @@ VGEO_NAMESPACE_BEGIN
 #define VGEO_BINDING_PATCH_LIST 20
 #define VGEO_BINDING_WORKER_PROFILE 21
 #define VGEO_BINDING_LEVEL_CLUSTER_RUNS 22
-#define VGEO_BINDING_COUNT 23
+#define VGEO_BINDING_INSTANCE_ROOTS 23
+#define VGEO_BINDING_COUNT 24
 
 // Per-frame constants (a uniform buffer). The cull camera selects the cut and culls; the draw camera
 // makes the picture. They differ only with --freeze-camera.

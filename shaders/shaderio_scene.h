@@ -84,16 +84,10 @@ struct Instance {
   vec4 row2;
   uint geometry;
   float maxScale;
-  uint flags;            // VGEO_INSTANCE_CONE_CULL: uniform scale of a closed geometry (back-facing clusters may go);
-                         // and, set by the renderer (files hold 0), its geometry's BVH root: child count in
-                         // bits VGEO_INSTANCE_ROOT_COUNT_SHIFT.., VGEO_INSTANCE_ROOT_LEAF when its children are groups
-  uint rootChildOffset;  // set by the renderer (files hold 0): the root's first child
+  uint flags;     // VGEO_INSTANCE_CONE_CULL: uniform scale of a closed geometry (back-facing clusters may go)
+  uint reserved;  // 0
 };
 #define VGEO_INSTANCE_CONE_CULL 1u
-// Instance culling tests the root's children straight from the instance record: the root (and the
-// geometry before it) were two loads in a row on the way to the first queue item.
-#define VGEO_INSTANCE_ROOT_LEAF 2u
-#define VGEO_INSTANCE_ROOT_COUNT_SHIFT 8u
 
 // Cluster normal cone (its own section): xyz the unit axis, w = sin of the cone's half angle (every
 // triangle normal is within it), or -1 when the normals spread over 90 degrees; and the cluster's own
