@@ -31,12 +31,8 @@ vec2 onEdge(uint k, uint i, uint n) {
 // Face `face`'s patch at st: down its tree (if any) to a B-spline, ring or bilinear patch.
 vec3 evaluateFace(uint face, vec2 st, out vec3 normal) {
   Patch p = patches[face];
-  uint info = p.info, at = p.firstPoint;
-  for (int depth = 0; depth < VGEO_MAX_PATCH_DEPTH && patchKind(info) == VGEO_PATCH_TREE; depth++) {
-    uint node = p.firstPoint + patchPoints[at + patchQuadrant(st)];
-    info = patchPoints[node];
-    at = node + 1u;
-  }
+  uint info = p.info;
+  uint at = patchLeaf(p.firstPoint, info, st);
   vec3 points[VGEO_MAX_RING];
   uint count = patchWordCount(info);
   bool flatFace = patchKind(p.info) == VGEO_PATCH_NONE;

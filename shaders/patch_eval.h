@@ -212,6 +212,27 @@ VGEO_INLINE vec3 evaluatePatch(uint kind, uint corner, int valence, vec3 points[
   return p;
 }
 
+// Down a patch's tree (if any) to the leaf patch that holds st: returns the index of the leaf's first
+// point word and sets info to its info word and st to its own parameters. `first` is the index of the
+// patch's first word; child offsets count from it. The words are the C++ caller's array (of the patch's
+// words, first 0) or the shaders' patchPoints.
+#ifdef __cplusplus
+#define VGEO_PATCH_WORDS_PARAM const uint *words,
+#define VGEO_PATCH_WORD(i) words[i]
+#else
+#define VGEO_PATCH_WORDS_PARAM
+#define VGEO_PATCH_WORD(i) patchPoints[i]
+#endif
+VGEO_INLINE uint patchLeaf(VGEO_PATCH_WORDS_PARAM uint first, VGEO_INOUT(uint) info, VGEO_INOUT(vec2) st) {
+  uint at = first;
+  for (int depth = 0; depth < VGEO_MAX_PATCH_DEPTH && patchKind(info) == VGEO_PATCH_TREE; depth++) {
+    uint node = first + VGEO_PATCH_WORD(at + patchQuadrant(st));
+    info = VGEO_PATCH_WORD(node);
+    at = node + 1u;
+  }
+  return at;
+}
+
 #ifdef __cplusplus
 // The C++ side of a patch's words (shaderio.h): `words` starts at the patch's firstPoint and holds `size`
 // words; point(i) gives control point i (relative to pointBase). Tree walks stop at VGEO_MAX_PATCH_DEPTH.
@@ -240,12 +261,7 @@ bool forEachPatchPoint(uint info, const uint* words, size_t size, Visit visit, i
 template <class Point, class Corner>
 vec3 evaluatePatchWords(uint info, const uint* words, Point point, Corner corner, float s, float t, vec3& normal) {
   vec2 st(s, t);
-  size_t at = 0;
-  for (int depth = 0; depth < VGEO_MAX_PATCH_DEPTH && patchKind(info) == VGEO_PATCH_TREE; depth++) {
-    size_t node = words[at + patchQuadrant(st)];
-    info = words[node];
-    at = node + 1;
-  }
+  const uint at = patchLeaf(words, 0u, info, st);
   vec3 points[VGEO_MAX_RING];
   const bool flatFace = at == 0 && patchKind(info) == VGEO_PATCH_NONE;
   for (uint i = 0; i < patchWordCount(info); i++) points[i] = flatFace ? corner(i) : point(words[at + i]);
