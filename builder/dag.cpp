@@ -102,8 +102,6 @@ class EdgeSet {
   size_t capacity_ = 0, mask_ = 0, count_ = 0;
 };
 
-constexpr uint64_t kSmallestRoot = 16;  // triangles
-
 // Repair leaves every edge with at most two faces of opposite orientation, but a face's triangulation
 // may still fold onto a neighbour (a quad's diagonal running along another face's edge, faces meeting
 // at a sliver): a directed edge held by two leaf triangles could never be covered once by a cut.
@@ -125,30 +123,161 @@ void checkNoFold(const std::vector<BuildCluster>& clusters, const std::vector<gl
     }
 }
 
+// The chord rule of a round: a new edge between two border vertices (a chord) is made by at most one
+// group of the round, and never where some cluster already has that edge. The set of edges made so far
+// grows a round at a time, after the round: its chords were checked against earlier rounds only.
+class ChordRule {
+ public:
+  ChordRule(size_t vertices, uint64_t leafTriangles) : holders_(vertices * kHolders) {
+    // Leaves and every level above (which halves each time): about twice the leaf triangles, 1.5 edges each.
+    edges_.reserve(leafTriangles);
+  }
+  // Adds clusters [first, end) of `clusters` to the set of edges made so far.
+  void addClusters(const std::vector<BuildCluster>& clusters, size_t first, int threads) {
+    uint64_t triangles = 0;
+    for (size_t i = first; i < clusters.size(); i++) triangles += clusters[i].indices.size() / 3;
+    edges_.reserve(triangles);
+    parallelFor(clusters.size() - first, threads,
+                [&](size_t i) { edges_.insertTriangles(clusters[first + i].indices); });
+  }
+  // Records which of this round's groups hold each vertex (up to kHolders; a vertex of more groups
+  // takes no chord).
+  void startRound(const std::vector<GroupPlan>& plans, const std::vector<BuildCluster>& clusters, int threads) {
+    const size_t vertices = holders_.size() / kHolders;
+    holderCount_.assign(vertices, 0);
+    parallelFor(plans.size(), threads, [&](size_t g) {
+      thread_local std::vector<uint32_t> seenBy;
+      if (seenBy.size() < vertices) seenBy.assign(vertices, UINT32_MAX);
+      for (uint32_t m : plans[g].clusters)
+        for (uint32_t v : clusters[m].indices) {
+          if (seenBy[v] == g) continue;
+          seenBy[v] = uint32_t(g);
+          uint8_t slot = __atomic_fetch_add(&holderCount_[v], uint8_t(1), __ATOMIC_RELAXED);
+          if (slot < kHolders) __atomic_store_n(&holders_[size_t(v) * kHolders + slot], uint32_t(g), __ATOMIC_RELAXED);
+        }
+      for (uint32_t m : plans[g].clusters)
+        for (uint32_t v : clusters[m].indices) seenBy[v] = UINT32_MAX;
+    });
+  }
+  // Whether group g of this round may make the chord (a, b).
+  bool allowed(uint32_t g, uint32_t a, uint32_t b) const {
+    if (edges_.contains(uint64_t(std::min(a, b)) << 32 | std::max(a, b))) return false;
+    if (holderCount_[a] > kHolders || holderCount_[b] > kHolders) return false;
+    // Of the groups holding both ends, only the first may make the chord this round.
+    for (uint32_t i = 0; i < holderCount_[a]; i++)
+      for (uint32_t j = 0; j < holderCount_[b]; j++)
+        if (holders_[size_t(a) * kHolders + i] == holders_[size_t(b) * kHolders + j] &&
+            holders_[size_t(a) * kHolders + i] < g)
+          return false;
+    return true;
+  }
+
+ private:
+  static constexpr uint32_t kHolders = 4;
+  EdgeSet edges_;
+  std::vector<uint8_t> holderCount_;
+  std::vector<uint32_t> holders_;
+};
+
+// Leaf clusters of the mesh, with their own spheres and (from the limit surface, when given) errors.
+std::vector<BuildCluster> makeLeafClusters(const PolygonMesh& mesh, const BuildOptions& options) {
+  std::vector<BuildCluster> clusters = buildLeafClusters(mesh, options.threads, options.shading);
+  checkNoFold(clusters, mesh.positions, options.threads);
+  parallelFor(clusters.size(), options.threads, [&](size_t i) {
+    BuildCluster& c = clusters[i];
+    c.selfSphere = sphereOfClusterVertices(c, mesh.positions);
+    if (options.leafFaceErrors && !options.leafFaceErrors->empty())
+      for (uint32_t f : c.cageFaces) c.selfError = std::max(c.selfError, (*options.leafFaceErrors)[f].face);
+  });
+  return clusters;
+}
+
+struct GroupOutcome {
+  SimplifiedGroup simplified;
+  std::vector<BuildCluster> produced;
+};
+
+// Each planned group's triangles simplified to half with its border locked, then split into clusters.
+std::vector<GroupOutcome> simplifyGroups(const std::vector<GroupPlan>& plans, const std::vector<BuildCluster>& clusters,
+                                         const std::vector<glm::vec3>& positions, const ChordRule& chords,
+                                         const std::vector<uint64_t>& openEdges, const BuildOptions& options) {
+  std::vector<GroupOutcome> outcomes(plans.size());
+  parallelFor(plans.size(), options.threads, [&](size_t g) {
+    std::vector<uint32_t> indices;
+    for (uint32_t m : plans[g].clusters)
+      indices.insert(indices.end(), clusters[m].indices.begin(), clusters[m].indices.end());
+    auto chordAllowed = [&](uint32_t a, uint32_t b) { return chords.allowed(uint32_t(g), a, b); };
+    outcomes[g].simplified = simplifyGroup(indices, positions, chordAllowed, openEdges);
+    if (outcomes[g].simplified.halved)
+      outcomes[g].produced = splitIntoClusters(outcomes[g].simplified.indices, positions, options.shading);
+  });
+  return outcomes;
+}
+
+// Adds the round's groups and the clusters they produced to the DAG, in group order (ids depend only on
+// the plans, never on thread timing); returns the next round's active clusters. A group that could not
+// be halved passes its clusters on as they are.
+std::vector<uint32_t> addRound(Dag& dag, const std::vector<GroupPlan>& plans, std::vector<GroupOutcome>& outcomes,
+                               uint32_t round) {
+  std::vector<uint32_t> next;
+  for (size_t g = 0; g < plans.size(); g++) {
+    GroupOutcome& o = outcomes[g];
+    if (o.simplified.relaxation > 0) dag.relaxedGroups++;
+    if (!o.simplified.halved) {
+      dag.stuckGroups++;
+      next.insert(next.end(), plans[g].clusters.begin(), plans[g].clusters.end());
+      continue;
+    }
+    uint32_t groupId = uint32_t(dag.groups.size());
+    dag.groups.push_back(makeGroup(dag.clusters, plans[g].clusters, groupId, o.simplified.error, round - 1));
+    const BuildGroup& group = dag.groups.back();
+    for (BuildCluster& c : o.produced) {
+      c.selfSphere = group.sphere;
+      c.selfError = group.error;
+      c.producer = groupId;
+      c.level = round;
+      next.push_back(uint32_t(dag.clusters.size()));
+      dag.clusters.push_back(std::move(c));
+    }
+  }
+  std::sort(next.begin(), next.end());
+  return next;
+}
+
+// Root groups: the clusters left at the end, with parent error +inf so that they are always drawn when
+// nothing finer is needed.
+void addRootGroups(Dag& dag, const std::vector<uint32_t>& active, const BuildOptions& options) {
+  dag.rootClusters = uint32_t(active.size());
+  std::vector<uint32_t> rootIndices;
+  for (uint32_t c : active)
+    rootIndices.insert(rootIndices.end(), dag.clusters[c].indices.begin(), dag.clusters[c].indices.end());
+  dag.roots = surfaceTopology(rootIndices);
+  std::vector<GroupPlan> roots;
+  if (active.size() <= 32)
+    roots.push_back({active, true});
+  else
+    roots = groupClusters(dag.clusters, active, options.groupSize, options.threads);
+  for (const GroupPlan& plan : roots) {
+    uint32_t groupId = uint32_t(dag.groups.size());
+    dag.groups.push_back(makeGroup(dag.clusters, plan.clusters, groupId, 0.0f, uint32_t(dag.levelClusters.size() - 1)));
+    dag.groups.back().error = INFINITY;
+  }
+}
+
+constexpr uint64_t kSmallestRoot = 16;  // triangles
+
 }  // namespace
 
+// The build loop: leaves, then rounds of group -> simplify -> split -> add, then the roots.
 Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
-  Dag dag;
-  const auto& positions = mesh.positions;
   auto report = [&](double f, const char* stage) {
     if (options.progress) options.progress(f, stage);
   };
   report(0.0, "clustering");
-  dag.clusters = buildLeafClusters(mesh, options.threads, options.shading);
-  checkNoFold(dag.clusters, positions, options.threads);
-  parallelFor(dag.clusters.size(), options.threads, [&](size_t i) {
-    BuildCluster& c = dag.clusters[i];
-    c.selfSphere = sphereOfClusterVertices(c, positions);
-    if (options.leafFaceErrors && !options.leafFaceErrors->empty())
-      for (uint32_t f : c.cageFaces) c.selfError = std::max(c.selfError, (*options.leafFaceErrors)[f].face);
-  });
-  EdgeSet edges;
-  // Leaves and every level above (which halves each time): about twice the leaf triangles, 1.5 edges each.
-  edges.reserve(mesh.triangleCount());
-  constexpr uint32_t kHolders = 4;
-  std::vector<uint8_t> holderCount;
-  std::vector<uint32_t> holders(positions.size() * kHolders);
-  parallelFor(dag.clusters.size(), options.threads, [&](size_t i) { edges.insertTriangles(dag.clusters[i].indices); });
+  Dag dag;
+  dag.clusters = makeLeafClusters(mesh, options);
+  ChordRule chords(mesh.positions.size(), mesh.triangleCount());
+  chords.addClusters(dag.clusters, 0, options.threads);
   std::vector<uint32_t> active(dag.clusters.size());
   for (uint32_t i = 0; i < active.size(); i++) active[i] = i;
   dag.levelClusters.push_back(uint32_t(active.size()));
@@ -163,107 +292,23 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
        active.size() > 1 || (active.size() == 1 && triangleCount(dag.clusters, active) > kSmallestRoot); round++) {
     report(doneWork / totalWork, "simplifying");
     std::vector<uint64_t> openEdges;
-    std::vector<GroupPlan> plans = groupClusters(dag.clusters, active, options.groupSize, options.threads, &openEdges);
-    struct Outcome {
-      SimplifiedGroup simplified;
-      std::vector<BuildCluster> produced;
-    };
-    std::vector<Outcome> outcomes(plans.size());
-    // Which groups of this round hold each vertex (up to kHolders; a vertex of more groups takes no
-    // chord): a chord (a new edge between two border vertices) is made by at most one group of a round,
-    // and never when some cluster already has that edge.
-    holderCount.assign(positions.size(), 0);
-    parallelFor(plans.size(), options.threads, [&](size_t g) {
-      thread_local std::vector<uint32_t> seenBy;
-      if (seenBy.size() < positions.size()) seenBy.assign(positions.size(), UINT32_MAX);
-      for (uint32_t m : plans[g].clusters)
-        for (uint32_t v : dag.clusters[m].indices) {
-          if (seenBy[v] == g) continue;
-          seenBy[v] = uint32_t(g);
-          uint8_t slot = __atomic_fetch_add(&holderCount[v], uint8_t(1), __ATOMIC_RELAXED);
-          if (slot < kHolders) __atomic_store_n(&holders[size_t(v) * kHolders + slot], uint32_t(g), __ATOMIC_RELAXED);
-        }
-      for (uint32_t m : plans[g].clusters)
-        for (uint32_t v : dag.clusters[m].indices) seenBy[v] = UINT32_MAX;
-    });
-    parallelFor(plans.size(), options.threads, [&](size_t g) {
-      std::vector<uint32_t> indices;
-      for (uint32_t m : plans[g].clusters)
-        indices.insert(indices.end(), dag.clusters[m].indices.begin(), dag.clusters[m].indices.end());
-      auto chordAllowed = [&](uint32_t a, uint32_t b) {
-        if (edges.contains(uint64_t(std::min(a, b)) << 32 | std::max(a, b))) return false;
-        if (holderCount[a] > kHolders || holderCount[b] > kHolders) return false;
-        // Of the groups holding both ends, only the first may make the chord this round.
-        for (uint32_t i = 0; i < holderCount[a]; i++)
-          for (uint32_t j = 0; j < holderCount[b]; j++)
-            if (holders[size_t(a) * kHolders + i] == holders[size_t(b) * kHolders + j] &&
-                holders[size_t(a) * kHolders + i] < g)
-              return false;
-        return true;
-      };
-      outcomes[g].simplified = simplifyGroup(indices, positions, chordAllowed, openEdges);
-      if (outcomes[g].simplified.halved)
-        outcomes[g].produced = splitIntoClusters(outcomes[g].simplified.indices, positions, options.shading);
-    });
-    // Merge in group order: ids depend only on the plans, never on thread timing.
-    std::vector<uint32_t> next;
-    uint32_t producedCount = 0;
-    for (size_t g = 0; g < plans.size(); g++) {
-      Outcome& o = outcomes[g];
-      if (o.simplified.relaxation > 0) dag.relaxedGroups++;
-      if (!o.simplified.halved) {
-        dag.stuckGroups++;
-        next.insert(next.end(), plans[g].clusters.begin(), plans[g].clusters.end());
-        continue;
-      }
-      uint32_t groupId = uint32_t(dag.groups.size());
-      dag.groups.push_back(makeGroup(dag.clusters, plans[g].clusters, groupId, o.simplified.error, round - 1));
-      const BuildGroup& group = dag.groups.back();
-      for (BuildCluster& c : o.produced) {
-        c.selfSphere = group.sphere;
-        c.selfError = group.error;
-        c.producer = groupId;
-        c.level = round;
-        next.push_back(uint32_t(dag.clusters.size()));
-        dag.clusters.push_back(std::move(c));
-        producedCount++;
-      }
-      for (uint32_t m : plans[g].clusters) doneWork += double(dag.clusters[m].indices.size() / 3);
-    }
-    // This round's edges join the set only now: its chords were checked against earlier rounds.
-    uint64_t producedTriangles = 0;
-    for (size_t i = dag.clusters.size() - producedCount; i < dag.clusters.size(); i++)
-      producedTriangles += dag.clusters[i].indices.size() / 3;
-    edges.reserve(producedTriangles);
-    parallelFor(producedCount, options.threads, [&](size_t i) {
-      edges.insertTriangles(dag.clusters[dag.clusters.size() - producedCount + i].indices);
-    });
+    const std::vector<GroupPlan> plans =
+        groupClusters(dag.clusters, active, options.groupSize, options.threads, &openEdges);
+    chords.startRound(plans, dag.clusters, options.threads);
+    std::vector<GroupOutcome> outcomes =
+        simplifyGroups(plans, dag.clusters, mesh.positions, chords, openEdges, options);
+    const size_t firstProduced = dag.clusters.size();
+    std::vector<uint32_t> next = addRound(dag, plans, outcomes, round);
+    for (size_t g = 0; g < plans.size(); g++)
+      if (outcomes[g].simplified.halved) doneWork += double(triangleCount(dag.clusters, plans[g].clusters));
+    chords.addClusters(dag.clusters, firstProduced, options.threads);
+    const uint32_t producedCount = uint32_t(dag.clusters.size() - firstProduced);
     if (producedCount == 0) break;  // no group could be halved: what is left are the roots
-    std::sort(next.begin(), next.end());
     active = std::move(next);
     dag.levelClusters.push_back(producedCount);
     dag.levelTriangles.push_back(triangleCount(dag.clusters, active));
   }
-
-  // Root groups: the clusters left at the end, with parent error +inf so that they are always drawn
-  // when nothing finer is needed.
-  dag.rootClusters = uint32_t(active.size());
-  {
-    std::vector<uint32_t> rootIndices;
-    for (uint32_t c : active)
-      rootIndices.insert(rootIndices.end(), dag.clusters[c].indices.begin(), dag.clusters[c].indices.end());
-    dag.roots = surfaceTopology(rootIndices);
-  }
-  std::vector<GroupPlan> roots;
-  if (active.size() <= 32)
-    roots.push_back({active, true});
-  else
-    roots = groupClusters(dag.clusters, active, options.groupSize, options.threads);
-  for (const GroupPlan& plan : roots) {
-    uint32_t groupId = uint32_t(dag.groups.size());
-    dag.groups.push_back(makeGroup(dag.clusters, plan.clusters, groupId, 0.0f, uint32_t(dag.levelClusters.size() - 1)));
-    dag.groups.back().error = INFINITY;
-  }
+  addRootGroups(dag, active, options);
   report(1.0, "done");
   return dag;
 }
