@@ -41,12 +41,129 @@ struct RenderArgs {
   bool compareCpu = false, validate = false, noTriangleCull = false, noPatches = false;
 };
 
+// The frame's settings from the command line (views of the draw and cull cameras).
+FrameSettings frameSettings(const RenderArgs& a, const RenderScene& scene, const Camera& camera,
+                            const Camera& cullCamera, uint32_t width, uint32_t height) {
+  FrameSettings settings;
+  settings.drawView = makeView(camera, width, height, scene.bounds);
+  settings.cullView = makeView(cullCamera, width, height, scene.bounds);
+  settings.tau = a.tau;
+  settings.mode = kModes.at(a.mode);
+  settings.sweepBudget = a.sweepBudget;
+  settings.cullLanes = a.cullLanes;
+  settings.instanceCulling = instanceCullingNamed(a.instanceCulling);
+  settings.traversal = traversalNamed("--traversal", a.traversal);
+  settings.readDrawList = a.compareCpu;
+  settings.triangleCull = !a.noTriangleCull;
+  settings.patches = !a.noPatches;
+  return settings;
+}
+
+struct RenderRun {
+  FrameResult result;  // the last frame's
+  uint32_t frames = 0, queueOverflows = 0, drawOverflows = 0, triangleOverflows = 0, patchOverflows = 0;
+};
+
+// Frames until one is complete (an overflow grows the buffers for the next); the first frames warm the
+// shader cache (docs/gpu-notes.md, 4), the last one is reported.
+RenderRun renderUntilComplete(GpuRenderer& renderer, const FrameSettings& settings, uint32_t frames) {
+  RenderRun run;
+  for (uint32_t f = 0; f < std::max(frames, 1u) || !run.result.complete; f++) {
+    if (f >= frames + 12)
+      throw std::runtime_error("frames keep overflowing after growing the buffers and the workers 12 times");
+    run.result = renderer.renderFrame(settings);
+    run.frames++;
+    const auto& c = run.result.counters;
+    if (run.result.workersRanOut) {
+      std::fprintf(stderr, "frame %u: the traversal's workers ran out of their iteration budget; %u workers next\n",
+                   run.frames, renderer.persistentWorkgroups());
+    } else if (!run.result.complete) {
+      run.queueOverflows += c.queueOverflow;
+      run.drawOverflows += c.drawOverflow;
+      run.triangleOverflows += c.triangleOverflow;
+      run.patchOverflows += c.patchOverflow;
+      std::fprintf(stderr,
+                   "overflow in frame %u: %u queue items, %u draw entries, %u triangles and %u patches did not fit; "
+                   "grown to %u queue items, %u draw entries, %u triangles, %u patches\n",
+                   run.frames, c.queueOverflow, c.drawOverflow, c.triangleOverflow, c.patchOverflow,
+                   renderer.queueCapacity(), renderer.drawCapacity(), renderer.triangleCapacity(),
+                   renderer.patchCapacity());
+    }
+  }
+  return run;
+}
+
+// The frame statistics of `--stats` (README lists the fields).
+nlohmann::ordered_json frameStats(const RenderArgs& a, const RenderScene& scene, const FrameSettings& settings,
+                                  const RenderRun& run, const GpuRenderer& renderer, const VulkanContext& vk,
+                                  uint32_t width, uint32_t height) {
+  const FrameResult& result = run.result;
+  const auto& c = result.counters;
+  const uint64_t covered = coveredPixels(result.rgba);
+  nlohmann::ordered_json j;
+  j["width"] = width;
+  j["height"] = height;
+  j["tau"] = a.tau;
+  j["mode"] = a.mode;
+  j["traversal"] = a.traversal;
+  j["instances_total"] = scene.data.instances.size();
+  j["virtual_triangles"] = scene.virtualTriangles;
+  addFrameCounters(j, result, renderer, vk);
+  j["triangle_cull"] = settings.triangleCull;
+  j["patches"] = settings.patches && settings.triangleCull;
+  j["pixels_covered"] = covered;
+  j["triangles_per_covered_pixel"] = covered ? double(result.trianglesDrawn) / double(covered) : 0.0;
+  j["cut_triangles_per_covered_pixel"] = covered ? double(c.triangles) / double(covered) : 0.0;
+  j["queue_overflows"] = run.queueOverflows;
+  j["draw_overflows"] = run.drawOverflows;
+  j["triangle_overflows"] = run.triangleOverflows;
+  j["patch_overflows"] = run.patchOverflows;
+  j["persistent_workgroups"] = renderer.persistentWorkgroups();
+  j["swept_tests"] = c.sweptTests;
+  j["instance_cull_ms"] = result.instanceCullMs;
+  j["traversal_ms"] = result.traversalMs;
+  j["triangle_cull_ms"] = result.triangleCullMs;
+  j["draw_ms"] = result.drawMs;
+  j["frame_ms"] = result.frameMs;
+  j["frames"] = run.frames;
+  if (a.compareCpu) {
+    SceneCut reference = selectSceneCut(scene, settings.cullView, a.tau);
+    std::string difference;
+    bool equal = compareCuts(reference, result.drawList, difference);
+    j["cpu_cut_equal"] = equal;
+    j["cpu_clusters"] = reference.entries.size();
+    j["borderline_clusters"] = reference.borderline.size();
+    if (!equal) j["cpu_cut_difference"] = difference;
+  }
+  return j;
+}
+
+void printSummary(const RenderArgs& a, const RenderScene& scene, const RenderRun& run, const GpuRenderer& renderer,
+                  const VulkanContext& vk, const nlohmann::ordered_json& j, uint32_t width, uint32_t height) {
+  const FrameResult& result = run.result;
+  const auto& c = result.counters;
+  std::printf(
+      "%s: %ux%u on %s, %s traversal, tau %g: %u of %zu instances visible, %u clusters, %u triangles in the cut of "
+      "%llu virtual, %u drawn (%.2f a covered pixel); instance culling %.2f ms, traversal %.2f ms, triangle "
+      "culling %.2f ms, draw %.2f ms, frame %.2f ms (%s)\n",
+      a.output.c_str(), width, height, vk.deviceName().c_str(), a.traversal.c_str(), a.tau, c.visibleInstances,
+      scene.data.instances.size(), std::min(c.drawCount, renderer.drawCapacity()), c.triangles,
+      (unsigned long long)scene.virtualTriangles, result.trianglesDrawn, j["triangles_per_covered_pixel"].get<double>(),
+      result.instanceCullMs, result.traversalMs, result.triangleCullMs, result.drawMs, result.frameMs,
+      result.timing.c_str());
+  if (a.compareCpu)
+    std::printf("cpu cut: %s (%zu clusters, %zu borderline)%s\n",
+                j["cpu_cut_equal"].get<bool>() ? "equal" : "DIFFERENT", size_t(j["cpu_clusters"]),
+                size_t(j["borderline_clusters"]),
+                j.contains("cpu_cut_difference") ? (": " + j["cpu_cut_difference"].get<std::string>()).c_str() : "");
+}
+
 int runRender(const RenderArgs& a) {
   // The command line first, all of it, before anything is loaded or drawn.
   uint32_t width = 0, height = 0;
   if (!parseSize(a.size, width, height))
     throw UsageError("--size", "expected WxH with both in 1..16384, e.g. 1280x720 (got '" + a.size + "')");
-  Traversal traversal = traversalNamed("--traversal", a.traversal);
+  traversalNamed("--traversal", a.traversal);
   checkOutputPath("--output", a.output, {a.input}, ".png");
   if (!a.stats.empty()) checkOutputPath("--stats", a.stats, {a.input, a.output});
   std::optional<Camera> camera, cullCamera;
@@ -67,18 +184,7 @@ int runRender(const RenderArgs& a) {
                            a.drawCapacity ? a.drawCapacity : renderer.drawCapacity(),
                            a.triangleCapacity ? a.triangleCapacity : renderer.triangleCapacity(),
                            renderer.patchCapacity());
-  FrameSettings settings;
-  settings.drawView = makeView(*camera, width, height, scene.bounds);
-  settings.cullView = makeView(*cullCamera, width, height, scene.bounds);
-  settings.tau = a.tau;
-  settings.mode = kModes.at(a.mode);
-  settings.sweepBudget = a.sweepBudget;
-  settings.cullLanes = a.cullLanes;
-  settings.instanceCulling = instanceCullingNamed(a.instanceCulling);
-  settings.traversal = traversal;
-  settings.readDrawList = a.compareCpu;
-  settings.triangleCull = !a.noTriangleCull;
-  settings.patches = !a.noPatches;
+  const FrameSettings settings = frameSettings(a, scene, *camera, *cullCamera, width, height);
   if (settings.instanceCulling == InstanceCulling::InTraversal && !renderer.cullsInTraversal(settings))
     throw UsageError("--instance-culling", "traversal needs the persistent traversal, culling lanes " +
                                                std::to_string(VGEO_CULL_INSTANCE_LANES) + " and at most " +
@@ -86,88 +192,11 @@ int runRender(const RenderArgs& a) {
                                                " instances a worker (" +
                                                std::to_string(renderer.persistentWorkgroups()) + " workers)");
 
-  // Frames until one is complete (an overflow grows the buffers for the next); the first frames warm
-  // the shader cache (docs/gpu-notes.md, 4), the last one is reported.
-  FrameResult result;
-  uint32_t queueOverflows = 0, drawOverflows = 0, triangleOverflows = 0, patchOverflows = 0, frames = 0;
-  for (uint32_t f = 0; f < std::max(a.frames, 1u) || !result.complete; f++) {
-    if (f >= a.frames + 12)
-      throw std::runtime_error("frames keep overflowing after growing the buffers and the workers 12 times");
-    result = renderer.renderFrame(settings);
-    frames++;
-    if (result.workersRanOut) {
-      std::fprintf(stderr, "frame %u: the traversal's workers ran out of their iteration budget; %u workers next\n",
-                   frames, renderer.persistentWorkgroups());
-    } else if (!result.complete) {
-      queueOverflows += result.counters.queueOverflow;
-      drawOverflows += result.counters.drawOverflow;
-      triangleOverflows += result.counters.triangleOverflow;
-      patchOverflows += result.counters.patchOverflow;
-      std::fprintf(stderr,
-                   "overflow in frame %u: %u queue items, %u draw entries, %u triangles and %u patches did not fit; "
-                   "grown to %u queue items, "
-                   "%u draw entries, %u triangles, %u patches\n",
-                   frames, result.counters.queueOverflow, result.counters.drawOverflow,
-                   result.counters.triangleOverflow, result.counters.patchOverflow, renderer.queueCapacity(),
-                   renderer.drawCapacity(), renderer.triangleCapacity(), renderer.patchCapacity());
-    }
-  }
-  writePng(a.output, width, height, result.rgba);
-  const uint64_t covered = coveredPixels(result.rgba);
-
-  const auto& c = result.counters;
-  nlohmann::ordered_json j;
-  j["width"] = width;
-  j["height"] = height;
-  j["tau"] = a.tau;
-  j["mode"] = a.mode;
-  j["traversal"] = a.traversal;
-  j["instances_total"] = scene.data.instances.size();
-  j["virtual_triangles"] = scene.virtualTriangles;
-  addFrameCounters(j, result, renderer, vk);
-  const uint32_t drawn = result.trianglesDrawn;
-  j["triangle_cull"] = settings.triangleCull;
-  j["patches"] = settings.patches && settings.triangleCull;
-  j["pixels_covered"] = covered;
-  j["triangles_per_covered_pixel"] = covered ? double(drawn) / double(covered) : 0.0;
-  j["cut_triangles_per_covered_pixel"] = covered ? double(c.triangles) / double(covered) : 0.0;
-  j["queue_overflows"] = queueOverflows;
-  j["draw_overflows"] = drawOverflows;
-  j["triangle_overflows"] = triangleOverflows;
-  j["patch_overflows"] = patchOverflows;
-  j["persistent_workgroups"] = renderer.persistentWorkgroups();
-  j["swept_tests"] = c.sweptTests;
-  j["instance_cull_ms"] = result.instanceCullMs;
-  j["traversal_ms"] = result.traversalMs;
-  j["triangle_cull_ms"] = result.triangleCullMs;
-  j["draw_ms"] = result.drawMs;
-  j["frame_ms"] = result.frameMs;
-  j["frames"] = frames;
-  if (a.compareCpu) {
-    SceneCut reference = selectSceneCut(scene, settings.cullView, a.tau);
-    std::string difference;
-    bool equal = compareCuts(reference, result.drawList, difference);
-    j["cpu_cut_equal"] = equal;
-    j["cpu_clusters"] = reference.entries.size();
-    j["borderline_clusters"] = reference.borderline.size();
-    if (!equal) j["cpu_cut_difference"] = difference;
-  }
+  const RenderRun run = renderUntilComplete(renderer, settings, a.frames);
+  writePng(a.output, width, height, run.result.rgba);
+  const nlohmann::ordered_json j = frameStats(a, scene, settings, run, renderer, vk, width, height);
   if (!a.stats.empty()) writeJson(a.stats, j, 2);  // before the summary: a failed write is the one line printed
-  std::printf(
-      "%s: %ux%u on %s, %s traversal, tau %g: %u of %zu instances visible, %u clusters, %u triangles in the cut of "
-      "%llu virtual, "
-      "%u drawn (%.2f a covered pixel); instance culling %.2f ms, traversal %.2f ms, triangle culling %.2f ms, draw "
-      "%.2f ms, frame %.2f ms (%s)\n",
-      a.output.c_str(), width, height, vk.deviceName().c_str(), a.traversal.c_str(), a.tau, c.visibleInstances,
-      scene.data.instances.size(), std::min(c.drawCount, renderer.drawCapacity()), c.triangles,
-      (unsigned long long)scene.virtualTriangles, drawn, j["triangles_per_covered_pixel"].get<double>(),
-      result.instanceCullMs, result.traversalMs, result.triangleCullMs, result.drawMs, result.frameMs,
-      result.timing.c_str());
-  if (a.compareCpu)
-    std::printf("cpu cut: %s (%zu clusters, %zu borderline)%s\n",
-                j["cpu_cut_equal"].get<bool>() ? "equal" : "DIFFERENT", size_t(j["cpu_clusters"]),
-                size_t(j["borderline_clusters"]),
-                j.contains("cpu_cut_difference") ? (": " + j["cpu_cut_difference"].get<std::string>()).c_str() : "");
+  printSummary(a, scene, run, renderer, vk, j, width, height);
   if (vk.validationMessages() > 0) {
     std::fprintf(stderr, "validation: %u messages\n", vk.validationMessages());
     return kExitValidation;

@@ -22,45 +22,51 @@
 #include "shaders/traverse_persistent_comp_profile.h"
 
 namespace vgeo {
+namespace {
+// A 2D image of the frame's size in device-local memory, with a view of `aspect`.
+void createImage(VulkanContext& vk, uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage,
+                 VkImageAspectFlags aspect, VkImage& image, VkDeviceMemory& memory, VkImageView& view) {
+  VkDevice dev = vk.device();
+  VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  info.imageType = VK_IMAGE_TYPE_2D;
+  info.format = format;
+  info.extent = {width, height, 1};
+  info.mipLevels = 1;
+  info.arrayLayers = 1;
+  info.samples = VK_SAMPLE_COUNT_1_BIT;
+  info.tiling = VK_IMAGE_TILING_OPTIMAL;
+  info.usage = usage;
+  vkCheck(vkCreateImage(dev, &info, nullptr, &image), "vkCreateImage");
+  VkMemoryRequirements req;
+  vkGetImageMemoryRequirements(dev, image, &req);
+  VkPhysicalDeviceMemoryProperties mem;
+  vkGetPhysicalDeviceMemoryProperties(vk.physicalDevice(), &mem);
+  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  alloc.allocationSize = req.size;
+  for (uint32_t i = 0; i < mem.memoryTypeCount; i++)
+    if ((req.memoryTypeBits & (1u << i)) && (mem.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) {
+      alloc.memoryTypeIndex = i;
+      break;
+    }
+  vkCheck(vkAllocateMemory(dev, &alloc, nullptr, &memory), "vkAllocateMemory (image)");
+  vkCheck(vkBindImageMemory(dev, image, memory, 0), "vkBindImageMemory");
+  VkImageViewCreateInfo v{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  v.image = image;
+  v.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  v.format = format;
+  v.subresourceRange = {aspect, 0, 1, 0, 1};
+  vkCheck(vkCreateImageView(dev, &v, nullptr, &view), "vkCreateImageView");
+}
+}  // namespace
+
+// The offscreen colour and depth targets and the render pass that draws into them.
 void GpuRenderer::createTargets() {
   VkDevice dev = vk_.device();
-  auto makeImage = [&](VkFormat format, VkImageUsageFlags usage, VkImageAspectFlags aspect, VkImage& image,
-                       VkDeviceMemory& memory, VkImageView& view) {
-    VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-    info.imageType = VK_IMAGE_TYPE_2D;
-    info.format = format;
-    info.extent = {width_, height_, 1};
-    info.mipLevels = 1;
-    info.arrayLayers = 1;
-    info.samples = VK_SAMPLE_COUNT_1_BIT;
-    info.tiling = VK_IMAGE_TILING_OPTIMAL;
-    info.usage = usage;
-    vkCheck(vkCreateImage(dev, &info, nullptr, &image), "vkCreateImage");
-    VkMemoryRequirements req;
-    vkGetImageMemoryRequirements(dev, image, &req);
-    VkPhysicalDeviceMemoryProperties mem;
-    vkGetPhysicalDeviceMemoryProperties(vk_.physicalDevice(), &mem);
-    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    alloc.allocationSize = req.size;
-    for (uint32_t i = 0; i < mem.memoryTypeCount; i++)
-      if ((req.memoryTypeBits & (1u << i)) &&
-          (mem.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) {
-        alloc.memoryTypeIndex = i;
-        break;
-      }
-    vkCheck(vkAllocateMemory(dev, &alloc, nullptr, &memory), "vkAllocateMemory (image)");
-    vkCheck(vkBindImageMemory(dev, image, memory, 0), "vkBindImageMemory");
-    VkImageViewCreateInfo v{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-    v.image = image;
-    v.viewType = VK_IMAGE_VIEW_TYPE_2D;
-    v.format = format;
-    v.subresourceRange = {aspect, 0, 1, 0, 1};
-    vkCheck(vkCreateImageView(dev, &v, nullptr, &view), "vkCreateImageView");
-  };
-  makeImage(VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-            VK_IMAGE_ASPECT_COLOR_BIT, color_, colorMemory_, colorView_);
-  makeImage(VK_FORMAT_D32_SFLOAT, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT, depth_,
-            depthMemory_, depthView_);
+  createImage(vk_, width_, height_, VK_FORMAT_R8G8B8A8_UNORM,
+              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT, color_,
+              colorMemory_, colorView_);
+  createImage(vk_, width_, height_, VK_FORMAT_D32_SFLOAT, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+              VK_IMAGE_ASPECT_DEPTH_BIT, depth_, depthMemory_, depthView_);
 
   VkAttachmentDescription attachments[2] = {};
   attachments[0].format = VK_FORMAT_R8G8B8A8_UNORM;
@@ -117,6 +123,13 @@ void GpuRenderer::createTargets() {
 }
 
 void GpuRenderer::createPipelines() {
+  createDescriptorSet();
+  createComputePipelines();
+  createDrawPipelines();
+}
+
+// The one descriptor set of shaderio_frame.h's bindings, seen by every stage, and the pipeline layout.
+void GpuRenderer::createDescriptorSet() {
   VkDevice dev = vk_.device();
   VkDescriptorSetLayoutBinding bindings[kRendererBindings];
   for (uint32_t i = 0; i < kRendererBindings; i++) {
@@ -147,7 +160,10 @@ void GpuRenderer::createPipelines() {
   layoutInfo.setLayoutCount = 1;
   layoutInfo.pSetLayouts = &setLayout_;
   vkCheck(vkCreatePipelineLayout(dev, &layoutInfo, nullptr, &layout_), "vkCreatePipelineLayout");
+}
 
+void GpuRenderer::createComputePipelines() {
+  VkDevice dev = vk_.device();
   auto compute = [&](const uint32_t* code, size_t bytes, const VkSpecializationInfo* specialization = nullptr) {
     VkShaderModule module = vk_.createShaderModule(code, bytes);
     VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
@@ -182,7 +198,12 @@ void GpuRenderer::createPipelines() {
   finalize_ = compute(finalize_comp, sizeof(finalize_comp));
   cullTriangles_ = compute(cull_triangles_comp, sizeof(cull_triangles_comp));
   finalizeTriangles_ = compute(finalize_triangles_comp, sizeof(finalize_triangles_comp));
+}
 
+// The draw of listed triangles, its overdraw variant (every fragment adds, nothing hidden), and the same
+// two for patches where the device has tessellation shaders.
+void GpuRenderer::createDrawPipelines() {
+  VkDevice dev = vk_.device();
   VkShaderModule vert = vk_.createShaderModule(draw_vert, sizeof(draw_vert));
   VkShaderModule frag = vk_.createShaderModule(draw_frag, sizeof(draw_frag));
   VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,

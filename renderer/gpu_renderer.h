@@ -117,6 +117,9 @@ class GpuRenderer {
  private:
   void createTargets();
   void createPipelines();
+  void createDescriptorSet();
+  void createComputePipelines();
+  void createDrawPipelines();
   void createQueueAndDrawList();
   void writeDescriptors();
   // renderFrame's steps, in order (gpu_renderer.cpp).

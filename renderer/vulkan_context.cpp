@@ -79,6 +79,13 @@ int deviceRank(VkPhysicalDeviceType type) {
 }  // namespace
 
 VulkanContext::VulkanContext(const ContextOptions& options) {
+  createInstance(options);
+  pickDevice(options);
+  createDevice();
+}
+
+// The instance, with the validation layer (synchronization validation on) and its messenger when asked.
+void VulkanContext::createInstance(const ContextOptions& options) {
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "vgeo";
   app.apiVersion = VK_API_VERSION_1_2;
@@ -124,7 +131,11 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
         vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
     if (create) vkCheck(create(instance_, &messengerInfo, nullptr, &messenger_), "vkCreateDebugUtilsMessengerEXT");
   }
+}
 
+// The Vulkan 1.2 device named by --device, else the best-ranked kind (deviceRank); its properties, and
+// its graphics + compute queue family.
+void VulkanContext::pickDevice(const ContextOptions& options) {
   uint32_t count = 0;
   vkEnumeratePhysicalDevices(instance_, &count, nullptr);
   std::vector<VkPhysicalDevice> devices(count);
@@ -181,7 +192,11 @@ VulkanContext::VulkanContext(const ContextOptions& options) {
     }
   if (queueFamily_ == UINT32_MAX)
     throw std::runtime_error("vulkan: no queue with graphics and compute on " + deviceName());
+}
 
+// The logical device with the optional features the renderer uses where supported, its queue and a
+// command pool.
+void VulkanContext::createDevice() {
   float priority = 1.0f;
   VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
   queueInfo.queueFamilyIndex = queueFamily_;

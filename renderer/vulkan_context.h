@@ -63,6 +63,9 @@ class VulkanContext {
                                                       const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
 
  private:
+  void createInstance(const ContextOptions& options);
+  void pickDevice(const ContextOptions& options);
+  void createDevice();
   uint32_t memoryType(uint32_t bits, VkMemoryPropertyFlags flags) const;
 
   VkInstance instance_ = VK_NULL_HANDLE;
