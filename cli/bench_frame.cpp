@@ -1,7 +1,8 @@
 // bench_frame.cpp: `vgeo bench frame`: whole frames split into their passes (instance culling,
-// traversal, triangle culling, draw with the patch draw), for a scene at several grid sizes, viewport
-// sizes and cameras, in three variants: triangle culling with patches (the default), triangle culling
-// with leaves as triangles, neither. Medians over frames after warm-up; one JSON record each.
+// traversal, triangle culling, software raster, the render pass with the patch draw), for a scene at
+// several grid sizes, viewport sizes and cameras, in variants: for each rasterizer of --rasters, triangle
+// culling with patches (the default) and with leaves as triangles; then neither (hardware). Medians over frames after
+// warm-up; one JSON record each.
 #include <nlohmann/json.hpp>
 
 #include "../renderer/gpu_renderer.h"
@@ -14,7 +15,7 @@ namespace {
 
 struct FrameBenchArgs {
   std::string input, output, grids = "32", sizes = "1280x720,1920x1080", cameras = "corner,inside",
-                             traversal = "persistent", device;
+                             traversal = "persistent", device, rasters = "auto,hardware";
   uint32_t frames = 5;
   float fov = 60.0f, tau = 1.0f;
 };
@@ -33,9 +34,21 @@ void runBenchFrame(const FrameBenchArgs& a) {
       for (const std::string& cameraName : parseList<std::string>(a.cameras)) {
         auto camera = std::find_if(path.begin(), path.end(), [&](const auto& p) { return p.first == cameraName; });
         if (camera == path.end()) throw std::runtime_error("--cameras: unknown camera '" + cameraName + "'");
-        for (int variant = 0; variant < 3; variant++) {
-          const bool triangleCull = variant < 2, patches = variant == 0;
+        struct Variant {
+          bool triangleCull, patches;
+          std::string raster;
+        };
+        std::vector<Variant> variants;
+        for (const std::string& raster : parseList<std::string>(a.rasters)) {
+          rasterNamed("--rasters", raster);
+          variants.push_back({true, true, raster});
+          variants.push_back({true, false, raster});
+        }
+        variants.push_back({false, false, "hardware"});
+        for (const Variant& variant : variants) {
+          const bool triangleCull = variant.triangleCull, patches = variant.patches;
           FrameSettings s;
+          s.raster = rasterNamed("--rasters", variant.raster);
           s.drawView = s.cullView = makeView(camera->second, width, height, scene.bounds);
           s.tau = a.tau;
           s.traversal = traversal;
@@ -53,12 +66,13 @@ void runBenchFrame(const FrameBenchArgs& a) {
             s.mode = VGEO_MODE_LIT;
           }
           s.readImage = false;  // measured frames: no image copy
-          std::vector<double> cull, traverse, triangles, draw, frame;
+          std::vector<double> cull, traverse, triangles, raster, draw, frame;
           for (uint32_t i = 0; i < a.frames; i++) {
             f = renderer.renderFrame(s);
             cull.push_back(f.instanceCullMs);
             traverse.push_back(f.traversalMs);
             triangles.push_back(f.triangleCullMs);
+            raster.push_back(f.rasterMs);
             draw.push_back(f.drawMs);
             frame.push_back(f.frameMs);
           }
@@ -73,10 +87,12 @@ void runBenchFrame(const FrameBenchArgs& a) {
           r["traversal"] = a.traversal;
           r["triangle_cull"] = triangleCull;
           r["patches"] = patches;
+          r["raster"] = variant.raster;
           r["instance_cull_ms"] = median(cull);
           r["traversal_ms"] = median(traverse);
           r["triangle_cull_ms"] = median(triangles);
-          r["draw_ms"] = median(draw);
+          r["raster_ms"] = median(raster);  // the software rasterizer
+          r["draw_ms"] = median(draw);      // the render pass: resolve and hardware draws
           r["frame_ms"] = median(frame);
           addFrameCounters(r, f, renderer, vk);
           r["pixels_covered"] = covered;
@@ -88,12 +104,12 @@ void runBenchFrame(const FrameBenchArgs& a) {
           r["frames"] = a.frames;
           r["commit"] = VGEO_COMMIT;
           std::fprintf(stderr,
-                       "%7zu instances %4ux%-4u %-7s triangle cull %-3s patches %-3s: cull %.3f  traversal %.3f  "
-                       "triangles %.3f  draw %.3f  "
-                       "frame %.3f ms\n",
+                       "%7zu instances %4ux%-4u %-7s triangle cull %-3s patches %-3s %-8s: cull %.3f  traversal "
+                       "%.3f  triangles %.3f  raster %.3f  draw %.3f  frame %.3f ms (%u of %u triangles in software)\n",
                        scene.data.instances.size(), width, height, cameraName.c_str(), triangleCull ? "on" : "off",
-                       patches ? "on" : "off", median(cull), median(traverse), median(triangles), median(draw),
-                       median(frame));
+                       patches ? "on" : "off", variant.raster.c_str(), median(cull), median(traverse),
+                       median(triangles), median(raster), median(draw), median(frame), f.softwareTriangles,
+                       f.trianglesDrawn);
           records.push_back(r);
         }
       }
@@ -118,6 +134,9 @@ void addBenchFrameCommand(CLI::App& bench, int& exitCode) {
   addTraversalOption(cmd, a->traversal);
   cmd->add_option("--tau", a->tau, "Allowed projected error, pixels")->capture_default_str();
   cmd->add_option("--frames", a->frames, "Measured frames per record (median)")->capture_default_str();
+  cmd->add_option("--rasters", a->rasters,
+                  "Rasterizers to compare (auto, hardware, software), each with and without patches")
+      ->capture_default_str();
   addDeviceOption(cmd, a->device);
   cmd->callback([a, &exitCode] {
     runBenchFrame(*a);

@@ -40,6 +40,15 @@ inline InstanceCulling instanceCullingNamed(const std::string& name) {
                                : InstanceCulling::Auto;
 }
 
+// --raster auto|hardware|software (render), the names of FrameSettings::raster.
+inline constexpr std::pair<const char*, Raster> kRasters[] = {
+    {"auto", Raster::Auto}, {"hardware", Raster::Hardware}, {"software", Raster::Software}};
+inline Raster rasterNamed(const std::string& option, const std::string& name) {
+  for (const auto& [n, r] : kRasters)
+    if (name == n) return r;
+  throw std::runtime_error(option + ": unknown rasterizer '" + name + "' (auto, hardware or software)");
+}
+
 // --traversal persistent|levels|flat (render and bench frame) and its value; bench cut lists several.
 inline constexpr Traversal kTraversals[] = {Traversal::Persistent, Traversal::Levels, Traversal::Flat};
 inline void addTraversalOption(CLI::App* cmd, std::string& name) {

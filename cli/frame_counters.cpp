@@ -23,6 +23,7 @@ void addFrameCounters(nlohmann::ordered_json& r, const FrameResult& f, const Gpu
   // culling dropped those that cannot make a fragment (equal to triangles without triangle culling).
   r["triangles"] = c.triangles;
   r["triangles_drawn"] = f.trianglesDrawn;
+  r["software_triangles"] = f.softwareTriangles;  // of those, drawn by the software rasterizer
   // Leaves too coarse for tau drawn as tessellated patches: clusters, faces (patches) and the triangles
   // the tessellator made (pipeline statistics; -1 where the device has none).
   r["patch_clusters"] = c.patchClusters;

@@ -37,7 +37,7 @@ struct RenderArgs {
   uint32_t grid = 1, frames = 2, queueCapacity = 0, drawCapacity = 0, triangleCapacity = 0, workgroups = 0,
            cullLanes = 0;
   uint32_t sweepBudget = kDefaultSweepBudget, maxFrameMemoryMiB = kDefaultFrameMemoryMiB;
-  std::string instanceCulling = "auto";
+  std::string instanceCulling = "auto", raster = "auto";
   bool compareCpu = false, validate = false, noTriangleCull = false, noPatches = false;
 };
 
@@ -56,6 +56,7 @@ FrameSettings frameSettings(const RenderArgs& a, const RenderScene& scene, const
   settings.readDrawList = a.compareCpu;
   settings.triangleCull = !a.noTriangleCull;
   settings.patches = !a.noPatches;
+  settings.raster = rasterNamed("--raster", a.raster);
   return settings;
 }
 
@@ -123,6 +124,7 @@ nlohmann::ordered_json frameStats(const RenderArgs& a, const RenderScene& scene,
   j["instance_cull_ms"] = result.instanceCullMs;
   j["traversal_ms"] = result.traversalMs;
   j["triangle_cull_ms"] = result.triangleCullMs;
+  j["raster_ms"] = result.rasterMs;
   j["draw_ms"] = result.drawMs;
   j["frame_ms"] = result.frameMs;
   j["frames"] = run.frames;
@@ -144,13 +146,13 @@ void printSummary(const RenderArgs& a, const RenderScene& scene, const RenderRun
   const auto& c = result.counters;
   std::printf(
       "%s: %ux%u on %s, %s traversal, tau %g: %u of %zu instances visible, %u clusters, %u triangles in the cut of "
-      "%llu virtual, %u drawn (%.2f a covered pixel); instance culling %.2f ms, traversal %.2f ms, triangle "
-      "culling %.2f ms, draw %.2f ms, frame %.2f ms (%s)\n",
+      "%llu virtual, %u drawn (%.2f a covered pixel, %u in software); instance culling %.2f ms, traversal %.2f "
+      "ms, triangle culling %.2f ms, software raster %.2f ms, draw %.2f ms, frame %.2f ms (%s)\n",
       a.output.c_str(), width, height, vk.deviceName().c_str(), a.traversal.c_str(), a.tau, c.visibleInstances,
       scene.data.instances.size(), std::min(c.drawCount, renderer.drawCapacity()), c.triangles,
       (unsigned long long)scene.virtualTriangles, result.trianglesDrawn, j["triangles_per_covered_pixel"].get<double>(),
-      result.instanceCullMs, result.traversalMs, result.triangleCullMs, result.drawMs, result.frameMs,
-      result.timing.c_str());
+      result.softwareTriangles, result.instanceCullMs, result.traversalMs, result.triangleCullMs, result.rasterMs,
+      result.drawMs, result.frameMs, result.timing.c_str());
   if (a.compareCpu)
     std::printf("cpu cut: %s (%zu clusters, %zu borderline)%s\n",
                 j["cpu_cut_equal"].get<bool>() ? "equal" : "DIFFERENT", size_t(j["cpu_clusters"]),
@@ -185,6 +187,10 @@ int runRender(const RenderArgs& a) {
                            a.triangleCapacity ? a.triangleCapacity : renderer.triangleCapacity(),
                            renderer.patchCapacity());
   const FrameSettings settings = frameSettings(a, scene, *camera, *cullCamera, width, height);
+  if (settings.raster == Raster::Software && !renderer.hasSoftwareRaster())
+    throw UsageError("--raster", "software needs 64-bit buffer atomics (shaderBufferInt64Atomics), which " +
+                                     vk.deviceName() + " lacks, and a picture of at most " +
+                                     std::to_string(vk.properties().limits.maxStorageBufferRange / 8) + " pixels");
   if (settings.instanceCulling == InstanceCulling::InTraversal && !renderer.cullsInTraversal(settings))
     throw UsageError("--instance-culling", "traversal needs the persistent traversal, culling lanes " +
                                                std::to_string(VGEO_CULL_INSTANCE_LANES) + " and at most " +
@@ -264,6 +270,12 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
                       " (default: the renderer's; sweeps need " + std::to_string(VGEO_CULL_INSTANCE_LANES) + ")")
       ->check(CLI::IsMember({1u, uint32_t(VGEO_CULL_INSTANCE_LANES)}));
   addInstanceCullingOption(cmd, a->instanceCulling);
+  cmd->add_option(
+         "--raster", a->raster,
+         "Rasterizer of the listed triangles: auto (small ones in compute where the device has 64-bit "
+         "atomics, the rest in hardware), hardware, or software (every one in front of the near plane it can take)")
+      ->check(CLI::IsMember({"auto", "hardware", "software"}))
+      ->capture_default_str();
   cmd->callback([a, &exitCode] { exitCode = runRender(*a); });
 }
 

@@ -14,8 +14,11 @@
 #include "shaders/patch_tese.h"
 #include "shaders/patch_vert.h"
 #include "shaders/prepare_flat_comp.h"
+#include "shaders/raster_software_comp.h"
 #include "shaders/prepare_level_comp.h"
 #include "shaders/reset_flat_comp.h"
+#include "shaders/resolve_frag.h"
+#include "shaders/resolve_vert.h"
 #include "shaders/traverse_flat_comp.h"
 #include "shaders/traverse_level_comp.h"
 #include "shaders/traverse_persistent_comp.h"
@@ -122,10 +125,10 @@ void GpuRenderer::createTargets() {
   vkCheck(vkCreateFramebuffer(dev, &fb, nullptr, &framebuffer_), "vkCreateFramebuffer");
 }
 
-void GpuRenderer::createPipelines() {
+void GpuRenderer::createPipelines(bool softwareRaster) {
   createDescriptorSet();
-  createComputePipelines();
-  createDrawPipelines();
+  createComputePipelines(softwareRaster);
+  createDrawPipelines(softwareRaster);
 }
 
 // The one descriptor set of shaderio_frame.h's bindings, seen by every stage, and the pipeline layout.
@@ -162,7 +165,7 @@ void GpuRenderer::createDescriptorSet() {
   vkCheck(vkCreatePipelineLayout(dev, &layoutInfo, nullptr, &layout_), "vkCreatePipelineLayout");
 }
 
-void GpuRenderer::createComputePipelines() {
+void GpuRenderer::createComputePipelines(bool softwareRaster) {
   VkDevice dev = vk_.device();
   auto compute = [&](const uint32_t* code, size_t bytes, const VkSpecializationInfo* specialization = nullptr) {
     VkShaderModule module = vk_.createShaderModule(code, bytes);
@@ -198,11 +201,13 @@ void GpuRenderer::createComputePipelines() {
   finalize_ = compute(finalize_comp, sizeof(finalize_comp));
   cullTriangles_ = compute(cull_triangles_comp, sizeof(cull_triangles_comp));
   finalizeTriangles_ = compute(finalize_triangles_comp, sizeof(finalize_triangles_comp));
+  if (softwareRaster) rasterSoftware_ = compute(raster_software_comp, sizeof(raster_software_comp));
 }
 
-// The draw of listed triangles, its overdraw variant (every fragment adds, nothing hidden), and the same
-// two for patches where the device has tessellation shaders.
-void GpuRenderer::createDrawPipelines() {
+// The draw of listed triangles, its overdraw variant (every fragment adds, nothing hidden), the same two
+// for the resolve of the software rasterizer's pixels where it runs and for patches where the device has
+// tessellation shaders.
+void GpuRenderer::createDrawPipelines(bool softwareRaster) {
   VkDevice dev = vk_.device();
   VkShaderModule vert = vk_.createShaderModule(draw_vert, sizeof(draw_vert));
   VkShaderModule frag = vk_.createShaderModule(draw_frag, sizeof(draw_frag));
@@ -248,16 +253,34 @@ void GpuRenderer::createDrawPipelines() {
   info.pColorBlendState = &blendState;
   info.layout = layout_;
   info.renderPass = renderPass_;
-  vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &draw_), "vkCreateGraphicsPipelines");
-  // Overdraw: every fragment adds, nothing is hidden.
-  depth.depthTestEnable = VK_FALSE;
-  depth.depthWriteEnable = VK_FALSE;
-  blend.blendEnable = VK_TRUE;
   blend.srcColorBlendFactor = blend.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
   blend.srcAlphaBlendFactor = blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
   blend.colorBlendOp = blend.alphaBlendOp = VK_BLEND_OP_ADD;
-  vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &drawOverdraw_),
-          "vkCreateGraphicsPipelines");
+  // Each draw in two pipelines: the views that hide what lies behind (depth test and write), and the
+  // overdraw view (every fragment adds, nothing is hidden).
+  auto createViews = [&](const VkPipelineShaderStageCreateInfo* shaderStages, uint32_t count, VkPipeline& hidden,
+                         VkPipeline& overdraw, const char* what) {
+    info.stageCount = count;
+    info.pStages = shaderStages;
+    depth.depthTestEnable = depth.depthWriteEnable = VK_TRUE;
+    blend.blendEnable = VK_FALSE;
+    vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &hidden), what);
+    depth.depthTestEnable = depth.depthWriteEnable = VK_FALSE;
+    blend.blendEnable = VK_TRUE;
+    vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &overdraw), what);
+  };
+  createViews(stages, 2, draw_, drawOverdraw_, "vkCreateGraphicsPipelines");
+  // The resolve of the software rasterizer's pixels: a full-screen triangle.
+  if (softwareRaster) {
+    VkShaderModule resolveVert = vk_.createShaderModule(resolve_vert, sizeof(resolve_vert));
+    VkShaderModule resolveFrag = vk_.createShaderModule(resolve_frag, sizeof(resolve_frag));
+    VkPipelineShaderStageCreateInfo resolveStages[2] = {stages[0], stages[1]};
+    resolveStages[0].module = resolveVert;
+    resolveStages[1].module = resolveFrag;
+    createViews(resolveStages, 2, resolve_, resolveOverdraw_, "vkCreateGraphicsPipelines (resolve)");
+    vkDestroyShaderModule(dev, resolveVert, nullptr);
+    vkDestroyShaderModule(dev, resolveFrag, nullptr);
+  }
 
   // The patch draw: the same state, one control point a patch, tessellated (patch.tesc, patch.tese).
   // Without tessellation shaders on the device, leaves stay triangles.
@@ -277,16 +300,8 @@ void GpuRenderer::createDrawPipelines() {
     VkPipelineTessellationStateCreateInfo tessellation{VK_STRUCTURE_TYPE_PIPELINE_TESSELLATION_STATE_CREATE_INFO};
     tessellation.patchControlPoints = 1;
     assembly.topology = VK_PRIMITIVE_TOPOLOGY_PATCH_LIST;
-    info.stageCount = 4;
-    info.pStages = patchStages;
     info.pTessellationState = &tessellation;
-    vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &drawPatchesOverdraw_),
-            "vkCreateGraphicsPipelines (patches)");
-    depth.depthTestEnable = VK_TRUE;
-    depth.depthWriteEnable = VK_TRUE;
-    blend.blendEnable = VK_FALSE;
-    vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &drawPatches_),
-            "vkCreateGraphicsPipelines (patches)");
+    createViews(patchStages, 4, drawPatches_, drawPatchesOverdraw_, "vkCreateGraphicsPipelines (patches)");
     for (VkShaderModule m : {patchVert, tesc, tese}) vkDestroyShaderModule(dev, m, nullptr);
   }
   vkDestroyShaderModule(dev, vert, nullptr);

@@ -46,7 +46,7 @@ constexpr size_t kFewWorkgroupsInstances = 32768;
 // many (the count has no effect on the picture).
 constexpr uint32_t kLavapipePatchesPerInstance = 15, kPatchesPerInstance = 4096;
 // Frame start, then the end of instance culling, traversal, triangle culling and the draw.
-constexpr uint32_t kTimestamps = 5;
+constexpr uint32_t kTimestamps = 6;
 
 void globalBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags srcAccess, VkPipelineStageFlags dst,
                    VkAccessFlags dstAccess) {
@@ -125,6 +125,14 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
   workerProfile_ = vk_.createBuffer(16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
   countersReadback_ = vk_.createBuffer(sizeof(shaderio::Counters), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
   imageReadback_ = vk_.createBuffer(VkDeviceSize(width_) * height_ * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+  // The visibility buffer and the overdraw counts, a word or two a pixel (a placeholder where the software
+  // rasterizer cannot run: no 64-bit atomics, or a picture past one buffer's range).
+  const VkDeviceSize pixels = VkDeviceSize(width_) * height_;
+  const bool software = vk_.int64Atomics() && pixels * 8 <= range;
+  visibility_ = vk_.createBuffer(software ? pixels * 8 : 16,
+                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+  overdraw_ = vk_.createBuffer(software ? pixels * 4 : 16,
+                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
 
   if (vk_.isLavapipe()) {
     claimMode_ = 1;
@@ -150,7 +158,7 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
   }
   createTargets();
   createQueueAndDrawList();
-  createPipelines();
+  createPipelines(software);
   writeDescriptors();
   // Warm-up: one persistent dispatch over an empty queue (all workers leave at once). On lavapipe the
   // first dispatch of a pipeline also compiles it, and in that first run workers were measured to
@@ -183,9 +191,9 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
 GpuRenderer::~GpuRenderer() {
   VkDevice dev = vk_.device();
   vkDeviceWaitIdle(dev);
-  for (VkPipeline p :
-       {cull_, cullSerial_, persistent_, persistentProfile_, level_, prepareLevel_, flat_, prepareFlat_, resetFlat_,
-        finalize_, cullTriangles_, finalizeTriangles_, draw_, drawOverdraw_, drawPatches_, drawPatchesOverdraw_})
+  for (VkPipeline p : {cull_, cullSerial_, persistent_, persistentProfile_, level_, prepareLevel_, flat_, prepareFlat_,
+                       resetFlat_, finalize_, cullTriangles_, finalizeTriangles_, draw_, drawOverdraw_, drawPatches_,
+                       drawPatchesOverdraw_, rasterSoftware_, resolve_, resolveOverdraw_})
     vkDestroyPipeline(dev, p, nullptr);
   vkDestroyPipelineLayout(dev, layout_, nullptr);
   vkDestroyDescriptorPool(dev, descriptorPool_, nullptr);
@@ -201,7 +209,7 @@ GpuRenderer::~GpuRenderer() {
   vkFreeMemory(dev, colorMemory_, nullptr);
   vkFreeMemory(dev, depthMemory_, nullptr);
   for (Buffer* b : {&frameData_, &counters_, &countersReadback_, &queue_, &drawList_, &drawListReadback_,
-                    &imageReadback_, &triangleList_, &patchList_, &workerProfile_})
+                    &imageReadback_, &triangleList_, &patchList_, &workerProfile_, &visibility_, &overdraw_})
     vk_.destroyBuffer(*b);
   for (auto& [binding, b] : sceneBuffers_) vk_.destroyBuffer(b);
 }
@@ -215,6 +223,8 @@ void GpuRenderer::writeDescriptors() {
   buffers[VGEO_BINDING_TRIANGLE_LIST] = &triangleList_;
   buffers[VGEO_BINDING_PATCH_LIST] = &patchList_;
   buffers[VGEO_BINDING_WORKER_PROFILE] = &workerProfile_;
+  buffers[VGEO_BINDING_VISIBILITY] = &visibility_;
+  buffers[VGEO_BINDING_OVERDRAW] = &overdraw_;
   for (const auto& [binding, b] : sceneBuffers_) buffers[binding] = &b;
   for (uint32_t i = 0; i < kRendererBindings; i++)
     if (!buffers[i]) throw std::logic_error("binding " + std::to_string(i) + " has no buffer");
@@ -315,14 +325,30 @@ void GpuRenderer::recordTriangleCull(VkCommandBuffer cmd) {
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, finalizeTriangles_);
   vkCmdDispatch(cmd, 1, 1, 1);
   globalBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | drawShaderStages() | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | drawShaderStages() |
+                    VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                 VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
 }
 
+// 6. The software rasterizer: the visibility buffer (or the overdraw counts) cleared, then the triangles
+// binned to it drawn into it; read by the resolve at the start of the render pass.
+void GpuRenderer::recordSoftwareRaster(VkCommandBuffer cmd) {
+  vkCmdFillBuffer(cmd, visibility_.buffer, 0, VK_WHOLE_SIZE, 0);
+  vkCmdFillBuffer(cmd, overdraw_.buffer, 0, VK_WHOLE_SIZE, 0);
+  globalBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, rasterSoftware_);
+  vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, rasterDispatch));
+  globalBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+}
+
 void GpuRenderer::recordDraw(VkCommandBuffer cmd, const FrameSettings& settings) {
-  // 6. One indirect draw.
+  // 7. The render pass: the resolve of the software rasterizer's pixels, one indirect draw of the listed
+  // triangles, one of the patches.
   if (settings.draw) recordRenderPass(cmd, settings);
-  // 7. Copies back.
+  // 8. Copies back.
   VkBufferCopy all{0, 0, sizeof(shaderio::Counters)};
   vkCmdCopyBuffer(cmd, counters_.buffer, countersReadback_.buffer, 1, &all);
   if (settings.readImage && settings.draw) {
@@ -352,8 +378,13 @@ void GpuRenderer::recordRenderPass(VkCommandBuffer cmd, const FrameSettings& set
   const bool patches = drawsPatches(settings);
   if (patches && statistics_) vkCmdResetQueryPool(cmd, statistics_, 0, 1);
   vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, settings.mode == VGEO_MODE_OVERDRAW ? drawOverdraw_ : draw_);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
+  if (softwareRaster(settings) != VGEO_RASTER_NONE) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                      settings.mode == VGEO_MODE_OVERDRAW ? resolveOverdraw_ : resolve_);
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+  }
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, settings.mode == VGEO_MODE_OVERDRAW ? drawOverdraw_ : draw_);
   vkCmdDrawIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, draw), 1, sizeof(VkDrawIndirectCommand));
   // The leaf patches: one more indirect draw, tessellated (patch.tesc, patch.tese).
   if (patches) {
@@ -394,6 +425,7 @@ shaderio::FrameData GpuRenderer::frameConstants(const FrameSettings& settings) c
   frame.patches = drawsPatches(settings) ? 1u : 0u;
   frame.patchesPerInstance = vk_.isLavapipe() ? kLavapipePatchesPerInstance : kPatchesPerInstance;
   frame.patchCapacity = patchCapacity_;
+  frame.softwareRaster = softwareRaster(settings);
   return frame;
 }
 
@@ -435,6 +467,8 @@ void GpuRenderer::runPasses(const FrameSettings& settings, const shaderio::Frame
     result.instanceCullMs = timed([&](VkCommandBuffer cmd) { recordInstanceCull(cmd, settings); });
     result.traversalMs = timed([&](VkCommandBuffer cmd) { recordTraversal(cmd, settings); });
     if (frame.triangleCull != 0u) result.triangleCullMs = timed([&](VkCommandBuffer cmd) { recordTriangleCull(cmd); });
+    if (frame.softwareRaster != VGEO_RASTER_NONE)
+      result.rasterMs = timed([&](VkCommandBuffer cmd) { recordSoftwareRaster(cmd); });
     result.drawMs = timed([&](VkCommandBuffer cmd) { recordDraw(cmd, settings); });
     result.frameMs = msSince(start);
   } else {
@@ -448,8 +482,10 @@ void GpuRenderer::runPasses(const FrameSettings& settings, const shaderio::Frame
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 2);
     if (frame.triangleCull != 0u) recordTriangleCull(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 3);
-    recordDraw(cmd, settings);
+    if (frame.softwareRaster != VGEO_RASTER_NONE) recordSoftwareRaster(cmd);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 4);
+    recordDraw(cmd, settings);
+    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 5);
     vk_.submitAndWait(cmd);
     uint64_t t[kTimestamps];
     vkCheck(vkGetQueryPoolResults(vk_.device(), queries_, 0, kTimestamps, sizeof(t), t, sizeof(uint64_t),
@@ -459,8 +495,9 @@ void GpuRenderer::runPasses(const FrameSettings& settings, const shaderio::Frame
     result.instanceCullMs = ms(0, 1);
     result.traversalMs = ms(1, 2);
     result.triangleCullMs = ms(2, 3);
-    result.drawMs = ms(3, 4);
-    result.frameMs = ms(0, 4);
+    result.rasterMs = ms(3, 4);
+    result.drawMs = ms(4, 5);
+    result.frameMs = ms(0, 5);
   }
 }
 
@@ -472,6 +509,7 @@ void GpuRenderer::readResults(const FrameSettings& settings, const shaderio::Fra
   const auto& c = result.counters;
   const bool patches = frame.patches != 0u, cullTriangles = frame.triangleCull != 0u;
   lastCullItems_ = settings.traversal == Traversal::Persistent ? c.cullItems : 0u;
+  result.softwareTriangles = std::min(c.softwareTriangles, triangleCapacity_);
   result.trianglesDrawn = cullTriangles ? std::min(c.trianglesDrawn, triangleCapacity_) : c.triangles;
   result.patchesDrawn = std::min(c.patchesDrawn, patchCapacity_);
   if (patches && statistics_) {

@@ -22,6 +22,11 @@ constexpr uint32_t kDefaultSweepBudget = 1u << 18;
 
 enum class InstanceCulling { Auto, Pass, InTraversal };
 
+// Which rasterizer draws a listed triangle (shaderio_frame.h, VGEO_RASTER_*): Auto small ones in software
+// where the device has 64-bit buffer atomics, Hardware all in the hardware draw, Software every one the
+// software rasterizer can take (the rest, crossing the near plane or large, in hardware).
+enum class Raster { Auto, Hardware, Software };
+
 // What a frame's growing lists (queue, draw list, triangle list, patch list) may take together unless
 // set otherwise (GpuRenderer::setFrameMemoryLimit): a cut that needs more stops the frame with a
 // FrameMemoryError instead of growing without end (a tau of 1e-9 over a large scene asks for every leaf).
@@ -50,19 +55,22 @@ struct FrameSettings {
   // instance (a run of clusters tested at once, one step) instead of walking their subtrees (a chain of
   // dependent steps); claimed level by level in instance culling until spent. 0: never sweep.
   uint32_t sweepBudget = kDefaultSweepBudget;
-  bool profileWorkers = false;  // persistent traversal on a device with a shader device clock: record the
-                                // workers' iterations in FrameResult::workerProfile (benchmarks)
+  Raster raster = Raster::Auto;  // with triangleCull
+  bool profileWorkers = false;   // persistent traversal on a device with a shader device clock: record the
+                                 // workers' iterations in FrameResult::workerProfile (benchmarks)
 };
 
 struct FrameResult {
   shaderio::Counters counters{};
-  uint32_t trianglesDrawn = 0;     // sent to the rasterizer: after triangle culling, else the cut's triangles
+  uint32_t trianglesDrawn = 0;     // sent to the rasterizers: after triangle culling, else the cut's triangles
+  uint32_t softwareTriangles = 0;  // of those, drawn by the software rasterizer
   uint32_t patchesDrawn = 0;       // patches in the tessellated draw
   int64_t patchTriangles = -1;     // triangles the tessellator made of them (-1: no pipeline statistics)
   std::vector<CutEntry> drawList;  // when readDrawList
   std::vector<uint8_t> rgba;       // when readImage: width x height x 4
   bool culledInTraversal = false;  // the persistent traversal culled the instances (instanceCullMs: the reset)
-  double instanceCullMs = 0.0, traversalMs = 0.0, triangleCullMs = 0.0, drawMs = 0.0, frameMs = 0.0;
+  // The passes' times; drawMs is the render pass (resolve, hardware draws), rasterMs the software rasterizer.
+  double instanceCullMs = 0.0, traversalMs = 0.0, triangleCullMs = 0.0, rasterMs = 0.0, drawMs = 0.0, frameMs = 0.0;
   std::string timing;                   // "gpu-timestamps" or "host-per-submission"
   std::vector<uint32_t> workerProfile;  // when profiled: VGEO_PROFILE_WORKER_WORDS words a workgroup (shaderio.h)
   bool complete = true;                 // no overflow and the traversal drained its queue
@@ -116,10 +124,10 @@ class GpuRenderer {
 
  private:
   void createTargets();
-  void createPipelines();
+  void createPipelines(bool softwareRaster);
   void createDescriptorSet();
-  void createComputePipelines();
-  void createDrawPipelines();
+  void createComputePipelines(bool softwareRaster);
+  void createDrawPipelines(bool softwareRaster);
   void createQueueAndDrawList();
   void writeDescriptors();
   // renderFrame's steps, in order (gpu_renderer.cpp).
@@ -142,6 +150,7 @@ class GpuRenderer {
   }
   void recordTraversal(VkCommandBuffer cmd, const FrameSettings& settings);
   void recordTriangleCull(VkCommandBuffer cmd);
+  void recordSoftwareRaster(VkCommandBuffer cmd);
   void recordDraw(VkCommandBuffer cmd, const FrameSettings& settings);
   void recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings);
   VkPipelineStageFlags drawShaderStages() const;
@@ -149,7 +158,18 @@ class GpuRenderer {
   bool drawsPatches(const FrameSettings& s) const {
     return s.draw && s.triangleCull && s.patches && drawPatches_ != VK_NULL_HANDLE;
   }
+  // The frame's VGEO_RASTER_* (triangle culling bins the triangles).
+  uint32_t softwareRaster(const FrameSettings& s) const {
+    if (!s.draw || !s.triangleCull || rasterSoftware_ == VK_NULL_HANDLE || s.raster == Raster::Hardware)
+      return VGEO_RASTER_NONE;
+    return s.raster == Raster::Software ? VGEO_RASTER_ALL : VGEO_RASTER_SMALL;
+  }
 
+ public:
+  // Whether the device runs the software rasterizer (64-bit buffer atomics).
+  bool hasSoftwareRaster() const { return rasterSoftware_ != VK_NULL_HANDLE; }
+
+ private:
   VulkanContext& vk_;
   const RenderScene& scene_;
   uint32_t width_, height_;
@@ -161,7 +181,7 @@ class GpuRenderer {
       << 20;  // the last frame's counters.cullItems: sizes the persistent traversal's first claim
 
   Buffer frameData_, counters_, countersReadback_, queue_, drawList_, drawListReadback_, imageReadback_, triangleList_,
-      patchList_,
+      patchList_, visibility_, overdraw_,
       workerProfile_;                                      // host-visible; a placeholder until a frame is profiled
   std::vector<std::pair<uint32_t, Buffer>> sceneBuffers_;  // the scene's arrays, uploaded once, by binding
   VkImage color_ = VK_NULL_HANDLE, depth_ = VK_NULL_HANDLE;
@@ -178,7 +198,8 @@ class GpuRenderer {
              flat_ = VK_NULL_HANDLE, prepareFlat_ = VK_NULL_HANDLE, resetFlat_ = VK_NULL_HANDLE,
              finalize_ = VK_NULL_HANDLE, draw_ = VK_NULL_HANDLE, cullTriangles_ = VK_NULL_HANDLE,
              finalizeTriangles_ = VK_NULL_HANDLE, drawOverdraw_ = VK_NULL_HANDLE, drawPatches_ = VK_NULL_HANDLE,
-             drawPatchesOverdraw_ = VK_NULL_HANDLE;
+             drawPatchesOverdraw_ = VK_NULL_HANDLE, rasterSoftware_ = VK_NULL_HANDLE, resolve_ = VK_NULL_HANDLE,
+             resolveOverdraw_ = VK_NULL_HANDLE;
   VkQueryPool queries_ = VK_NULL_HANDLE;
   VkQueryPool statistics_ = VK_NULL_HANDLE;  // clipping invocations of the patch draw (its triangles)
 };

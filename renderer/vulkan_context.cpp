@@ -224,10 +224,22 @@ void VulkanContext::createDevice() {
     vkGetPhysicalDeviceFeatures2(physical_, &features2);
     deviceClock_ = clock.shaderDeviceClock == VK_TRUE;
   }
+  // 64-bit buffer atomics, where there are, for the visibility buffer (raster_software.comp).
+  VkPhysicalDeviceVulkan12Features vulkan12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  {
+    VkPhysicalDeviceFeatures2 features2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    features2.pNext = &vulkan12;
+    vkGetPhysicalDeviceFeatures2(physical_, &features2);
+    int64Atomics_ = supported.shaderInt64 && vulkan12.shaderBufferInt64Atomics;
+    vulkan12 = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    vulkan12.shaderBufferInt64Atomics = int64Atomics_;
+    enabled.shaderInt64 = int64Atomics_;
+  }
   const char* clockExtension = VK_KHR_SHADER_CLOCK_EXTENSION_NAME;
   VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+  deviceInfo.pNext = &vulkan12;
   if (deviceClock_) {  // `clock` holds the supported features: enabled as they are
-    deviceInfo.pNext = &clock;
+    vulkan12.pNext = &clock;
     deviceInfo.enabledExtensionCount = 1;
     deviceInfo.ppEnabledExtensionNames = &clockExtension;
   }

@@ -11,15 +11,22 @@
 // A face whose tessellation factors are all 1 (patch_factors.glsl: small on screen, or flat enough)
 // would be drawn as its two corner triangles anyway: its leaf triangles join the triangle list instead,
 // so the patch list holds only faces that gain from tessellation (about one a few pixels at most).
+// A triangle that stays is binned: to the hardware draw (listed from the triangle list's start) or, when
+// all its corners are in front of the near plane and it is small on screen (raster_setup.glsl), to the
+// software rasterizer (listed from the end, raster_software.comp). finalize_triangles.comp counts an
+// overflow when the two meet.
 // None of these changes the picture: they keep the rasterizer from setting up triangles that make no
 // fragment, which is where the time of a virtual-geometry frame goes once clusters are small on
 // screen (docs/gpu-notes.md, 6 and 10). The cut itself (the draw list) is untouched.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 #include "patch_factors.glsl"
+#include "raster_setup.glsl"
 layout(local_size_x = VGEO_MAX_CLUSTER_TRIANGLES) in;
 
-shared uint sKept, sBase, sKeptTriangles, sBaseTriangles;
+shared uint sKept, sBase, sKeptTriangles, sBaseTriangles, sSoftware, sBaseSoftware;
+
+const uint kCulled = 0u, kHardware = 1u, kSoftware = 2u;
 
 // Rasterizers snap corners to 1/256 pixel or finer; this slack keeps every triangle the snapped
 // corners could make cover a pixel centre.
@@ -29,13 +36,12 @@ bool noPixelCentre(float lo, float hi) {
   return ceil(lo - 0.5 - kPixelSlack) > floor(hi - 0.5 + kPixelSlack);
 }
 
-bool visible(Instance inst, Cluster c, uint triangle) {
-  uint packed = clusterTriangles[c.triangleOffset + triangle];
+// kCulled, or the rasterizer that draws the triangle.
+uint binTriangle(Instance inst, Cluster c, uint triangle) {
   vec3 world[3];
   vec4 clip[3];
   for (uint k = 0u; k < 3u; k++) {
-    uint vertex = clusterVertices[c.vertexOffset + ((packed >> (8u * k)) & 0xffu)];
-    world[k] = instanceToWorld(inst, vertexPosition(vertex));
+    world[k] = instanceToWorld(inst, vertexPosition(triangleVertex(c, triangle, k)));
     clip[k] = frame.viewProjection * vec4(world[k], 1.0);
   }
   // Outside one plane of the view volume (-w <= x, y <= w; the near plane is z <= w; reversed infinite
@@ -45,21 +51,19 @@ bool visible(Instance inst, Cluster c, uint triangle) {
       all(greaterThan(vec3(clip[0].y, clip[1].y, clip[2].y), vec3(clip[0].w, clip[1].w, clip[2].w))) ||
       all(lessThan(vec3(clip[0].y, clip[1].y, clip[2].y), -vec3(clip[0].w, clip[1].w, clip[2].w))) ||
       all(greaterThan(vec3(clip[0].z, clip[1].z, clip[2].z), vec3(clip[0].w, clip[1].w, clip[2].w))))
-    return false;
+    return kCulled;
   if ((inst.flags & VGEO_INSTANCE_CONE_CULL) != 0u) {
     // World-space winding; a mirroring transform (negative determinant) reverses it.
     float det = dot(inst.row0.xyz, cross(inst.row1.xyz, inst.row2.xyz));
     vec3 n = cross(world[1] - world[0], world[2] - world[0]) * sign(det);
-    if (dot(n, world[0] - frame.drawEye.xyz) > 0.0) return false;
+    if (dot(n, world[0] - frame.drawEye.xyz) > 0.0) return kCulled;
   }
-  // A corner on or behind the near plane cannot be projected: keep the triangle (the rasterizer clips).
-  if (clip[0].z > clip[0].w || clip[1].z > clip[1].w || clip[2].z > clip[2].w) return true;
-  vec2 viewport = vec2(frame.viewportWidth, frame.viewportHeight);
-  vec2 p0 = (clip[0].xy / clip[0].w * 0.5 + 0.5) * viewport;
-  vec2 p1 = (clip[1].xy / clip[1].w * 0.5 + 0.5) * viewport;
-  vec2 p2 = (clip[2].xy / clip[2].w * 0.5 + 0.5) * viewport;
+  // A corner on or behind the near plane cannot be projected: the hardware clips the triangle.
+  if (clip[0].z >= clip[0].w || clip[1].z >= clip[1].w || clip[2].z >= clip[2].w) return kHardware;
+  vec2 p0 = screenPosition(clip[0]), p1 = screenPosition(clip[1]), p2 = screenPosition(clip[2]);
   vec2 lo = min(p0, min(p1, p2)), hi = max(p0, max(p1, p2));
-  return !(noPixelCentre(lo.x, hi.x) || noPixelCentre(lo.y, hi.y));
+  if (noPixelCentre(lo.x, hi.x) || noPixelCentre(lo.y, hi.y)) return kCulled;
+  return softwareRasterTakes(lo, hi) ? kSoftware : kHardware;
 }
 
 bool faceVisible(Instance inst, uint face) {
@@ -69,6 +73,34 @@ bool faceVisible(Instance inst, uint face) {
   vec3 centre = 0.25 * (corner[0] + corner[1] + corner[2] + corner[3]);
   float radius = max(max(distance(centre, corner[0]), distance(centre, corner[1])), max(distance(centre, corner[2]), distance(centre, corner[3])));
   return sphereInFrustum(vec4(centre, radius + patches[face].faceError * inst.maxScale));
+}
+
+// Lists this lane's triangles first + k with bins[k] != kCulled (k < 2) in the triangle list, hardware
+// ones from its start and software ones from its end, with one reservation of each kind a workgroup.
+// Called by the whole workgroup (barriers).
+void listTriangles(uint entry, uint first, uint bins[2]) {
+  uint hardware = uint(bins[0] == kHardware) + uint(bins[1] == kHardware);
+  uint software = uint(bins[0] == kSoftware) + uint(bins[1] == kSoftware);
+  uint hardwareSlot = hardware > 0u ? atomicAdd(sKeptTriangles, hardware) : 0u;
+  uint softwareSlot = software > 0u ? atomicAdd(sSoftware, software) : 0u;
+  barrier();
+  if (gl_LocalInvocationIndex == 0u) {
+    sBaseTriangles = sKeptTriangles == 0u ? 0u : atomicAdd(counters.hardwareTriangles, sKeptTriangles);
+    sBaseSoftware = sSoftware == 0u ? 0u : atomicAdd(counters.softwareTriangles, sSoftware);
+  }
+  barrier();
+  hardwareSlot += sBaseTriangles;
+  softwareSlot += sBaseSoftware;
+  for (uint k = 0u; k < 2u; k++) {
+    uint word = entry << VGEO_TRIANGLE_BITS | (first + k);
+    if (bins[k] == kHardware) {
+      if (hardwareSlot < frame.triangleCapacity) triangleList[hardwareSlot] = word;
+      hardwareSlot++;
+    } else if (bins[k] == kSoftware) {
+      if (softwareSlot < frame.triangleCapacity) triangleList[frame.triangleCapacity - 1u - softwareSlot] = word;
+      softwareSlot++;
+    }
+  }
 }
 
 // The faces of a patch-drawn cluster that may be seen join the patch list, or, when they need no
@@ -87,28 +119,18 @@ void listPatches(uint entry, Instance inst, Cluster c) {
     triangles = tessellate ? 0u : f.vertexCount - 2u;
   }
   uint slot = tessellate ? atomicAdd(sKept, 1u) : 0u;
-  bool keepTriangle[2] = bool[2](triangles > 0u && visible(inst, c, firstTriangle), triangles > 1u && visible(inst, c, firstTriangle + 1u));
-  uint kept = uint(keepTriangle[0]) + uint(keepTriangle[1]);
-  uint triangleSlot = kept > 0u ? atomicAdd(sKeptTriangles, kept) : 0u;
-  barrier();
+  uint bins[2] = uint[2](triangles > 0u ? binTriangle(inst, c, firstTriangle) : kCulled,
+                         triangles > 1u ? binTriangle(inst, c, firstTriangle + 1u) : kCulled);
+  listTriangles(entry, firstTriangle, bins);
   if (gl_LocalInvocationIndex == 0u) {
     sBase = sKept == 0u ? 0u : atomicAdd(counters.patchesDrawn, sKept);
     uint end = sBase + sKept;
     if (end > frame.patchCapacity) atomicAdd(counters.patchOverflow, min(sKept, end - frame.patchCapacity));
     if (sKept > 0u) atomicAdd(counters.patchClusters, 1u);
-    sBaseTriangles = sKeptTriangles == 0u ? 0u : atomicAdd(counters.trianglesDrawn, sKeptTriangles);
-    end = sBaseTriangles + sKeptTriangles;
-    if (end > frame.triangleCapacity) atomicAdd(counters.triangleOverflow, min(sKeptTriangles, end - frame.triangleCapacity));
   }
   barrier();
   slot += sBase;
   if (tessellate && slot < frame.patchCapacity) patchList[slot] = entry << VGEO_TRIANGLE_BITS | local;
-  triangleSlot += sBaseTriangles;
-  for (uint k = 0u; k < 2u; k++) {
-    if (!keepTriangle[k]) continue;
-    if (triangleSlot < frame.triangleCapacity) triangleList[triangleSlot] = entry << VGEO_TRIANGLE_BITS | (firstTriangle + k);
-    triangleSlot++;
-  }
 }
 
 void main() {
@@ -117,6 +139,7 @@ void main() {
   if (gl_LocalInvocationIndex == 0u) {
     sKept = 0u;
     sKeptTriangles = 0u;
+    sSoftware = 0u;
   }
   barrier();
   uint instance = drawList[2u * entry], cluster = drawList[2u * entry + 1u];
@@ -126,15 +149,6 @@ void main() {
     return;
   }
   uint triangle = gl_LocalInvocationIndex;
-  bool keep = triangle < clusterTriangleCount(c.counts) && visible(instances[instance], c, triangle);
-  uint slot = keep ? atomicAdd(sKept, 1u) : 0u;
-  barrier();
-  if (gl_LocalInvocationIndex == 0u) {
-    sBase = sKept == 0u ? 0u : atomicAdd(counters.trianglesDrawn, sKept);
-    uint end = sBase + sKept;
-    if (end > frame.triangleCapacity) atomicAdd(counters.triangleOverflow, min(sKept, end - frame.triangleCapacity));
-  }
-  barrier();
-  slot += sBase;
-  if (keep && slot < frame.triangleCapacity) triangleList[slot] = entry << VGEO_TRIANGLE_BITS | triangle;
+  uint bins[2] = uint[2](triangle < clusterTriangleCount(c.counts) ? binTriangle(instances[instance], c, triangle) : kCulled, kCulled);
+  listTriangles(entry, triangle, bins);
 }

@@ -6,6 +6,8 @@
 // cluster's triangle. Slots past the end collapse to a point outside the clip volume.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
+#include "raster_setup.glsl"
+#include "shade.glsl"
 
 layout(location = 0) out vec3 outNormal;
 layout(location = 1) out vec3 outBarycentric;
@@ -17,7 +19,7 @@ void main() {
   uint entry = uint(gl_InstanceIndex), triangle = uint(gl_VertexIndex) / 3u, corner = uint(gl_VertexIndex) % 3u;
   if (frame.triangleCull != 0u) {
     uint slot = uint(gl_InstanceIndex) * VGEO_MAX_CLUSTER_TRIANGLES + triangle;
-    if (slot >= min(counters.trianglesDrawn, frame.triangleCapacity)) {
+    if (slot >= min(counters.hardwareTriangles, frame.triangleCapacity)) {
       gl_Position = vec4(0.0, 0.0, 2.0, 1.0);
       return;
     }
@@ -38,17 +40,11 @@ void main() {
     outInfo = vec2(0.0);
     return;
   }
-  uint local = (clusterTriangles[c.triangleOffset + triangle] >> (8u * corner)) & 0xffu;
-  uint vertex = clusterVertices[c.vertexOffset + local];
+  uint vertex = triangleVertex(c, triangle, corner);
   Instance inst = instances[instance];
   gl_Position = clipPosition(inst, vertexPosition(vertex));
   vec3 n = decodeNormal(normals[vertex]);
   outNormal = normalToWorld(inst, n);
 
-  float self = projectedErrorWorld(inst, c.selfSphere, c.selfError);
-  // Frozen-diff: would the live (draw) camera pick this cluster too? 0 yes, 1 it wants finer, 2 coarser.
-  float liveSelf = projectedError(worldSphere(inst, c.selfSphere), c.selfError * inst.maxScale, frame.drawEye.xyz, frame.projScale, frame.znear);
-  float liveParent = projectedError(worldSphere(inst, c.parentSphere), c.parentError * inst.maxScale, frame.drawEye.xyz, frame.projScale, frame.znear);
-  float state = liveSelf > frame.tau ? 1.0 : (liveParent <= frame.tau ? 2.0 : 0.0);
-  outInfo = vec2(frame.mode == VGEO_MODE_PATCH ? -1.0 : self / frame.tau, state);
+  outInfo = clusterViewInfo(inst, c);
 }

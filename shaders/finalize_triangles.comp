@@ -1,13 +1,23 @@
 #version 450
-// finalize_triangles.comp: one thread, after triangle culling: the indirect draw of the listed
-// triangles (never more than the triangle list holds) as instances of 128 triangles (draw.vert), and
-// the tessellated draw of the listed patches, one vertex (patch) each (patch.tesc).
+// finalize_triangles.comp: one thread, after triangle culling: the overflow of the triangle list (its
+// hardware part from the start and its software part from the end met), the indirect draw of the listed
+// hardware triangles as instances of 128 triangles (draw.vert), the software rasterizer's dispatch
+// (raster_software.comp, 64 triangles a workgroup), and the tessellated draw of the listed patches, one
+// vertex (patch) each (patch.tesc).
 #extension GL_GOOGLE_include_directive : require
 layout(local_size_x = 1) in;
 #include "common.glsl"
 
 void main() {
-  uint listed = min(counters.trianglesDrawn, frame.triangleCapacity);
+  uint hardware = counters.hardwareTriangles, software = counters.softwareTriangles;
+  counters.trianglesDrawn = hardware + software;
+  if (hardware + software > frame.triangleCapacity) counters.triangleOverflow = hardware + software - frame.triangleCapacity;
+  uint listed = min(hardware, frame.triangleCapacity);
+  uint groups = (min(software, frame.triangleCapacity) + 63u) / 64u;
+  counters.rasterDispatch[0] = min(groups, 65535u);
+  counters.rasterDispatch[1] = (groups + 65534u) / 65535u;
+  counters.rasterDispatch[2] = 1u;
+  counters.rasterDispatch[3] = 0u;
   counters.draw[0] = 3u * VGEO_MAX_CLUSTER_TRIANGLES;
   counters.draw[1] = (listed + VGEO_MAX_CLUSTER_TRIANGLES - 1u) / VGEO_MAX_CLUSTER_TRIANGLES;
   counters.draw[2] = 0u;

@@ -87,7 +87,9 @@ VGEO_NAMESPACE_BEGIN
 #define VGEO_BINDING_WORKER_PROFILE 21
 #define VGEO_BINDING_LEVEL_CLUSTER_RUNS 22
 #define VGEO_BINDING_INSTANCE_ROOTS 23
-#define VGEO_BINDING_COUNT 24
+#define VGEO_BINDING_VISIBILITY 24
+#define VGEO_BINDING_OVERDRAW 25
+#define VGEO_BINDING_COUNT 26
 
 // Per-frame constants (a uniform buffer). The cull camera selects the cut and culls; the draw camera
 // makes the picture. They differ only with --freeze-camera.
@@ -122,8 +124,30 @@ struct FrameData {
                             // counters.nodesPending at frame.instanceCount
   uint patchesPerInstance;  // the patch draw: instances of this many patches (patch.vert), so that no run of
                             // lavapipe's tessellator outputs more vertices than its 16-bit indices address
-  uint framePad[3];
+  uint softwareRaster;      // VGEO_RASTER_*: which listed triangles raster_software.comp draws
+  uint framePad[2];
 };
+
+// The software rasterizer (raster_software.comp) takes the triangles triangle culling bins to it:
+// VGEO_RASTER_SMALL those whose screen box spans at most VGEO_SOFTWARE_RASTER_MAX_PIXELS pixels each way
+// (thread-per-triangle setup beats the hardware's for triangles of a few pixels; larger ones keep the
+// hardware's parallel coverage), VGEO_RASTER_ALL every triangle it can take (in front of the near plane and
+// inside its guard band, with a box of at most VGEO_SOFTWARE_RASTER_MAX_AREA pixels: one invocation
+// walks the box, and lavapipe ends a loop past 65,535 iterations, docs/gpu-notes.md 1; tests compare the
+// two paths with it), VGEO_RASTER_NONE none.
+#define VGEO_RASTER_NONE 0u
+#define VGEO_RASTER_SMALL 1u
+#define VGEO_RASTER_ALL 2u
+#define VGEO_SOFTWARE_RASTER_MAX_PIXELS 8.0f
+#define VGEO_SOFTWARE_RASTER_MAX_AREA 32768.0f
+// Corners snap to 1/VGEO_SUBPIXEL_SCALE pixel, as the hardware's 8 subpixel bits do, and must stay within
+// VGEO_RASTER_GUARD_BAND pixels of the viewport for the software path.
+#define VGEO_SUBPIXEL_SCALE 256.0f
+#define VGEO_RASTER_GUARD_BAND 16384.0f
+// The visibility buffer (VGEO_BINDING_VISIBILITY): one 64-bit word a pixel, the depth's float bits
+// (reversed depth: larger is nearer) high and the triangle-list word of the triangle (draw-list entry
+// << VGEO_TRIANGLE_BITS | triangle) low, so that atomicMax keeps the nearest; 0 is empty. The overdraw
+// buffer (VGEO_BINDING_OVERDRAW) counts the software path's samples a pixel in --mode overdraw.
 
 // GPU counters of one frame, and the indirect arguments built from them. The counters the persistent
 // traversal's workers hit all the time each have a 128-byte line of their own (atomics on one line are
@@ -148,20 +172,24 @@ struct Counters {
   uint triangles;   // triangles of the listed clusters
   uint levelStart;  // levels traversal: the window of the queue processed by one dispatch
   uint levelEnd;
-  uint queueHighWater;    // largest queueWrite seen
-  uint workgroupsExited;  // persistent traversal: workers that left
-  uint budgetExits;       // of those, left on the iteration budget (lavapipe)
-  uint dispatch[4];       // indirect dispatch arguments (x, y, z): levels and flat traversal, triangle culling
-  uint draw[4];           // VkDrawIndirectCommand
-  uint trianglesDrawn;    // triangles that survived triangle culling (requested; see triangleOverflow)
-  uint triangleOverflow;  // triangles that did not fit the triangle list
-  uint patchesDrawn;      // patches listed for the tessellated draw (requested; see patchOverflow)
-  uint patchOverflow;     // patches that did not fit the patch list
-  uint patchClusters;     // draw-list entries drawn as patches
-  uint patchDraw[4];      // VkDrawIndirectCommand of the patch draw (one vertex a patch)
-  uint sweepTests;        // cluster tests claimed for sweeps (may pass frame.sweepBudget: then not swept)
-  uint sweptTests;        // of those, swept
-  uint cullItems;         // queue items instance culling wrote: sizes the next frame's first claim
+  uint queueHighWater;     // largest queueWrite seen
+  uint workgroupsExited;   // persistent traversal: workers that left
+  uint budgetExits;        // of those, left on the iteration budget (lavapipe)
+  uint dispatch[4];        // indirect dispatch arguments (x, y, z): levels and flat traversal, triangle culling
+  uint draw[4];            // VkDrawIndirectCommand
+  uint trianglesDrawn;     // triangles that survived triangle culling (requested; see triangleOverflow)
+  uint triangleOverflow;   // triangles that did not fit the triangle list
+  uint patchesDrawn;       // patches listed for the tessellated draw (requested; see patchOverflow)
+  uint patchOverflow;      // patches that did not fit the patch list
+  uint patchClusters;      // draw-list entries drawn as patches
+  uint patchDraw[4];       // VkDrawIndirectCommand of the patch draw (one vertex a patch)
+  uint sweepTests;         // cluster tests claimed for sweeps (may pass frame.sweepBudget: then not swept)
+  uint sweptTests;         // of those, swept
+  uint cullItems;          // queue items instance culling wrote: sizes the next frame's first claim
+  uint hardwareTriangles;  // of trianglesDrawn, those for the hardware draw, listed from the triangle list's start
+  uint softwareTriangles;  // of trianglesDrawn, those for the software rasterizer, listed from its end
+  uint rasterDispatch[4];  // indirect dispatch of raster_software.comp
+  uint counterPad[2];
 };
 
 // Triangle list entry: draw-list entry << 7 | triangle within its cluster. Patch list entry: draw-list
@@ -173,7 +201,7 @@ struct Counters {
 
 #ifdef __cplusplus
 static_assert(sizeof(FrameData) == 64 + 96 + 32 + 96, "FrameData layout");
-static_assert(sizeof(Counters) == 5 * 128, "Counters layout");
+static_assert(sizeof(Counters) == 5 * 128 + 32, "Counters layout");
 static_assert(offsetof(Counters, itemsDone) == 4 * 128, "Counters: the hot words on lines of their own");
 #endif
 

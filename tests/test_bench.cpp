@@ -49,20 +49,34 @@ TEST(BenchFrame, SplitsTheFrameWithAndWithoutTriangleCullingAndPatches) {
   writeVgeo(test::build(test::asset("horned_cube.obj"), 2), dir + "/h.vgeo");
   nlohmann::json records = benchRecords(
       "frame " + dir + "/h.vgeo --grids 1,3 --sizes 160x120 --cameras corner,surface --frames 1", dir + "/frame.json");
-  ASSERT_EQ(records.size(), 2u * 2u * 3u);  // grids x cameras x (patches, triangle culling only, neither)
-  for (size_t i = 0; i < records.size(); i += 3) {
-    const auto &patches = records[i], &on = records[i + 1], &off = records[i + 2];
-    for (const char* key :
-         {"instance_culling", "instance_cull_ms", "traversal_ms", "triangle_cull_ms", "draw_ms", "frame_ms",
-          "pixels_covered", "patches_drawn", "patch_triangles", "patch_pixels", "device", "commit"})
+  // grids x cameras x (each of --rasters auto,hardware: patches, triangle culling only; then neither)
+  constexpr size_t kVariants = 5;
+  ASSERT_EQ(records.size(), 2u * 2u * kVariants);
+  uint64_t softwareTriangles = 0;
+  for (size_t i = 0; i < records.size(); i += kVariants) {
+    const auto &patches = records[i], &on = records[i + 1], &hardwarePatches = records[i + 2],
+               &hardwareOn = records[i + 3], &off = records[i + 4];
+    for (const char* key : {"instance_culling", "instance_cull_ms", "traversal_ms", "triangle_cull_ms", "raster_ms",
+                            "draw_ms", "frame_ms", "pixels_covered", "patches_drawn", "patch_triangles", "patch_pixels",
+                            "software_triangles", "device", "commit"})
       EXPECT_TRUE(patches.contains(key)) << key;
     EXPECT_TRUE(patches["patches"].get<bool>() && patches["triangle_cull"].get<bool>());
     EXPECT_TRUE(on["triangle_cull"].get<bool>() && !on["patches"].get<bool>());
     EXPECT_FALSE(off["triangle_cull"].get<bool>() || off["patches"].get<bool>());
+    EXPECT_EQ(patches["raster"], "auto");
+    EXPECT_EQ(hardwareOn["raster"], "hardware");
     EXPECT_EQ(on["visible_clusters"], off["visible_clusters"]);
     EXPECT_EQ(patches["visible_clusters"], on["visible_clusters"]);
     EXPECT_EQ(off["triangles_drawn"], off["triangles"]);
     EXPECT_LT(on["triangles_drawn"].get<uint64_t>(), on["triangles"].get<uint64_t>());
+    // The rasterizer changes where a triangle goes, not which are drawn, nor how many pixels they cover.
+    EXPECT_EQ(on["triangles_drawn"], hardwareOn["triangles_drawn"]);
+    EXPECT_EQ(patches["patches_drawn"], hardwarePatches["patches_drawn"]);
+    EXPECT_EQ(hardwareOn["software_triangles"].get<uint64_t>(), 0u);
+    EXPECT_LE(on["software_triangles"].get<uint64_t>(), on["triangles_drawn"].get<uint64_t>());
+    softwareTriangles += on["software_triangles"].get<uint64_t>();
+    EXPECT_NEAR(double(on["pixels_covered"].get<uint64_t>()), double(hardwareOn["pixels_covered"].get<uint64_t>()),
+                0.002 * double(hardwareOn["pixels_covered"].get<uint64_t>()) + 2.0);
     EXPECT_GT(on["pixels_covered"].get<uint64_t>(), 0u);
     EXPECT_EQ(on["patches_drawn"].get<uint64_t>(), 0u);
     if (patches["camera"] == "surface") {
@@ -70,7 +84,8 @@ TEST(BenchFrame, SplitsTheFrameWithAndWithoutTriangleCullingAndPatches) {
       EXPECT_GT(patches["patch_pixels"].get<uint64_t>(), 0u);
     }
   }
-  EXPECT_EQ(records[6]["instances"].get<int>(), 9);
+  EXPECT_GT(softwareTriangles, 0u);
+  EXPECT_EQ(records[2 * kVariants]["instances"].get<int>(), 9);
 }
 
 TEST(BenchBuild, OneRecordPerMeshSubdivAndThreads) {
