@@ -17,8 +17,7 @@
 #include "shaders/raster_software_comp.h"
 #include "shaders/prepare_level_comp.h"
 #include "shaders/reset_flat_comp.h"
-#include "shaders/resolve_frag.h"
-#include "shaders/resolve_vert.h"
+#include "shaders/resolve_comp.h"
 #include "shaders/traverse_flat_comp.h"
 #include "shaders/traverse_level_comp.h"
 #include "shaders/traverse_persistent_comp.h"
@@ -66,10 +65,11 @@ void createImage(VulkanContext& vk, uint32_t width, uint32_t height, VkFormat fo
 void GpuRenderer::createTargets() {
   VkDevice dev = vk_.device();
   createImage(vk_, width_, height_, VK_FORMAT_R8G8B8A8_UNORM,
-              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, VK_IMAGE_ASPECT_COLOR_BIT, color_,
-              colorMemory_, colorView_);
-  createImage(vk_, width_, height_, VK_FORMAT_D32_SFLOAT, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
-              VK_IMAGE_ASPECT_DEPTH_BIT, depth_, depthMemory_, depthView_);
+              VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_STORAGE_BIT,
+              VK_IMAGE_ASPECT_COLOR_BIT, color_, colorMemory_, colorView_);
+  createImage(vk_, width_, height_, VK_FORMAT_D32_SFLOAT,
+              VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, VK_IMAGE_ASPECT_DEPTH_BIT,
+              depth_, depthMemory_, depthView_);
 
   VkAttachmentDescription attachments[2] = {};
   attachments[0].format = VK_FORMAT_R8G8B8A8_UNORM;
@@ -79,11 +79,12 @@ void GpuRenderer::createTargets() {
   attachments[0].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
   attachments[0].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
   attachments[0].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  attachments[0].finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+  // After the pass the resolve (resolve.comp) writes the colour as a storage image and reads the depth,
+  // then the colour is copied out.
+  attachments[0].finalLayout = VK_IMAGE_LAYOUT_GENERAL;
   attachments[1] = attachments[0];
   attachments[1].format = VK_FORMAT_D32_SFLOAT;
-  attachments[1].storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-  attachments[1].finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+  attachments[1].finalLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
   VkAttachmentReference colorRef{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL},
       depthRef{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
   VkSubpassDescription subpass{};
@@ -91,21 +92,23 @@ void GpuRenderer::createTargets() {
   subpass.colorAttachmentCount = 1;
   subpass.pColorAttachments = &colorRef;
   subpass.pDepthStencilAttachment = &depthRef;
-  // Earlier frames' copy of the colour image and depth use finish before this pass writes them again.
+  // Earlier frames' copy of the colour image, resolve and depth use finish before this pass writes them again.
   VkSubpassDependency deps[2] = {};
   deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
   deps[0].dstSubpass = 0;
-  deps[0].srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
-  deps[0].srcAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  deps[0].srcStageMask =
+      VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+  deps[0].srcAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
+                          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
   deps[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT;
   deps[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
                           VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT;
   deps[1].srcSubpass = 0;
   deps[1].dstSubpass = VK_SUBPASS_EXTERNAL;
-  deps[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-  deps[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-  deps[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
-  deps[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+  deps[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+  deps[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  deps[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+  deps[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
   VkRenderPassCreateInfo rp{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
   rp.attachmentCount = 2;
   rp.pAttachments = attachments;
@@ -123,12 +126,14 @@ void GpuRenderer::createTargets() {
   fb.height = height_;
   fb.layers = 1;
   vkCheck(vkCreateFramebuffer(dev, &fb, nullptr, &framebuffer_), "vkCreateFramebuffer");
+  VkSamplerCreateInfo sampler{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};  // texelFetch only
+  vkCheck(vkCreateSampler(dev, &sampler, nullptr, &depthSampler_), "vkCreateSampler");
 }
 
 void GpuRenderer::createPipelines(bool softwareRaster) {
   createDescriptorSet();
   createComputePipelines(softwareRaster);
-  createDrawPipelines(softwareRaster);
+  createDrawPipelines();
 }
 
 // The one descriptor set of shaderio_frame.h's bindings, seen by every stage, and the pipeline layout.
@@ -137,7 +142,7 @@ void GpuRenderer::createDescriptorSet() {
   VkDescriptorSetLayoutBinding bindings[kRendererBindings];
   for (uint32_t i = 0; i < kRendererBindings; i++) {
     bindings[i] = {
-        i, i == VGEO_BINDING_FRAME ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+        i, descriptorType(i), 1,
         VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT |
             (vk_.tessellation() ? VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT | VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT
                                 : 0u),
@@ -147,11 +152,13 @@ void GpuRenderer::createDescriptorSet() {
   setInfo.bindingCount = kRendererBindings;
   setInfo.pBindings = bindings;
   vkCheck(vkCreateDescriptorSetLayout(dev, &setInfo, nullptr, &setLayout_), "vkCreateDescriptorSetLayout");
-  VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kRendererBindings - 1}};
+  VkDescriptorPoolSize sizes[4] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+                                   {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1},
+                                   {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1},
+                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kRendererBindings - 3}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = 1;
-  poolInfo.poolSizeCount = 2;
+  poolInfo.poolSizeCount = 4;
   poolInfo.pPoolSizes = sizes;
   vkCheck(vkCreateDescriptorPool(dev, &poolInfo, nullptr, &descriptorPool_), "vkCreateDescriptorPool");
   VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
@@ -201,13 +208,15 @@ void GpuRenderer::createComputePipelines(bool softwareRaster) {
   finalize_ = compute(finalize_comp, sizeof(finalize_comp));
   cullTriangles_ = compute(cull_triangles_comp, sizeof(cull_triangles_comp));
   finalizeTriangles_ = compute(finalize_triangles_comp, sizeof(finalize_triangles_comp));
-  if (softwareRaster) rasterSoftware_ = compute(raster_software_comp, sizeof(raster_software_comp));
+  if (softwareRaster) {
+    rasterSoftware_ = compute(raster_software_comp, sizeof(raster_software_comp));
+    resolve_ = compute(resolve_comp, sizeof(resolve_comp));
+  }
 }
 
-// The draw of listed triangles, its overdraw variant (every fragment adds, nothing hidden), the same two
-// for the resolve of the software rasterizer's pixels where it runs and for patches where the device has
-// tessellation shaders.
-void GpuRenderer::createDrawPipelines(bool softwareRaster) {
+// The draw of listed triangles, its overdraw variant (every fragment adds, nothing hidden), and the same
+// two for patches where the device has tessellation shaders.
+void GpuRenderer::createDrawPipelines() {
   VkDevice dev = vk_.device();
   VkShaderModule vert = vk_.createShaderModule(draw_vert, sizeof(draw_vert));
   VkShaderModule frag = vk_.createShaderModule(draw_frag, sizeof(draw_frag));
@@ -270,18 +279,6 @@ void GpuRenderer::createDrawPipelines(bool softwareRaster) {
     vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &overdraw), what);
   };
   createViews(stages, 2, draw_, drawOverdraw_, "vkCreateGraphicsPipelines");
-  // The resolve of the software rasterizer's pixels: a full-screen triangle.
-  if (softwareRaster) {
-    VkShaderModule resolveVert = vk_.createShaderModule(resolve_vert, sizeof(resolve_vert));
-    VkShaderModule resolveFrag = vk_.createShaderModule(resolve_frag, sizeof(resolve_frag));
-    VkPipelineShaderStageCreateInfo resolveStages[2] = {stages[0], stages[1]};
-    resolveStages[0].module = resolveVert;
-    resolveStages[1].module = resolveFrag;
-    createViews(resolveStages, 2, resolve_, resolveOverdraw_, "vkCreateGraphicsPipelines (resolve)");
-    vkDestroyShaderModule(dev, resolveVert, nullptr);
-    vkDestroyShaderModule(dev, resolveFrag, nullptr);
-  }
-
   // The patch draw: the same state, one control point a patch, tessellated (patch.tesc, patch.tese).
   // Without tessellation shaders on the device, leaves stay triangles.
   if (vk_.tessellation()) {

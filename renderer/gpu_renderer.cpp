@@ -193,13 +193,14 @@ GpuRenderer::~GpuRenderer() {
   vkDeviceWaitIdle(dev);
   for (VkPipeline p : {cull_, cullSerial_, persistent_, persistentProfile_, level_, prepareLevel_, flat_, prepareFlat_,
                        resetFlat_, finalize_, cullTriangles_, finalizeTriangles_, draw_, drawOverdraw_, drawPatches_,
-                       drawPatchesOverdraw_, rasterSoftware_, resolve_, resolveOverdraw_})
+                       drawPatchesOverdraw_, rasterSoftware_, resolve_})
     vkDestroyPipeline(dev, p, nullptr);
   vkDestroyPipelineLayout(dev, layout_, nullptr);
   vkDestroyDescriptorPool(dev, descriptorPool_, nullptr);
   vkDestroyDescriptorSetLayout(dev, setLayout_, nullptr);
   vkDestroyQueryPool(dev, queries_, nullptr);
   if (statistics_) vkDestroyQueryPool(dev, statistics_, nullptr);
+  vkDestroySampler(dev, depthSampler_, nullptr);
   vkDestroyFramebuffer(dev, framebuffer_, nullptr);
   vkDestroyRenderPass(dev, renderPass_, nullptr);
   vkDestroyImageView(dev, colorView_, nullptr);
@@ -226,21 +227,26 @@ void GpuRenderer::writeDescriptors() {
   buffers[VGEO_BINDING_VISIBILITY] = &visibility_;
   buffers[VGEO_BINDING_OVERDRAW] = &overdraw_;
   for (const auto& [binding, b] : sceneBuffers_) buffers[binding] = &b;
-  for (uint32_t i = 0; i < kRendererBindings; i++)
-    if (!buffers[i]) throw std::logic_error("binding " + std::to_string(i) + " has no buffer");
+  const VkDescriptorImageInfo colorImage{VK_NULL_HANDLE, colorView_, VK_IMAGE_LAYOUT_GENERAL},
+      depthImage{depthSampler_, depthView_, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL};
   VkDescriptorBufferInfo infos[kRendererBindings];
   VkWriteDescriptorSet writes[kRendererBindings];
   for (uint32_t i = 0; i < kRendererBindings; i++) {
-    infos[i] = {buffers[i]->buffer, 0, VK_WHOLE_SIZE};
+    const VkDescriptorType type = descriptorType(i);
+    const bool image = type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE || type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    if (!image && !buffers[i]) throw std::logic_error("binding " + std::to_string(i) + " has no buffer");
+    if (!image) infos[i] = {buffers[i]->buffer, 0, VK_WHOLE_SIZE};
     writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
                  nullptr,
                  set_,
                  i,
                  0,
                  1,
-                 i == 0 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-                 nullptr,
-                 &infos[i],
+                 type,
+                 i == VGEO_BINDING_COLOR_IMAGE   ? &colorImage
+                 : i == VGEO_BINDING_DEPTH_IMAGE ? &depthImage
+                                                 : nullptr,
+                 image ? nullptr : &infos[i],
                  nullptr};
   }
   vkUpdateDescriptorSets(vk_.device(), kRendererBindings, writes, 0, nullptr);
@@ -331,7 +337,7 @@ void GpuRenderer::recordTriangleCull(VkCommandBuffer cmd) {
 }
 
 // 6. The software rasterizer: the visibility buffer (or the overdraw counts) cleared, then the triangles
-// binned to it drawn into it; read by the resolve at the start of the render pass.
+// binned to it drawn into it; read by the resolve after the render pass.
 void GpuRenderer::recordSoftwareRaster(VkCommandBuffer cmd) {
   vkCmdFillBuffer(cmd, visibility_.buffer, 0, VK_WHOLE_SIZE, 0);
   vkCmdFillBuffer(cmd, overdraw_.buffer, 0, VK_WHOLE_SIZE, 0);
@@ -341,17 +347,33 @@ void GpuRenderer::recordSoftwareRaster(VkCommandBuffer cmd) {
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, rasterSoftware_);
   vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, rasterDispatch));
   globalBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+                VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
 }
 
 void GpuRenderer::recordDraw(VkCommandBuffer cmd, const FrameSettings& settings) {
-  // 7. The render pass: the resolve of the software rasterizer's pixels, one indirect draw of the listed
-  // triangles, one of the patches.
+  // 7. The render pass: one indirect draw of the listed hardware triangles, one of the patches; then the
+  // resolve of the software rasterizer's pixels where they are nearer (resolve.comp).
   if (settings.draw) recordRenderPass(cmd, settings);
+  if (settings.draw && softwareRaster(settings) != VGEO_RASTER_NONE) {
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, resolve_);
+    vkCmdDispatch(cmd, (width_ + 7) / 8, (height_ + 7) / 8, 1);
+  }
   // 8. Copies back.
   VkBufferCopy all{0, 0, sizeof(shaderio::Counters)};
   vkCmdCopyBuffer(cmd, counters_.buffer, countersReadback_.buffer, 1, &all);
   if (settings.readImage && settings.draw) {
+    // The colour from the render pass's GENERAL (and the resolve's writes) to the copy's layout.
+    VkImageMemoryBarrier toCopy{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+    toCopy.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+    toCopy.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+    toCopy.oldLayout = VK_IMAGE_LAYOUT_GENERAL;
+    toCopy.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    toCopy.srcQueueFamilyIndex = toCopy.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    toCopy.image = color_;
+    toCopy.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                         VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr, 1, &toCopy);
     VkBufferImageCopy region{};
     region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.imageExtent = {width_, height_, 1};
@@ -379,11 +401,6 @@ void GpuRenderer::recordRenderPass(VkCommandBuffer cmd, const FrameSettings& set
   if (patches && statistics_) vkCmdResetQueryPool(cmd, statistics_, 0, 1);
   vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
-  if (softwareRaster(settings) != VGEO_RASTER_NONE) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                      settings.mode == VGEO_MODE_OVERDRAW ? resolveOverdraw_ : resolve_);
-    vkCmdDraw(cmd, 3, 1, 0, 0);
-  }
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, settings.mode == VGEO_MODE_OVERDRAW ? drawOverdraw_ : draw_);
   vkCmdDrawIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, draw), 1, sizeof(VkDrawIndirectCommand));
   // The leaf patches: one more indirect draw, tessellated (patch.tesc, patch.tese).

@@ -69,7 +69,7 @@ struct FrameResult {
   std::vector<CutEntry> drawList;  // when readDrawList
   std::vector<uint8_t> rgba;       // when readImage: width x height x 4
   bool culledInTraversal = false;  // the persistent traversal culled the instances (instanceCullMs: the reset)
-  // The passes' times; drawMs is the render pass (resolve, hardware draws), rasterMs the software rasterizer.
+  // The passes' times; drawMs is the hardware draws and the resolve, rasterMs the software rasterizer.
   double instanceCullMs = 0.0, traversalMs = 0.0, triangleCullMs = 0.0, rasterMs = 0.0, drawMs = 0.0, frameMs = 0.0;
   std::string timing;                   // "gpu-timestamps" or "host-per-submission"
   std::vector<uint32_t> workerProfile;  // when profiled: VGEO_PROFILE_WORKER_WORDS words a workgroup (shaderio.h)
@@ -127,7 +127,7 @@ class GpuRenderer {
   void createPipelines(bool softwareRaster);
   void createDescriptorSet();
   void createComputePipelines(bool softwareRaster);
-  void createDrawPipelines(bool softwareRaster);
+  void createDrawPipelines();
   void createQueueAndDrawList();
   void writeDescriptors();
   // renderFrame's steps, in order (gpu_renderer.cpp).
@@ -198,8 +198,8 @@ class GpuRenderer {
              flat_ = VK_NULL_HANDLE, prepareFlat_ = VK_NULL_HANDLE, resetFlat_ = VK_NULL_HANDLE,
              finalize_ = VK_NULL_HANDLE, draw_ = VK_NULL_HANDLE, cullTriangles_ = VK_NULL_HANDLE,
              finalizeTriangles_ = VK_NULL_HANDLE, drawOverdraw_ = VK_NULL_HANDLE, drawPatches_ = VK_NULL_HANDLE,
-             drawPatchesOverdraw_ = VK_NULL_HANDLE, rasterSoftware_ = VK_NULL_HANDLE, resolve_ = VK_NULL_HANDLE,
-             resolveOverdraw_ = VK_NULL_HANDLE;
+             drawPatchesOverdraw_ = VK_NULL_HANDLE, rasterSoftware_ = VK_NULL_HANDLE, resolve_ = VK_NULL_HANDLE;
+  VkSampler depthSampler_ = VK_NULL_HANDLE;
   VkQueryPool queries_ = VK_NULL_HANDLE;
   VkQueryPool statistics_ = VK_NULL_HANDLE;  // clipping invocations of the patch draw (its triangles)
 };
@@ -208,5 +208,11 @@ const char* traversalName(Traversal t);
 
 // Binding count of the one descriptor set (shaderio.h, VGEO_BINDING_*).
 constexpr uint32_t kRendererBindings = VGEO_BINDING_COUNT;
+inline VkDescriptorType descriptorType(uint32_t binding) {
+  return binding == VGEO_BINDING_FRAME         ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
+         : binding == VGEO_BINDING_COLOR_IMAGE ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
+         : binding == VGEO_BINDING_DEPTH_IMAGE ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
+                                               : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+}
 
 }  // namespace vgeo

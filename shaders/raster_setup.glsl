@@ -1,6 +1,6 @@
 // raster_setup.glsl: a listed triangle's corners on screen, as the rasterizers see them: triangle
 // culling bins triangles with it (cull_triangles.comp), the software rasterizer covers pixels with it
-// (raster_software.comp) and the resolve finds a pixel's surface point with it (resolve.frag). Needs
+// (raster_software.comp) and the resolve finds a pixel's surface point with it (resolve.comp). Needs
 // common.glsl.
 
 // Corner k's vertex of triangle `triangle` of cluster c.

@@ -1,6 +1,6 @@
 // shade.glsl: the debug views of `--mode` (lit, normal, cluster, group, lod, triangle, instance, error,
 // wire, overdraw, frozen-diff, patch), one function for every path that makes a pixel: the hardware draws
-// (draw.frag) and the visibility-buffer resolve (resolve.frag). Ids get stable colours from a hash, so
+// (draw.frag) and the visibility-buffer resolve (resolve.comp). Ids get stable colours from a hash, so
 // the same cluster keeps its colour from frame to frame and between runs. Needs common.glsl.
 
 uint hashId(uint x) {

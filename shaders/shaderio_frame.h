@@ -89,7 +89,9 @@ VGEO_NAMESPACE_BEGIN
 #define VGEO_BINDING_INSTANCE_ROOTS 23
 #define VGEO_BINDING_VISIBILITY 24
 #define VGEO_BINDING_OVERDRAW 25
-#define VGEO_BINDING_COUNT 26
+#define VGEO_BINDING_COLOR_IMAGE 26  // the frame's colour target as a storage image (resolve.comp writes it)
+#define VGEO_BINDING_DEPTH_IMAGE 27  // the hardware draws' depth, sampled (resolve.comp compares with it)
+#define VGEO_BINDING_COUNT 28
 
 // Per-frame constants (a uniform buffer). The cull camera selects the cut and culls; the draw camera
 // makes the picture. They differ only with --freeze-camera.

@@ -1,5 +1,5 @@
 // visibility.glsl: the visibility buffer and the overdraw counts (shaderio_frame.h, VGEO_BINDING_VISIBILITY),
-// written by raster_software.comp and read by resolve.frag. Needs common.glsl.
+// written by raster_software.comp and read by resolve.comp. Needs common.glsl.
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
 

@@ -1,10 +1,11 @@
 #version 450
-// resolve.frag: the pixels of the software rasterizer (raster_software.comp), shaded from the
-// visibility buffer in the view of --mode, first thing in the render pass; it writes their depth, so the
-// hardware draws after it keep the nearest surface either way. From a pixel's triangle word: the
+// resolve.comp: the pixels of the software rasterizer (raster_software.comp), shaded from the visibility
+// buffer in the view of --mode after the render pass, one thread a pixel: where its depth is at least the
+// hardware draws' (the nearest surface either way; a tie goes to the software pixel), its colour is
+// written over theirs. From a pixel's triangle word: the
 // draw-list entry (instance, cluster) and the triangle, whose corners are projected again to find the
 // pixel centre's barycentric coordinates (made perspective-correct with the corners' w) for the normal,
-// and the distance to the edges in pixels for the wire view. Empty pixels are discarded. In
+// and the distance to the edges in pixels for the wire view. Empty pixels are left alone. In
 // --mode overdraw the pixel adds its count of software-rasterized samples instead.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
@@ -13,21 +14,25 @@
 #include "visibility.glsl"
 #include "shade.glsl"
 
-layout(location = 0) out vec4 outColor;
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 0, binding = VGEO_BINDING_COLOR_IMAGE, rgba8) uniform image2D colorImage;
+layout(set = 0, binding = VGEO_BINDING_DEPTH_IMAGE) uniform sampler2D depthImage;
 
 float cross2(vec2 a, vec2 b) { return a.x * b.y - a.y * b.x; }
 
 void main() {
-  uint pixel = uint(gl_FragCoord.y) * uint(frame.viewportWidth) + uint(gl_FragCoord.x);
-  gl_FragDepth = 0.0;
+  ivec2 xy = ivec2(gl_GlobalInvocationID.xy);
+  if (xy.x >= int(frame.viewportWidth) || xy.y >= int(frame.viewportHeight)) return;
+  uint pixel = uint(xy.y) * uint(frame.viewportWidth) + uint(xy.x);
   if (frame.mode == VGEO_MODE_OVERDRAW) {
     uint samples = overdraw[pixel];
-    if (samples == 0u) discard;
-    outColor = vec4(kOverdrawColor * float(samples), 1.0);
+    if (samples != 0u) imageStore(colorImage, xy, vec4(imageLoad(colorImage, xy).rgb + kOverdrawColor * float(samples), 1.0));
     return;
   }
   uint64_t word = visibility[pixel];
-  if (word == 0ul) discard;
+  if (word == 0ul) return;
+  float depth = uintBitsToFloat(uint(word >> 32));
+  if (depth < texelFetch(depthImage, xy, 0).r) return;
   uint triangleWord = uint(word & 0xfffffffful);
   uint entry = triangleWord >> VGEO_TRIANGLE_BITS, triangle = triangleWord & ((1u << VGEO_TRIANGLE_BITS) - 1u);
   uint instance = drawList[2u * entry], cluster = drawList[2u * entry + 1u] & ~VGEO_DRAW_PATCHES_BIT;
@@ -35,23 +40,23 @@ void main() {
   Cluster c = clusters[cluster];
   vec2 s[3];
   float w[3];
-  vec3 n[3];
+  vec3 n[3];  // object space: one transform of the interpolated normal, not three
   for (uint i = 0u; i < 3u; i++) {
     uint vertex = triangleVertex(c, triangle, i);
     vec4 clip = clipPosition(inst, vertexPosition(vertex));
     s[i] = screenPosition(clip);
     w[i] = clip.w;
-    n[i] = normalToWorld(inst, decodeNormal(normals[vertex]));
+    n[i] = decodeNormal(normals[vertex]);
   }
   // Barycentric coordinate i: the edge from corner i + 1 to i + 2, over the whole.
-  vec2 p = gl_FragCoord.xy;
+  vec2 p = vec2(xy) + 0.5;
   float area = cross2(s[1] - s[0], s[2] - s[0]);
   vec3 edgeX = vec3(s[2].x - s[1].x, s[0].x - s[2].x, s[1].x - s[0].x);
   vec3 edgeY = vec3(s[2].y - s[1].y, s[0].y - s[2].y, s[1].y - s[0].y);
   vec3 l = vec3(cross2(s[2] - s[1], p - s[1]), cross2(s[0] - s[2], p - s[2]), cross2(s[1] - s[0], p - s[0])) / area;
   vec3 b = l / vec3(w[0], w[1], w[2]);
   b /= b.x + b.y + b.z;
-  vec3 normal = normalize(b.x * n[0] + b.y * n[1] + b.z * n[2]);
+  vec3 normal = normalToWorld(inst, b.x * n[0] + b.y * n[1] + b.z * n[2]);
   // Vulkan's front face (counter-clockwise, framebuffer y down) has a negative cross product here.
   if (area > 0.0) normal = -normal;
   float edge = 0.0;
@@ -61,6 +66,8 @@ void main() {
     edge = 1.0 - min(min(a.x, a.y), a.z);
   }
   uvec4 ids = uvec4(cluster, c.group, instance, clusterLevel(c.counts));
-  outColor = vec4(shadeSurface(normal, ids, triangle, clusterViewInfo(inst, c), edge), 1.0);
-  gl_FragDepth = uintBitsToFloat(uint(word >> 32));
+  // The projected errors only where a view shows them.
+  bool errorView = frame.mode == VGEO_MODE_ERROR || frame.mode == VGEO_MODE_FROZEN_DIFF;
+  vec2 info = errorView ? clusterViewInfo(inst, c) : vec2(-1.0, 0.0);
+  imageStore(colorImage, xy, vec4(shadeSurface(normal, ids, triangle, info, edge), 1.0));
 }
