@@ -126,6 +126,7 @@ nlohmann::ordered_json frameStats(const RenderArgs& a, const RenderScene& scene,
   j["triangle_cull_ms"] = result.triangleCullMs;
   j["raster_ms"] = result.rasterMs;
   j["draw_ms"] = result.drawMs;
+  j["resolve_ms"] = result.resolveMs;
   j["frame_ms"] = result.frameMs;
   j["frames"] = run.frames;
   if (a.compareCpu) {
@@ -147,12 +148,12 @@ void printSummary(const RenderArgs& a, const RenderScene& scene, const RenderRun
   std::printf(
       "%s: %ux%u on %s, %s traversal, tau %g: %u of %zu instances visible, %u clusters, %u triangles in the cut of "
       "%llu virtual, %u drawn (%.2f a covered pixel, %u in software); instance culling %.2f ms, traversal %.2f "
-      "ms, triangle culling %.2f ms, software raster %.2f ms, draw %.2f ms, frame %.2f ms (%s)\n",
+      "ms, triangle culling %.2f ms, software raster %.2f ms, draw %.2f ms, resolve %.2f ms, frame %.2f ms (%s)\n",
       a.output.c_str(), width, height, vk.deviceName().c_str(), a.traversal.c_str(), a.tau, c.visibleInstances,
       scene.data.instances.size(), std::min(c.drawCount, renderer.drawCapacity()), c.triangles,
       (unsigned long long)scene.virtualTriangles, result.trianglesDrawn, j["triangles_per_covered_pixel"].get<double>(),
       result.softwareTriangles, result.instanceCullMs, result.traversalMs, result.triangleCullMs, result.rasterMs,
-      result.drawMs, result.frameMs, result.timing.c_str());
+      result.drawMs, result.resolveMs, result.frameMs, result.timing.c_str());
   if (a.compareCpu)
     std::printf("cpu cut: %s (%zu clusters, %zu borderline)%s\n",
                 j["cpu_cut_equal"].get<bool>() ? "equal" : "DIFFERENT", size_t(j["cpu_clusters"]),

@@ -172,23 +172,38 @@ void GpuRenderer::createDescriptorSet() {
   vkCheck(vkCreatePipelineLayout(dev, &layoutInfo, nullptr, &layout_), "vkCreatePipelineLayout");
 }
 
+VkPipeline GpuRenderer::computePipeline(const uint32_t* code, size_t bytes,
+                                        const VkSpecializationInfo* specialization) {
+  VkDevice dev = vk_.device();
+  VkShaderModule module = vk_.createShaderModule(code, bytes);
+  VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                nullptr,
+                0,
+                VK_SHADER_STAGE_COMPUTE_BIT,
+                module,
+                "main",
+                specialization};
+  info.layout = layout_;
+  VkPipeline pipeline;
+  vkCheck(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline), "vkCreateComputePipelines");
+  vkDestroyShaderModule(dev, module, nullptr);
+  return pipeline;
+}
+
+VkPipeline GpuRenderer::resolvePipeline(uint32_t mode) {
+  if (!resolve_[mode]) {
+    const VkSpecializationMapEntry entry{VGEO_SPEC_VIEW_MODE, 0, sizeof(uint32_t)};
+    const VkSpecializationInfo view{1, &entry, sizeof(mode), &mode};
+    resolve_[mode] = computePipeline(resolve_comp, sizeof(resolve_comp), &view);
+  }
+  return resolve_[mode];
+}
+
 void GpuRenderer::createComputePipelines(bool softwareRaster) {
   VkDevice dev = vk_.device();
   auto compute = [&](const uint32_t* code, size_t bytes, const VkSpecializationInfo* specialization = nullptr) {
-    VkShaderModule module = vk_.createShaderModule(code, bytes);
-    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-    info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
-                  nullptr,
-                  0,
-                  VK_SHADER_STAGE_COMPUTE_BIT,
-                  module,
-                  "main",
-                  specialization};
-    info.layout = layout_;
-    VkPipeline pipeline;
-    vkCheck(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline), "vkCreateComputePipelines");
-    vkDestroyShaderModule(dev, module, nullptr);
-    return pipeline;
+    return computePipeline(code, bytes, specialization);
   };
   cull_ = compute(cull_instances_comp, sizeof(cull_instances_comp));
   cullSerial_ = compute(cull_instances_comp_cull_serial, sizeof(cull_instances_comp_cull_serial));
@@ -210,7 +225,6 @@ void GpuRenderer::createComputePipelines(bool softwareRaster) {
   finalizeTriangles_ = compute(finalize_triangles_comp, sizeof(finalize_triangles_comp));
   if (softwareRaster) {
     rasterSoftware_ = compute(raster_software_comp, sizeof(raster_software_comp));
-    resolve_ = compute(resolve_comp, sizeof(resolve_comp));
   }
 }
 

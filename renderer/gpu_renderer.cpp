@@ -22,6 +22,8 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <functional>
+#include <iterator>
 #include <stdexcept>
 
 namespace vgeo {
@@ -46,7 +48,7 @@ constexpr size_t kFewWorkgroupsInstances = 32768;
 // many (the count has no effect on the picture).
 constexpr uint32_t kLavapipePatchesPerInstance = 15, kPatchesPerInstance = 4096;
 // Frame start, then the end of instance culling, traversal, triangle culling and the draw.
-constexpr uint32_t kTimestamps = 6;
+constexpr uint32_t kTimestamps = 8;
 
 void globalBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags srcAccess, VkPipelineStageFlags dst,
                    VkAccessFlags dstAccess) {
@@ -193,8 +195,9 @@ GpuRenderer::~GpuRenderer() {
   vkDeviceWaitIdle(dev);
   for (VkPipeline p : {cull_, cullSerial_, persistent_, persistentProfile_, level_, prepareLevel_, flat_, prepareFlat_,
                        resetFlat_, finalize_, cullTriangles_, finalizeTriangles_, draw_, drawOverdraw_, drawPatches_,
-                       drawPatchesOverdraw_, rasterSoftware_, resolve_})
+                       drawPatchesOverdraw_, rasterSoftware_})
     vkDestroyPipeline(dev, p, nullptr);
+  for (VkPipeline p : resolve_) vkDestroyPipeline(dev, p, nullptr);
   vkDestroyPipelineLayout(dev, layout_, nullptr);
   vkDestroyDescriptorPool(dev, descriptorPool_, nullptr);
   vkDestroyDescriptorSetLayout(dev, setLayout_, nullptr);
@@ -350,16 +353,16 @@ void GpuRenderer::recordSoftwareRaster(VkCommandBuffer cmd) {
                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
 }
 
-void GpuRenderer::recordDraw(VkCommandBuffer cmd, const FrameSettings& settings) {
-  // 7. The render pass: one indirect draw of the listed hardware triangles, one of the patches; then the
-  // resolve of the software rasterizer's pixels where they are nearer (resolve.comp).
-  if (settings.draw) recordRenderPass(cmd, settings);
-  if (settings.draw && softwareRaster(settings) != VGEO_RASTER_NONE) {
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, resolve_);
-    vkCmdDispatch(cmd, (width_ + 7) / 8, (height_ + 7) / 8, 1);
-  }
-  // 8. Copies back.
+// 8. The resolve of the software rasterizer's pixels where they are nearer than the render pass's
+// (resolve.comp), into the colour target.
+void GpuRenderer::recordResolve(VkCommandBuffer cmd, uint32_t mode) {
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, resolvePipeline(mode));
+  vkCmdDispatch(cmd, (width_ + 7) / 8, (height_ + 7) / 8, 1);
+}
+
+// 9. Copies back: counters, image, draw list.
+void GpuRenderer::recordReadback(VkCommandBuffer cmd, const FrameSettings& settings) {
   VkBufferCopy all{0, 0, sizeof(shaderio::Counters)};
   vkCmdCopyBuffer(cmd, counters_.buffer, countersReadback_.buffer, 1, &all);
   if (settings.readImage && settings.draw) {
@@ -387,6 +390,7 @@ void GpuRenderer::recordDraw(VkCommandBuffer cmd, const FrameSettings& settings)
                 VK_ACCESS_HOST_READ_BIT);
 }
 
+// 7. The render pass: one indirect draw of the listed hardware triangles, one of the patches.
 void GpuRenderer::recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings) {
   VkClearValue clears[2];
   clears[0].color = {{0.02f, 0.025f, 0.035f, 1.0f}};
@@ -464,57 +468,59 @@ void GpuRenderer::prepareReadbacks(const FrameSettings& settings, bool profile) 
   }
 }
 
-// Records and submits the passes in frame order (instance culling, traversal, triangle culling, draw)
+// Records and submits the passes in frame order
 // and times each: GPU timestamps in one submission, or on lavapipe one submission a pass timed on the
 // host.
 void GpuRenderer::runPasses(const FrameSettings& settings, const shaderio::FrameData& frame, FrameResult& result) {
-  double period = vk_.timestampPeriod();
+  // The frame's passes in order, each with where its time goes (nullptr: the frame's only).
+  const bool software = frame.softwareRaster != VGEO_RASTER_NONE;
+  struct Pass {
+    double* ms;
+    bool runs;
+    std::function<void(VkCommandBuffer)> record;
+  } passes[] = {
+      {&result.instanceCullMs, true, [&](VkCommandBuffer cmd) { recordInstanceCull(cmd, settings); }},
+      {&result.traversalMs, true, [&](VkCommandBuffer cmd) { recordTraversal(cmd, settings); }},
+      {&result.triangleCullMs, frame.triangleCull != 0u, [&](VkCommandBuffer cmd) { recordTriangleCull(cmd); }},
+      {&result.rasterMs, software, [&](VkCommandBuffer cmd) { recordSoftwareRaster(cmd); }},
+      {&result.drawMs, settings.draw, [&](VkCommandBuffer cmd) { recordRenderPass(cmd, settings); }},
+      {&result.resolveMs, settings.draw && software, [&](VkCommandBuffer cmd) { recordResolve(cmd, settings.mode); }},
+      {nullptr, true, [&](VkCommandBuffer cmd) { recordReadback(cmd, settings); }},
+  };
+  static_assert(std::size(passes) + 1 == kTimestamps, "a timestamp before each pass and one after the last");
+  const double period = vk_.timestampPeriod();
   const auto start = std::chrono::steady_clock::now();
   if (vk_.isLavapipe() || period == 0.0) {
     // lavapipe's compute timestamps are wrong after the first submission (docs/gpu-notes.md, 3): one submission
-    // a stage, timed on the host.
+    // a pass, timed on the host.
     result.timing = "host-per-submission";
-    auto timed = [&](auto record) {
-      auto stageStart = std::chrono::steady_clock::now();
+    for (const Pass& pass : passes) {
+      if (!pass.runs) continue;
+      const auto passStart = std::chrono::steady_clock::now();
       VkCommandBuffer cmd = vk_.beginCommands();
-      record(cmd);
+      pass.record(cmd);
       vk_.submitAndWait(cmd);
-      return msSince(stageStart);
-    };
-    result.instanceCullMs = timed([&](VkCommandBuffer cmd) { recordInstanceCull(cmd, settings); });
-    result.traversalMs = timed([&](VkCommandBuffer cmd) { recordTraversal(cmd, settings); });
-    if (frame.triangleCull != 0u) result.triangleCullMs = timed([&](VkCommandBuffer cmd) { recordTriangleCull(cmd); });
-    if (frame.softwareRaster != VGEO_RASTER_NONE)
-      result.rasterMs = timed([&](VkCommandBuffer cmd) { recordSoftwareRaster(cmd); });
-    result.drawMs = timed([&](VkCommandBuffer cmd) { recordDraw(cmd, settings); });
+      if (pass.ms) *pass.ms = msSince(passStart);
+    }
     result.frameMs = msSince(start);
   } else {
     result.timing = "gpu-timestamps";
     VkCommandBuffer cmd = vk_.beginCommands();
     vkCmdResetQueryPool(cmd, queries_, 0, kTimestamps);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0);
-    recordInstanceCull(cmd, settings);
-    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 1);
-    recordTraversal(cmd, settings);
-    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 2);
-    if (frame.triangleCull != 0u) recordTriangleCull(cmd);
-    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 3);
-    if (frame.softwareRaster != VGEO_RASTER_NONE) recordSoftwareRaster(cmd);
-    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 4);
-    recordDraw(cmd, settings);
-    vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, 5);
+    for (uint32_t i = 0; i < std::size(passes); i++) {
+      if (passes[i].runs) passes[i].record(cmd);
+      vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, i + 1);
+    }
     vk_.submitAndWait(cmd);
     uint64_t t[kTimestamps];
     vkCheck(vkGetQueryPoolResults(vk_.device(), queries_, 0, kTimestamps, sizeof(t), t, sizeof(uint64_t),
                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
             "vkGetQueryPoolResults");
-    auto ms = [&](int from, int to) { return double(t[to] - t[from]) * period * 1e-6; };
-    result.instanceCullMs = ms(0, 1);
-    result.traversalMs = ms(1, 2);
-    result.triangleCullMs = ms(2, 3);
-    result.rasterMs = ms(3, 4);
-    result.drawMs = ms(4, 5);
-    result.frameMs = ms(0, 5);
+    auto ms = [&](uint32_t from, uint32_t to) { return double(t[to] - t[from]) * period * 1e-6; };
+    for (uint32_t i = 0; i < std::size(passes); i++)
+      if (passes[i].ms) *passes[i].ms = ms(i, i + 1);
+    result.frameMs = ms(0, kTimestamps - 1);
   }
 }
 

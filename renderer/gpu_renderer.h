@@ -69,8 +69,10 @@ struct FrameResult {
   std::vector<CutEntry> drawList;  // when readDrawList
   std::vector<uint8_t> rgba;       // when readImage: width x height x 4
   bool culledInTraversal = false;  // the persistent traversal culled the instances (instanceCullMs: the reset)
-  // The passes' times; drawMs is the hardware draws and the resolve, rasterMs the software rasterizer.
-  double instanceCullMs = 0.0, traversalMs = 0.0, triangleCullMs = 0.0, rasterMs = 0.0, drawMs = 0.0, frameMs = 0.0;
+  // The passes' times: rasterMs the software rasterizer, drawMs the render pass (hardware draws), resolveMs
+  // the shading of the software rasterizer's pixels; frameMs all of them and the read-back copies.
+  double instanceCullMs = 0.0, traversalMs = 0.0, triangleCullMs = 0.0, rasterMs = 0.0, drawMs = 0.0, resolveMs = 0.0,
+         frameMs = 0.0;
   std::string timing;                   // "gpu-timestamps" or "host-per-submission"
   std::vector<uint32_t> workerProfile;  // when profiled: VGEO_PROFILE_WORKER_WORDS words a workgroup (shaderio.h)
   bool complete = true;                 // no overflow and the traversal drained its queue
@@ -151,8 +153,11 @@ class GpuRenderer {
   void recordTraversal(VkCommandBuffer cmd, const FrameSettings& settings);
   void recordTriangleCull(VkCommandBuffer cmd);
   void recordSoftwareRaster(VkCommandBuffer cmd);
-  void recordDraw(VkCommandBuffer cmd, const FrameSettings& settings);
   void recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings);
+  void recordResolve(VkCommandBuffer cmd, uint32_t mode);
+  VkPipeline computePipeline(const uint32_t* code, size_t bytes, const VkSpecializationInfo* specialization = nullptr);
+  VkPipeline resolvePipeline(uint32_t mode);
+  void recordReadback(VkCommandBuffer cmd, const FrameSettings& settings);
   VkPipelineStageFlags drawShaderStages() const;
   // Whether a frame with these settings draws leaves as patches (the patch list is made by triangle culling).
   bool drawsPatches(const FrameSettings& s) const {
@@ -198,7 +203,10 @@ class GpuRenderer {
              flat_ = VK_NULL_HANDLE, prepareFlat_ = VK_NULL_HANDLE, resetFlat_ = VK_NULL_HANDLE,
              finalize_ = VK_NULL_HANDLE, draw_ = VK_NULL_HANDLE, cullTriangles_ = VK_NULL_HANDLE,
              finalizeTriangles_ = VK_NULL_HANDLE, drawOverdraw_ = VK_NULL_HANDLE, drawPatches_ = VK_NULL_HANDLE,
-             drawPatchesOverdraw_ = VK_NULL_HANDLE, rasterSoftware_ = VK_NULL_HANDLE, resolve_ = VK_NULL_HANDLE;
+             drawPatchesOverdraw_ = VK_NULL_HANDLE, rasterSoftware_ = VK_NULL_HANDLE;
+  // resolve.comp, one pipeline a view, made when first used (a shader with only its view's code: lavapipe
+  // runs every line of a shader whatever branch its lanes take).
+  VkPipeline resolve_[VGEO_MODE_COUNT] = {};
   VkSampler depthSampler_ = VK_NULL_HANDLE;
   VkQueryPool queries_ = VK_NULL_HANDLE;
   VkQueryPool statistics_ = VK_NULL_HANDLE;  // clipping invocations of the patch draw (its triangles)

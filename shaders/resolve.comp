@@ -12,6 +12,8 @@
 #include "raster_setup.glsl"
 #define VGEO_VISIBILITY_ACCESS readonly
 #include "visibility.glsl"
+layout(constant_id = VGEO_SPEC_VIEW_MODE) const uint kViewMode = VGEO_MODE_LIT;
+#define VGEO_VIEW_MODE kViewMode
 #include "shade.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -24,7 +26,7 @@ void main() {
   ivec2 xy = ivec2(gl_GlobalInvocationID.xy);
   if (xy.x >= int(frame.viewportWidth) || xy.y >= int(frame.viewportHeight)) return;
   uint pixel = uint(xy.y) * uint(frame.viewportWidth) + uint(xy.x);
-  if (frame.mode == VGEO_MODE_OVERDRAW) {
+  if (VGEO_VIEW_MODE == VGEO_MODE_OVERDRAW) {
     uint samples = overdraw[pixel];
     if (samples != 0u) imageStore(colorImage, xy, vec4(imageLoad(colorImage, xy).rgb + kOverdrawColor * float(samples), 1.0));
     return;
@@ -60,14 +62,14 @@ void main() {
   // Vulkan's front face (counter-clockwise, framebuffer y down) has a negative cross product here.
   if (area > 0.0) normal = -normal;
   float edge = 0.0;
-  if (frame.mode == VGEO_MODE_WIRE) {
+  if (VGEO_VIEW_MODE == VGEO_MODE_WIRE) {
     vec3 d = (abs(edgeX) + abs(edgeY)) / abs(area);  // |dl/dx| + |dl/dy|, as fwidth would give
     vec3 a = smoothstep(vec3(0.0), d * 1.2, l);
     edge = 1.0 - min(min(a.x, a.y), a.z);
   }
   uvec4 ids = uvec4(cluster, c.group, instance, clusterLevel(c.counts));
   // The projected errors only where a view shows them.
-  bool errorView = frame.mode == VGEO_MODE_ERROR || frame.mode == VGEO_MODE_FROZEN_DIFF;
+  bool errorView = VGEO_VIEW_MODE == VGEO_MODE_ERROR || VGEO_VIEW_MODE == VGEO_MODE_FROZEN_DIFF;
   vec2 info = errorView ? clusterViewInfo(inst, c) : vec2(-1.0, 0.0);
   imageStore(colorImage, xy, vec4(shadeSurface(normal, ids, triangle, info, edge), 1.0));
 }

@@ -18,6 +18,12 @@ vec3 heat(float t) {  // 0 blue, 0.5 green, 1 red
   t = clamp(t, 0.0, 1.0);
   return clamp(vec3(2.0 * t - 0.5, 1.0 - abs(2.0 * t - 1.0) * 1.2 + 0.2, 1.5 - 2.0 * t), 0.0, 1.0);
 }
+// The view: frame.mode, or where the includer defines VGEO_VIEW_MODE (a specialization constant) that,
+// so that its compiler drops the other views' code.
+#ifndef VGEO_VIEW_MODE
+#define VGEO_VIEW_MODE frame.mode
+#endif
+
 // What one fragment adds in the overdraw view (additive blending).
 const vec3 kOverdrawColor = vec3(0.09, 0.05, 0.02);
 float lighting(vec3 n) {
@@ -33,7 +39,7 @@ vec2 clusterViewInfo(Instance inst, Cluster c) {
   float liveSelf = projectedError(worldSphere(inst, c.selfSphere), c.selfError * inst.maxScale, frame.drawEye.xyz, frame.projScale, frame.znear);
   float liveParent = projectedError(worldSphere(inst, c.parentSphere), c.parentError * inst.maxScale, frame.drawEye.xyz, frame.projScale, frame.znear);
   float state = liveSelf > frame.tau ? 1.0 : (liveParent <= frame.tau ? 2.0 : 0.0);
-  return vec2(frame.mode == VGEO_MODE_PATCH ? -1.0 : self / frame.tau, state);
+  return vec2(VGEO_VIEW_MODE == VGEO_MODE_PATCH ? -1.0 : self / frame.tau, state);
 }
 
 // The colour of a surface point: n its world normal facing the eye, ids (cluster, group, instance,
@@ -41,7 +47,7 @@ vec2 clusterViewInfo(Instance inst, Cluster c) {
 // it lies to its triangle's edge (the wire view).
 vec3 shadeSurface(vec3 n, uvec4 ids, uint triangle, vec2 info, float edge) {
   float light = lighting(n);
-  uint mode = frame.mode;
+  uint mode = VGEO_VIEW_MODE;
   vec3 color;
   if (mode == VGEO_MODE_NORMAL) color = n * 0.5 + 0.5;
   else if (mode == VGEO_MODE_CLUSTER) color = idColor(ids.x) * light;

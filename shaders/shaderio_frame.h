@@ -21,6 +21,7 @@ VGEO_NAMESPACE_BEGIN
 #define VGEO_MODE_OVERDRAW 9
 #define VGEO_MODE_FROZEN_DIFF 10
 #define VGEO_MODE_PATCH 11
+#define VGEO_MODE_COUNT 12
 
 #define VGEO_INVALID 0xffffffffu
 #define VGEO_ITEM_GROUP_BIT 0x80000000u  // queue item names a group, not a BVH node
@@ -36,6 +37,8 @@ VGEO_NAMESPACE_BEGIN
 #define VGEO_TRAVERSAL_WORKGROUP 64
 // Specialization constant of traverse_persistent.comp: cluster tests a lane runs between draw-list atomics.
 #define VGEO_SPEC_LANE_TESTS 0
+// Specialization constant of resolve.comp: its view (VGEO_MODE_*), one pipeline a view.
+#define VGEO_SPEC_VIEW_MODE 1
 // Worker profile (traverse_persistent.comp built with VGEO_PROFILE, binding 21; vgeo bench cut
 // --profile-workers): per workgroup VGEO_PROFILE_WORKER_WORDS words. Header: [0] working iterations
 // recorded, [1] iterations, [2] iterations without an item, [3] their summed clock ticks, [4,5] begin,
