@@ -222,6 +222,10 @@ void GpuRenderer::createComputePipelines(bool softwareRaster) {
   resetFlat_ = compute(reset_flat_comp, sizeof(reset_flat_comp));
   finalize_ = compute(finalize_comp, sizeof(finalize_comp));
   cullTriangles_ = compute(cull_triangles_comp, sizeof(cull_triangles_comp));
+  const VkBool32 noPatches = VK_FALSE;
+  const VkSpecializationMapEntry patchesEntry{VGEO_SPEC_PATCHES, 0, sizeof(VkBool32)};
+  const VkSpecializationInfo withoutPatches{1, &patchesEntry, sizeof(noPatches), &noPatches};
+  cullTrianglesNoPatches_ = compute(cull_triangles_comp, sizeof(cull_triangles_comp), &withoutPatches);
   finalizeTriangles_ = compute(finalize_triangles_comp, sizeof(finalize_triangles_comp));
   if (softwareRaster) {
     rasterSoftware_ = compute(raster_software_comp, sizeof(raster_software_comp));

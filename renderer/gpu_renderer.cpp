@@ -194,8 +194,8 @@ GpuRenderer::~GpuRenderer() {
   VkDevice dev = vk_.device();
   vkDeviceWaitIdle(dev);
   for (VkPipeline p : {cull_, cullSerial_, persistent_, persistentProfile_, level_, prepareLevel_, flat_, prepareFlat_,
-                       resetFlat_, finalize_, cullTriangles_, finalizeTriangles_, draw_, drawOverdraw_, drawPatches_,
-                       drawPatchesOverdraw_, rasterSoftware_})
+                       resetFlat_, finalize_, cullTriangles_, cullTrianglesNoPatches_, finalizeTriangles_, draw_,
+                       drawOverdraw_, drawPatches_, drawPatchesOverdraw_, rasterSoftware_})
     vkDestroyPipeline(dev, p, nullptr);
   for (VkPipeline p : resolve_) vkDestroyPipeline(dev, p, nullptr);
   vkDestroyPipelineLayout(dev, layout_, nullptr);
@@ -326,9 +326,9 @@ void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& sett
 }
 
 // 5. Triangle culling: the triangles of the listed clusters that can make a fragment, then the draw's arguments.
-void GpuRenderer::recordTriangleCull(VkCommandBuffer cmd) {
+void GpuRenderer::recordTriangleCull(VkCommandBuffer cmd, bool patches) {
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cullTriangles_);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, patches ? cullTriangles_ : cullTrianglesNoPatches_);
   vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, dispatch));
   computeToCompute(cmd);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, finalizeTriangles_);
@@ -481,7 +481,8 @@ void GpuRenderer::runPasses(const FrameSettings& settings, const shaderio::Frame
   } passes[] = {
       {&result.instanceCullMs, true, [&](VkCommandBuffer cmd) { recordInstanceCull(cmd, settings); }},
       {&result.traversalMs, true, [&](VkCommandBuffer cmd) { recordTraversal(cmd, settings); }},
-      {&result.triangleCullMs, frame.triangleCull != 0u, [&](VkCommandBuffer cmd) { recordTriangleCull(cmd); }},
+      {&result.triangleCullMs, frame.triangleCull != 0u,
+       [&](VkCommandBuffer cmd) { recordTriangleCull(cmd, frame.patches != 0u); }},
       {&result.rasterMs, software, [&](VkCommandBuffer cmd) { recordSoftwareRaster(cmd); }},
       {&result.drawMs, settings.draw, [&](VkCommandBuffer cmd) { recordRenderPass(cmd, settings); }},
       {&result.resolveMs, settings.draw && software, [&](VkCommandBuffer cmd) { recordResolve(cmd, settings.mode); }},

@@ -151,7 +151,7 @@ class GpuRenderer {
                                                                                            : 1;
   }
   void recordTraversal(VkCommandBuffer cmd, const FrameSettings& settings);
-  void recordTriangleCull(VkCommandBuffer cmd);
+  void recordTriangleCull(VkCommandBuffer cmd, bool patches);
   void recordSoftwareRaster(VkCommandBuffer cmd);
   void recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings);
   void recordResolve(VkCommandBuffer cmd, uint32_t mode);
@@ -161,7 +161,7 @@ class GpuRenderer {
   VkPipelineStageFlags drawShaderStages() const;
   // Whether a frame with these settings draws leaves as patches (the patch list is made by triangle culling).
   bool drawsPatches(const FrameSettings& s) const {
-    return s.draw && s.triangleCull && s.patches && drawPatches_ != VK_NULL_HANDLE;
+    return s.draw && s.triangleCull && s.patches && drawPatches_ != VK_NULL_HANDLE && !scene_.data.patches.empty();
   }
   // The frame's VGEO_RASTER_* (triangle culling bins the triangles).
   uint32_t softwareRaster(const FrameSettings& s) const {
@@ -202,8 +202,9 @@ class GpuRenderer {
              persistentProfile_ = VK_NULL_HANDLE, level_ = VK_NULL_HANDLE, prepareLevel_ = VK_NULL_HANDLE,
              flat_ = VK_NULL_HANDLE, prepareFlat_ = VK_NULL_HANDLE, resetFlat_ = VK_NULL_HANDLE,
              finalize_ = VK_NULL_HANDLE, draw_ = VK_NULL_HANDLE, cullTriangles_ = VK_NULL_HANDLE,
-             finalizeTriangles_ = VK_NULL_HANDLE, drawOverdraw_ = VK_NULL_HANDLE, drawPatches_ = VK_NULL_HANDLE,
-             drawPatchesOverdraw_ = VK_NULL_HANDLE, rasterSoftware_ = VK_NULL_HANDLE;
+             cullTrianglesNoPatches_ = VK_NULL_HANDLE, finalizeTriangles_ = VK_NULL_HANDLE,
+             drawOverdraw_ = VK_NULL_HANDLE, drawPatches_ = VK_NULL_HANDLE, drawPatchesOverdraw_ = VK_NULL_HANDLE,
+             rasterSoftware_ = VK_NULL_HANDLE;
   // resolve.comp, one pipeline a view, made when first used (a shader with only its view's code: lavapipe
   // runs every line of a shader whatever branch its lanes take).
   VkPipeline resolve_[VGEO_MODE_COUNT] = {};

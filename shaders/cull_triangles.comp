@@ -23,6 +23,9 @@
 #include "patch_factors.glsl"
 #include "raster_setup.glsl"
 layout(local_size_x = VGEO_MAX_CLUSTER_TRIANGLES) in;
+// A variant without the patch code for frames without patches: lavapipe runs every line of a shader
+// whatever its lanes branch to.
+layout(constant_id = VGEO_SPEC_PATCHES) const bool kPatches = true;
 
 shared uint sKept, sBase, sKeptTriangles, sBaseTriangles, sSoftware, sBaseSoftware;
 
@@ -144,7 +147,7 @@ void main() {
   barrier();
   uint instance = drawList[2u * entry], cluster = drawList[2u * entry + 1u];
   Cluster c = clusters[cluster & ~VGEO_DRAW_PATCHES_BIT];
-  if ((cluster & VGEO_DRAW_PATCHES_BIT) != 0u) {  // the same for the whole workgroup
+  if (kPatches && (cluster & VGEO_DRAW_PATCHES_BIT) != 0u) {  // the same for the whole workgroup
     listPatches(entry, instances[instance], c);
     return;
   }

@@ -39,6 +39,8 @@ VGEO_NAMESPACE_BEGIN
 #define VGEO_SPEC_LANE_TESTS 0
 // Specialization constant of resolve.comp: its view (VGEO_MODE_*), one pipeline a view.
 #define VGEO_SPEC_VIEW_MODE 1
+// Specialization constant of cull_triangles.comp: 0 in the variant for frames without patches.
+#define VGEO_SPEC_PATCHES 2
 // Worker profile (traverse_persistent.comp built with VGEO_PROFILE, binding 21; vgeo bench cut
 // --profile-workers): per workgroup VGEO_PROFILE_WORKER_WORDS words. Header: [0] working iterations
 // recorded, [1] iterations, [2] iterations without an item, [3] their summed clock ticks, [4,5] begin,
