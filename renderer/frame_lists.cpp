@@ -20,6 +20,7 @@ void GpuRenderer::createQueueAndDrawList() {
   drawList_ = vk_.createBuffer(VkDeviceSize(drawCapacity_) * 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   triangleList_ = vk_.createBuffer(VkDeviceSize(triangleCapacity_) * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   patchList_ = vk_.createBuffer(VkDeviceSize(patchCapacity_) * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  patchEntries_ = vk_.createBuffer(VkDeviceSize(drawCapacity_) * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   // Every queue slot starts unwritten; consumers put them back that way.
   VkCommandBuffer cmd = vk_.beginCommands();
   vkCmdFillBuffer(cmd, queue_.buffer, 0, VK_WHOLE_SIZE, VGEO_INVALID);
@@ -32,6 +33,7 @@ void GpuRenderer::setCapacities(uint32_t queueItems, uint32_t drawEntries, uint3
   vk_.destroyBuffer(drawList_);
   vk_.destroyBuffer(triangleList_);
   vk_.destroyBuffer(patchList_);
+  vk_.destroyBuffer(patchEntries_);
   patchCapacity_ = std::max(patches, 1u);
   queueCapacity_ = std::max(queueItems, 1u);
   drawCapacity_ = std::max(drawEntries, 1u);

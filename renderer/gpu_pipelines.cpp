@@ -5,6 +5,7 @@
 
 #include "shaders/cull_instances_comp.h"
 #include "shaders/cull_instances_comp_cull_serial.h"
+#include "shaders/cull_patches_comp.h"
 #include "shaders/cull_triangles_comp.h"
 #include "shaders/draw_frag.h"
 #include "shaders/draw_vert.h"
@@ -16,6 +17,7 @@
 #include "shaders/prepare_flat_comp.h"
 #include "shaders/raster_software_comp.h"
 #include "shaders/prepare_level_comp.h"
+#include "shaders/prepare_patches_comp.h"
 #include "shaders/reset_flat_comp.h"
 #include "shaders/resolve_comp.h"
 #include "shaders/traverse_flat_comp.h"
@@ -222,10 +224,8 @@ void GpuRenderer::createComputePipelines(bool softwareRaster) {
   resetFlat_ = compute(reset_flat_comp, sizeof(reset_flat_comp));
   finalize_ = compute(finalize_comp, sizeof(finalize_comp));
   cullTriangles_ = compute(cull_triangles_comp, sizeof(cull_triangles_comp));
-  const VkBool32 noPatches = VK_FALSE;
-  const VkSpecializationMapEntry patchesEntry{VGEO_SPEC_PATCHES, 0, sizeof(VkBool32)};
-  const VkSpecializationInfo withoutPatches{1, &patchesEntry, sizeof(noPatches), &noPatches};
-  cullTrianglesNoPatches_ = compute(cull_triangles_comp, sizeof(cull_triangles_comp), &withoutPatches);
+  preparePatches_ = compute(prepare_patches_comp, sizeof(prepare_patches_comp));
+  cullPatches_ = compute(cull_patches_comp, sizeof(cull_patches_comp));
   finalizeTriangles_ = compute(finalize_triangles_comp, sizeof(finalize_triangles_comp));
   if (softwareRaster) {
     rasterSoftware_ = compute(raster_software_comp, sizeof(raster_software_comp));

@@ -194,7 +194,7 @@ GpuRenderer::~GpuRenderer() {
   VkDevice dev = vk_.device();
   vkDeviceWaitIdle(dev);
   for (VkPipeline p : {cull_, cullSerial_, persistent_, persistentProfile_, level_, prepareLevel_, flat_, prepareFlat_,
-                       resetFlat_, finalize_, cullTriangles_, cullTrianglesNoPatches_, finalizeTriangles_, draw_,
+                       resetFlat_, finalize_, cullTriangles_, preparePatches_, cullPatches_, finalizeTriangles_, draw_,
                        drawOverdraw_, drawPatches_, drawPatchesOverdraw_, rasterSoftware_})
     vkDestroyPipeline(dev, p, nullptr);
   for (VkPipeline p : resolve_) vkDestroyPipeline(dev, p, nullptr);
@@ -212,8 +212,9 @@ GpuRenderer::~GpuRenderer() {
   vkDestroyImage(dev, depth_, nullptr);
   vkFreeMemory(dev, colorMemory_, nullptr);
   vkFreeMemory(dev, depthMemory_, nullptr);
-  for (Buffer* b : {&frameData_, &counters_, &countersReadback_, &queue_, &drawList_, &drawListReadback_,
-                    &imageReadback_, &triangleList_, &patchList_, &workerProfile_, &visibility_, &overdraw_})
+  for (Buffer* b :
+       {&frameData_, &counters_, &countersReadback_, &queue_, &drawList_, &drawListReadback_, &imageReadback_,
+        &triangleList_, &patchList_, &patchEntries_, &workerProfile_, &visibility_, &overdraw_})
     vk_.destroyBuffer(*b);
   for (auto& [binding, b] : sceneBuffers_) vk_.destroyBuffer(b);
 }
@@ -226,6 +227,7 @@ void GpuRenderer::writeDescriptors() {
   buffers[VGEO_BINDING_DRAW_LIST] = &drawList_;
   buffers[VGEO_BINDING_TRIANGLE_LIST] = &triangleList_;
   buffers[VGEO_BINDING_PATCH_LIST] = &patchList_;
+  buffers[VGEO_BINDING_PATCH_ENTRIES] = &patchEntries_;
   buffers[VGEO_BINDING_WORKER_PROFILE] = &workerProfile_;
   buffers[VGEO_BINDING_VISIBILITY] = &visibility_;
   buffers[VGEO_BINDING_OVERDRAW] = &overdraw_;
@@ -328,9 +330,17 @@ void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& sett
 // 5. Triangle culling: the triangles of the listed clusters that can make a fragment, then the draw's arguments.
 void GpuRenderer::recordTriangleCull(VkCommandBuffer cmd, bool patches) {
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, patches ? cullTriangles_ : cullTrianglesNoPatches_);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cullTriangles_);
   vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, dispatch));
   computeToCompute(cmd);
+  if (patches) {  // the patch-drawn clusters that triangle culling listed, a workgroup each
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, preparePatches_);
+    vkCmdDispatch(cmd, 1, 1, 1);
+    computeToCompute(cmd);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cullPatches_);
+    vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, patchCullDispatch));
+    computeToCompute(cmd);
+  }
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, finalizeTriangles_);
   vkCmdDispatch(cmd, 1, 1, 1);
   globalBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,

@@ -186,7 +186,7 @@ class GpuRenderer {
       << 20;  // the last frame's counters.cullItems: sizes the persistent traversal's first claim
 
   Buffer frameData_, counters_, countersReadback_, queue_, drawList_, drawListReadback_, imageReadback_, triangleList_,
-      patchList_, visibility_, overdraw_,
+      patchList_, patchEntries_, visibility_, overdraw_,
       workerProfile_;                                      // host-visible; a placeholder until a frame is profiled
   std::vector<std::pair<uint32_t, Buffer>> sceneBuffers_;  // the scene's arrays, uploaded once, by binding
   VkImage color_ = VK_NULL_HANDLE, depth_ = VK_NULL_HANDLE;
@@ -202,7 +202,7 @@ class GpuRenderer {
              persistentProfile_ = VK_NULL_HANDLE, level_ = VK_NULL_HANDLE, prepareLevel_ = VK_NULL_HANDLE,
              flat_ = VK_NULL_HANDLE, prepareFlat_ = VK_NULL_HANDLE, resetFlat_ = VK_NULL_HANDLE,
              finalize_ = VK_NULL_HANDLE, draw_ = VK_NULL_HANDLE, cullTriangles_ = VK_NULL_HANDLE,
-             cullTrianglesNoPatches_ = VK_NULL_HANDLE, finalizeTriangles_ = VK_NULL_HANDLE,
+             preparePatches_ = VK_NULL_HANDLE, cullPatches_ = VK_NULL_HANDLE, finalizeTriangles_ = VK_NULL_HANDLE,
              drawOverdraw_ = VK_NULL_HANDLE, drawPatches_ = VK_NULL_HANDLE, drawPatchesOverdraw_ = VK_NULL_HANDLE,
              rasterSoftware_ = VK_NULL_HANDLE;
   // resolve.comp, one pipeline a view, made when first used (a shader with only its view's code: lavapipe

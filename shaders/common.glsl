@@ -31,6 +31,8 @@ layout(set = 0, binding = VGEO_BINDING_PATCHES, std430) readonly buffer PatchBuf
 layout(set = 0, binding = VGEO_BINDING_PATCH_POINTS, std430) readonly buffer PatchPointBuffer { uint patchPoints[]; };
 // Patch list (cull_triangles.comp): entry i is (draw-list entry << VGEO_TRIANGLE_BITS | cage face in its cluster).
 layout(set = 0, binding = VGEO_BINDING_PATCH_LIST, std430) buffer PatchListBuffer { uint patchList[]; };
+// Patch-entry list (cull_triangles.comp): the draw-list entries of patch-drawn clusters, for cull_patches.comp.
+layout(set = 0, binding = VGEO_BINDING_PATCH_ENTRIES, std430) buffer PatchEntryBuffer { uint patchEntries[]; };
 
 // A normal to world space by the cofactor matrix of the instance's linear part (det(M) M^-T): right under
 // non-uniform scale, and under a mirror (det < 0) it turns with the winding, so the fragment shader's

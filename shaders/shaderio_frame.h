@@ -39,8 +39,6 @@ VGEO_NAMESPACE_BEGIN
 #define VGEO_SPEC_LANE_TESTS 0
 // Specialization constant of resolve.comp: its view (VGEO_MODE_*), one pipeline a view.
 #define VGEO_SPEC_VIEW_MODE 1
-// Specialization constant of cull_triangles.comp: 0 in the variant for frames without patches.
-#define VGEO_SPEC_PATCHES 2
 // Worker profile (traverse_persistent.comp built with VGEO_PROFILE, binding 21; vgeo bench cut
 // --profile-workers): per workgroup VGEO_PROFILE_WORKER_WORDS words. Header: [0] working iterations
 // recorded, [1] iterations, [2] iterations without an item, [3] their summed clock ticks, [4,5] begin,
@@ -94,9 +92,10 @@ VGEO_NAMESPACE_BEGIN
 #define VGEO_BINDING_INSTANCE_ROOTS 23
 #define VGEO_BINDING_VISIBILITY 24
 #define VGEO_BINDING_OVERDRAW 25
-#define VGEO_BINDING_COLOR_IMAGE 26  // the frame's colour target as a storage image (resolve.comp writes it)
-#define VGEO_BINDING_DEPTH_IMAGE 27  // the hardware draws' depth, sampled (resolve.comp compares with it)
-#define VGEO_BINDING_COUNT 28
+#define VGEO_BINDING_COLOR_IMAGE 26    // the frame's colour target as a storage image (resolve.comp writes it)
+#define VGEO_BINDING_DEPTH_IMAGE 27    // the hardware draws' depth, sampled (resolve.comp compares with it)
+#define VGEO_BINDING_PATCH_ENTRIES 28  // draw-list entries of patch-drawn clusters (cull_triangles.comp)
+#define VGEO_BINDING_COUNT 29
 
 // Per-frame constants (a uniform buffer). The cull camera selects the cut and culls; the draw camera
 // makes the picture. They differ only with --freeze-camera.
@@ -179,24 +178,26 @@ struct Counters {
   uint triangles;   // triangles of the listed clusters
   uint levelStart;  // levels traversal: the window of the queue processed by one dispatch
   uint levelEnd;
-  uint queueHighWater;     // largest queueWrite seen
-  uint workgroupsExited;   // persistent traversal: workers that left
-  uint budgetExits;        // of those, left on the iteration budget (lavapipe)
-  uint dispatch[4];        // indirect dispatch arguments (x, y, z): levels and flat traversal, triangle culling
-  uint draw[4];            // VkDrawIndirectCommand
-  uint trianglesDrawn;     // triangles that survived triangle culling (requested; see triangleOverflow)
-  uint triangleOverflow;   // triangles that did not fit the triangle list
-  uint patchesDrawn;       // patches listed for the tessellated draw (requested; see patchOverflow)
-  uint patchOverflow;      // patches that did not fit the patch list
-  uint patchClusters;      // draw-list entries drawn as patches
-  uint patchDraw[4];       // VkDrawIndirectCommand of the patch draw (one vertex a patch)
-  uint sweepTests;         // cluster tests claimed for sweeps (may pass frame.sweepBudget: then not swept)
-  uint sweptTests;         // of those, swept
-  uint cullItems;          // queue items instance culling wrote: sizes the next frame's first claim
-  uint hardwareTriangles;  // of trianglesDrawn, those for the hardware draw, listed from the triangle list's start
-  uint softwareTriangles;  // of trianglesDrawn, those for the software rasterizer, listed from its end
-  uint rasterDispatch[4];  // indirect dispatch of raster_software.comp
-  uint counterPad[2];
+  uint queueHighWater;        // largest queueWrite seen
+  uint workgroupsExited;      // persistent traversal: workers that left
+  uint budgetExits;           // of those, left on the iteration budget (lavapipe)
+  uint dispatch[4];           // indirect dispatch arguments (x, y, z): levels and flat traversal, triangle culling
+  uint draw[4];               // VkDrawIndirectCommand
+  uint trianglesDrawn;        // triangles that survived triangle culling (requested; see triangleOverflow)
+  uint triangleOverflow;      // triangles that did not fit the triangle list
+  uint patchesDrawn;          // patches listed for the tessellated draw (requested; see patchOverflow)
+  uint patchOverflow;         // patches that did not fit the patch list
+  uint patchClusters;         // draw-list entries drawn as patches
+  uint patchDraw[4];          // VkDrawIndirectCommand of the patch draw (one vertex a patch)
+  uint sweepTests;            // cluster tests claimed for sweeps (may pass frame.sweepBudget: then not swept)
+  uint sweptTests;            // of those, swept
+  uint cullItems;             // queue items instance culling wrote: sizes the next frame's first claim
+  uint hardwareTriangles;     // of trianglesDrawn, those for the hardware draw, listed from the triangle list's start
+  uint softwareTriangles;     // of trianglesDrawn, those for the software rasterizer, listed from its end
+  uint rasterDispatch[4];     // indirect dispatch of raster_software.comp
+  uint patchEntries;          // draw-list entries drawn as patches, listed for cull_patches.comp
+  uint patchCullDispatch[4];  // its indirect dispatch
+  uint counterPad[5];
 };
 
 // Triangle list entry: draw-list entry << 7 | triangle within its cluster. Patch list entry: draw-list
@@ -208,7 +209,7 @@ struct Counters {
 
 #ifdef __cplusplus
 static_assert(sizeof(FrameData) == 64 + 96 + 32 + 96, "FrameData layout");
-static_assert(sizeof(Counters) == 5 * 128 + 32, "Counters layout");
+static_assert(sizeof(Counters) == 5 * 128 + 64, "Counters layout");
 static_assert(offsetof(Counters, itemsDone) == 4 * 128, "Counters: the hot words on lines of their own");
 #endif
 
