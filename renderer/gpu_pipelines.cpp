@@ -119,6 +119,10 @@ void GpuRenderer::createTargets() {
   rp.dependencyCount = 2;
   rp.pDependencies = deps;
   vkCheck(vkCreateRenderPass(dev, &rp, nullptr, &renderPass_), "vkCreateRenderPass");
+  // The same pass leaving the colour as it finds it, for frames whose resolve writes every pixel the
+  // draws leave (the clear of a 1920x1080 target is not free on every GPU).
+  attachments[0].loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+  vkCheck(vkCreateRenderPass(dev, &rp, nullptr, &renderPassResolved_), "vkCreateRenderPass");
   VkImageView views[2] = {colorView_, depthView_};
   VkFramebufferCreateInfo fb{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
   fb.renderPass = renderPass_;

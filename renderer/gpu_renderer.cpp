@@ -206,6 +206,7 @@ GpuRenderer::~GpuRenderer() {
   vkDestroySampler(dev, depthSampler_, nullptr);
   vkDestroyFramebuffer(dev, framebuffer_, nullptr);
   vkDestroyRenderPass(dev, renderPass_, nullptr);
+  vkDestroyRenderPass(dev, renderPassResolved_, nullptr);
   vkDestroyImageView(dev, colorView_, nullptr);
   vkDestroyImageView(dev, depthView_, nullptr);
   vkDestroyImage(dev, color_, nullptr);
@@ -403,10 +404,12 @@ void GpuRenderer::recordReadback(VkCommandBuffer cmd, const FrameSettings& setti
 // 7. The render pass: one indirect draw of the listed hardware triangles, one of the patches.
 void GpuRenderer::recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings) {
   VkClearValue clears[2];
-  clears[0].color = {{0.02f, 0.025f, 0.035f, 1.0f}};
+  clears[0].color = {{VGEO_BACKGROUND_R, VGEO_BACKGROUND_G, VGEO_BACKGROUND_B, 1.0f}};
   clears[1].depthStencil = {0.0f, 0};
   VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-  begin.renderPass = renderPass_;
+  // The resolve writes the background where nothing was drawn, except in the overdraw view (it adds).
+  const bool resolved = softwareRaster(settings) != VGEO_RASTER_NONE && settings.mode != VGEO_MODE_OVERDRAW;
+  begin.renderPass = resolved ? renderPassResolved_ : renderPass_;
   begin.framebuffer = framebuffer_;
   begin.renderArea = {{0, 0}, {width_, height_}};
   begin.clearValueCount = 2;

@@ -5,7 +5,8 @@
 // written over theirs. From a pixel's triangle word: the
 // draw-list entry (instance, cluster) and the triangle, whose corners are projected again to find the
 // pixel centre's barycentric coordinates (made perspective-correct with the corners' w) for the normal,
-// and the distance to the edges in pixels for the wire view. Empty pixels are left alone. In
+// and the distance to the edges in pixels for the wire view. A pixel nothing covers gets the background
+// (the render pass leaves the colour uncleared then). In
 // --mode overdraw the pixel adds its count of software-rasterized samples instead.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
@@ -32,9 +33,13 @@ void main() {
     return;
   }
   uint64_t word = visibility[pixel];
-  if (word == 0ul) return;
+  float drawnDepth = texelFetch(depthImage, xy, 0).r;  // 0: the render pass drew nothing here
+  if (word == 0ul) {
+    if (drawnDepth == 0.0) imageStore(colorImage, xy, vec4(VGEO_BACKGROUND_R, VGEO_BACKGROUND_G, VGEO_BACKGROUND_B, 1.0));
+    return;
+  }
   float depth = uintBitsToFloat(uint(word >> 32));
-  if (depth < texelFetch(depthImage, xy, 0).r) return;
+  if (depth < drawnDepth) return;
   uint triangleWord = uint(word & 0xfffffffful);
   uint entry = triangleWord >> VGEO_TRIANGLE_BITS, triangle = triangleWord & ((1u << VGEO_TRIANGLE_BITS) - 1u);
   uint instance = drawList[2u * entry], cluster = drawList[2u * entry + 1u] & ~VGEO_DRAW_PATCHES_BIT;

@@ -22,6 +22,10 @@ VGEO_NAMESPACE_BEGIN
 #define VGEO_MODE_FROZEN_DIFF 10
 #define VGEO_MODE_PATCH 11
 #define VGEO_MODE_COUNT 12
+// The clear colour (linear RGB): the render pass's, and the resolve's where nothing was drawn.
+#define VGEO_BACKGROUND_R 0.02f
+#define VGEO_BACKGROUND_G 0.025f
+#define VGEO_BACKGROUND_B 0.035f
 
 #define VGEO_INVALID 0xffffffffu
 #define VGEO_ITEM_GROUP_BIT 0x80000000u  // queue item names a group, not a BVH node
