@@ -206,7 +206,7 @@ class GpuRenderer {
              drawOverdraw_ = VK_NULL_HANDLE, drawPatches_ = VK_NULL_HANDLE, drawPatchesOverdraw_ = VK_NULL_HANDLE,
              rasterSoftware_ = VK_NULL_HANDLE;
   // resolve.comp, one pipeline a view, made when first used (a shader with only its view's code: lavapipe
-  // runs every line of a shader whatever branch its lanes take).
+  // runs every line of a shader whatever branch its lanes take, docs/gpu-notes.md 17).
   VkPipeline resolve_[VGEO_MODE_COUNT] = {};
   VkSampler depthSampler_ = VK_NULL_HANDLE;
   VkQueryPool queries_ = VK_NULL_HANDLE;

@@ -7,7 +7,7 @@
 //   - its screen bounding box holds no pixel centre, so it makes no fragment.
 // A leaf cluster flagged for patches (VGEO_DRAW_PATCHES_BIT) is left to cull_patches.comp: its entry
 // joins the patch-entry list, which a pass of its own goes through (lavapipe runs every line of a
-// shader whatever its lanes branch to, so the patch code in this pass cost every cluster its time).
+// shader whatever its lanes branch to, docs/gpu-notes.md 17: here every cluster paid for the patch code).
 // A triangle that stays is binned: to the hardware draw (listed from the triangle list's start) or, when
 // all its corners are in front of the near plane and it is small on screen (raster_setup.glsl), to the
 // software rasterizer (listed from the end, raster_software.comp). finalize_triangles.comp counts an
