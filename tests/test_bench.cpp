@@ -57,8 +57,8 @@ TEST(BenchFrame, SplitsTheFrameWithAndWithoutTriangleCullingAndPatches) {
     const auto &patches = records[i], &on = records[i + 1], &hardwarePatches = records[i + 2],
                &hardwareOn = records[i + 3], &off = records[i + 4];
     for (const char* key : {"instance_culling", "instance_cull_ms", "traversal_ms", "triangle_cull_ms", "raster_ms",
-                            "draw_ms", "frame_ms", "pixels_covered", "patches_drawn", "patch_triangles", "patch_pixels",
-                            "software_triangles", "device", "commit"})
+                            "resolve_ms", "draw_ms", "frame_ms", "pixels_covered", "patches_drawn", "patch_triangles",
+                            "patch_pixels", "software_triangles", "device", "commit"})
       EXPECT_TRUE(patches.contains(key)) << key;
     EXPECT_TRUE(patches["patches"].get<bool>() && patches["triangle_cull"].get<bool>());
     EXPECT_TRUE(on["triangle_cull"].get<bool>() && !on["patches"].get<bool>());
