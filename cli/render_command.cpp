@@ -167,6 +167,8 @@ int runRender(const RenderArgs& a) {
   if (!parseSize(a.size, width, height))
     throw UsageError("--size", "expected WxH with both in 1..16384, e.g. 1280x720 (got '" + a.size + "')");
   traversalNamed("--traversal", a.traversal);
+  if (rasterNamed("--raster", a.raster) == Raster::Software && a.noTriangleCull)
+    throw UsageError("--raster", "software needs triangle culling, which bins the triangles (drop --no-triangle-cull)");
   checkOutputPath("--output", a.output, {a.input}, ".png");
   if (!a.stats.empty()) checkOutputPath("--stats", a.stats, {a.input, a.output});
   std::optional<Camera> camera, cullCamera;

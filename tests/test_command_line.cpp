@@ -54,6 +54,7 @@ TEST_F(CommandLine, BadValuesAreUsageErrorsBeforeAnyWork) {
   expectOneLine(render("--mode bogus"), 2, "--mode");
   expectOneLine(render("--traversal bogus"), 2, "--traversal");
   expectOneLine(render("--raster bogus"), 2, "--raster");
+  expectOneLine(render("--raster software --no-triangle-cull"), 2, "needs triangle culling");
   expectOneLine(render("--size 0x10"), 2, "--size");
   expectOneLine(render("--frames 0"), 2, "--frames");
   expectOneLine("render " + *dir + "/cow.vgeo -o " + *dir + "/missing/out.png", 2, "does not exist");
