@@ -2,12 +2,12 @@
 // resolve.comp: the pixels of the software rasterizer (raster_software.comp), shaded from the visibility
 // buffer in the view of --mode after the render pass, one thread a pixel: where its depth is at least the
 // hardware draws' (the nearest surface either way; a tie goes to the software pixel), its colour is
-// written over theirs. From a pixel's triangle word: the
-// draw-list entry (instance, cluster) and the triangle, whose corners are projected again to find the
-// pixel centre's barycentric coordinates (made perspective-correct with the corners' w) for the normal,
-// and the distance to the edges in pixels for the wire view. A pixel nothing covers gets the background
-// (the render pass leaves the colour uncleared then). In
-// --mode overdraw the pixel adds its count of software-rasterized samples instead.
+// written over theirs. From a pixel's triangle word come the draw-list entry (instance, cluster) and the
+// triangle, whose corners are projected again to find the pixel centre's barycentric coordinates (made
+// perspective-correct with the corners' w) for the normal, and the distance to the edges in pixels for
+// the wire view. A pixel nothing covers gets the background (the render pass leaves the colour
+// uncleared then). In --mode overdraw the pixel adds its count of software-rasterized samples instead.
+// The view is a specialization constant (one pipeline a view): see docs/gpu-notes.md, 17.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 #include "raster_setup.glsl"
