@@ -1,22 +1,7 @@
-// gpu_renderer.cpp: the frame. renderFrame() is its steps; runPasses() records the passes, in this order:
-//   1. reset counters            (transfer)
-//   2. cull_instances.comp       1 or 64 lanes an instance (64 on GPUs up to 4,096 instances) -> queue of
-//                                (instance, level subtree root), or of (instance, BVH root) for flat; in
-//                                scenes of up to 3 instances a persistent worker on GPUs, the workers cull
-//                                them first themselves (cull_instances.glsl), in the traversal's dispatch
-//   3. traversal                 persistent: one dispatch of resident workgroups draining the queue
-//                                levels: per depth, prepare_level.comp then traverse_level.comp (indirect)
-//                                flat: prepare_flat.comp then traverse_flat.comp (one thread a cluster)
-//   4. draw_arguments.glsl       triangle-culling dispatch (or draw) arguments from the draw-list count:
-//                                the persistent traversal's last worker, reset_flat.comp, finalize.comp
-//   5. cull_triangles.comp       one workgroup a listed cluster -> triangle list of what can make fragments
-//      finalize_triangles.comp   indirect draw arguments from the triangle count
-//   6. render pass: one vkCmdDrawIndirect of the listed triangles (draw.vert, draw.frag); without
-//      triangle culling, of 384 vertices x listed clusters; then one of the listed patches, one vertex
-//      a patch (patch.vert, patch.tesc, patch.tese)
-//   7. copies back: counters (and the image / draw list when asked), read once the frame is done
-// No host read-back happens inside the frame; the host reads the counters after it, and a frame that
-// overflowed grows the buffers for the next one.
+// gpu_renderer.cpp: the frame. renderFrame() is its steps: the frame's constants, its passes recorded and
+// timed in order by runPasses() (each pass in frame_passes.cpp), the results read back, and the lists
+// that overflowed grown for the next frame. Also the scene's buffers and the descriptor set. No host
+// read-back happens inside the frame.
 #include "gpu_renderer.h"
 
 #include <chrono>
@@ -47,35 +32,14 @@ constexpr size_t kFewWorkgroupsInstances = 32768;
 // where one instance of all patches joined unrelated vertices in close-ups. GPUs: one instance holds
 // many (the count has no effect on the picture).
 constexpr uint32_t kLavapipePatchesPerInstance = 15, kPatchesPerInstance = 4096;
-// Frame start, then the end of instance culling, traversal, triangle culling and the draw.
+// Frame start, then the end of each pass of runPasses.
 constexpr uint32_t kTimestamps = 8;
-
-void globalBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags srcAccess, VkPipelineStageFlags dst,
-                   VkAccessFlags dstAccess) {
-  VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-  b.srcAccessMask = srcAccess;
-  b.dstAccessMask = dstAccess;
-  vkCmdPipelineBarrier(cmd, src, dst, 0, 1, &b, 0, nullptr, 0, nullptr);
-}
-void computeToCompute(VkCommandBuffer cmd) {
-  globalBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT,
-                VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
-                VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
-}
 
 double msSince(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
 }
 
 }  // namespace
-
-// The draws' geometry stages that read what the compute passes wrote (lists, counters).
-VkPipelineStageFlags GpuRenderer::drawShaderStages() const {
-  return VK_PIPELINE_STAGE_VERTEX_SHADER_BIT |
-         (vk_.tessellation()
-              ? VK_PIPELINE_STAGE_TESSELLATION_CONTROL_SHADER_BIT | VK_PIPELINE_STAGE_TESSELLATION_EVALUATION_SHADER_BIT
-              : 0u);
-}
 
 const char* traversalName(Traversal t) {
   return t == Traversal::Persistent ? "persistent" : t == Traversal::Levels ? "levels" : "flat";
@@ -256,179 +220,6 @@ void GpuRenderer::writeDescriptors() {
                  nullptr};
   }
   vkUpdateDescriptorSets(vk_.device(), kRendererBindings, writes, 0, nullptr);
-}
-
-// Resets the counters: all 0 but nodesPending, the instances the persistent workers will cull (earlier
-// submissions are ordered before it by the opening barrier); binds the descriptor set for the compute passes.
-void GpuRenderer::recordCounterReset(VkCommandBuffer cmd, uint32_t nodesPending) {
-  globalBarrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT,
-                VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
-  shaderio::Counters zero{};
-  zero.nodesPending = nodesPending;
-  vkCmdUpdateBuffer(cmd, counters_.buffer, 0, sizeof(zero), &zero);
-  globalBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
-}
-
-void GpuRenderer::recordInstanceCull(VkCommandBuffer cmd, const FrameSettings& settings) {
-  // 1. Reset the counters. 2. Instance culling, unless the persistent traversal's workers do it: then each
-  // instance counts as pending until its culling has queued its items (traverse_persistent.comp).
-  if (cullsInTraversal(settings)) {
-    recordCounterReset(cmd, uint32_t(scene_.data.instances.size()));
-    return;
-  }
-  recordCounterReset(cmd);
-  const uint32_t lanes = cullInstanceLanes(settings),
-                 instancesPerWorkgroup = lanes == 1 ? 64 : VGEO_CULL_SPREAD_WORKGROUP / lanes;
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, lanes == 1 ? cullSerial_ : cull_);
-  vkCmdDispatch(cmd, (uint32_t(scene_.data.instances.size()) + instancesPerWorkgroup - 1) / instancesPerWorkgroup, 1,
-                1);
-  computeToCompute(cmd);
-}
-
-void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& settings) {
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
-  // 3. Traversal. Every pass is followed by a barrier before the next reads what it wrote; the last one
-  // writes the draw arguments (4., draw_arguments.glsl: the persistent traversal's last worker, the flat
-  // traversal's reset pass, finalize.comp after the levels) and is followed by the barrier below.
-  auto lastPass = [&](VkPipeline pipeline, uint32_t workgroups) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-    vkCmdDispatch(cmd, workgroups, 1, 1);
-  };
-  auto dispatch = [&](VkPipeline pipeline, uint32_t workgroups) {
-    lastPass(pipeline, workgroups);
-    computeToCompute(cmd);
-  };
-  auto dispatchIndirect = [&](VkPipeline pipeline) {  // sized by the preceding prepare pass
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-    vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, dispatch));
-    computeToCompute(cmd);
-  };
-  if (settings.traversal == Traversal::Persistent) {
-    lastPass(settings.profileWorkers && persistentProfile_ ? persistentProfile_ : persistent_, persistentWorkgroups_);
-  } else if (settings.traversal == Traversal::Levels) {
-    // The roots' children (queued by instance culling), one level of nodes per dispatch, then the groups:
-    // depth windows.
-    for (uint32_t level = 0; level < scene_.maxBvhDepth; level++) {
-      dispatch(prepareLevel_, 1);
-      dispatchIndirect(level_);
-    }
-    lastPass(finalize_, 1);
-  } else {
-    dispatch(prepareFlat_, 1);
-    dispatchIndirect(flat_);
-    lastPass(resetFlat_, (uint32_t(scene_.data.instances.size()) + 63) / 64);
-  }
-  // Read by triangle culling (indirect dispatch and counters), or else by the draw and the copies.
-  globalBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | drawShaderStages() |
-                    VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
-                    VK_ACCESS_TRANSFER_READ_BIT);
-}
-
-// 5. Triangle culling: the triangles of the listed clusters that can make a fragment, then the draw's arguments.
-void GpuRenderer::recordTriangleCull(VkCommandBuffer cmd, bool patches) {
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cullTriangles_);
-  vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, dispatch));
-  computeToCompute(cmd);
-  if (patches) {  // the patch-drawn clusters that triangle culling listed, a workgroup each
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, preparePatches_);
-    vkCmdDispatch(cmd, 1, 1, 1);
-    computeToCompute(cmd);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cullPatches_);
-    vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, patchCullDispatch));
-    computeToCompute(cmd);
-  }
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, finalizeTriangles_);
-  vkCmdDispatch(cmd, 1, 1, 1);
-  globalBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | drawShaderStages() |
-                    VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
-}
-
-// 6. The software rasterizer: the visibility buffer (or the overdraw counts) cleared, then the triangles
-// binned to it drawn into it; read by the resolve after the render pass.
-void GpuRenderer::recordSoftwareRaster(VkCommandBuffer cmd) {
-  vkCmdFillBuffer(cmd, visibility_.buffer, 0, VK_WHOLE_SIZE, 0);
-  vkCmdFillBuffer(cmd, overdraw_.buffer, 0, VK_WHOLE_SIZE, 0);
-  globalBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, rasterSoftware_);
-  vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, rasterDispatch));
-  globalBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
-}
-
-// 8. The resolve of the software rasterizer's pixels where they are nearer than the render pass's
-// (resolve.comp), into the colour target.
-void GpuRenderer::recordResolve(VkCommandBuffer cmd, uint32_t mode) {
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, resolvePipeline(mode));
-  vkCmdDispatch(cmd, (width_ + 7) / 8, (height_ + 7) / 8, 1);
-}
-
-// 9. Copies back: counters, image, draw list.
-void GpuRenderer::recordReadback(VkCommandBuffer cmd, const FrameSettings& settings) {
-  VkBufferCopy all{0, 0, sizeof(shaderio::Counters)};
-  vkCmdCopyBuffer(cmd, counters_.buffer, countersReadback_.buffer, 1, &all);
-  if (settings.readImage && settings.draw) {
-    // The colour from the render pass's GENERAL (and the resolve's writes) to the copy's layout.
-    VkImageMemoryBarrier toCopy{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-    toCopy.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_SHADER_WRITE_BIT;
-    toCopy.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-    toCopy.oldLayout = VK_IMAGE_LAYOUT_GENERAL;
-    toCopy.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-    toCopy.srcQueueFamilyIndex = toCopy.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    toCopy.image = color_;
-    toCopy.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                         VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr, 1, &toCopy);
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {width_, height_, 1};
-    vkCmdCopyImageToBuffer(cmd, color_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, imageReadback_.buffer, 1, &region);
-  }
-  if (settings.readDrawList) {
-    VkBufferCopy list{0, 0, drawList_.size};
-    vkCmdCopyBuffer(cmd, drawList_.buffer, drawListReadback_.buffer, 1, &list);
-  }
-  globalBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
-                VK_ACCESS_HOST_READ_BIT);
-}
-
-// 7. The render pass: one indirect draw of the listed hardware triangles, one of the patches.
-void GpuRenderer::recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings) {
-  VkClearValue clears[2];
-  clears[0].color = {{VGEO_BACKGROUND_R, VGEO_BACKGROUND_G, VGEO_BACKGROUND_B, 1.0f}};
-  clears[1].depthStencil = {0.0f, 0};
-  VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
-  // The resolve writes the background where nothing was drawn, except in the overdraw view (it adds).
-  const bool resolved = softwareRaster(settings) != VGEO_RASTER_NONE && settings.mode != VGEO_MODE_OVERDRAW;
-  begin.renderPass = resolved ? renderPassResolved_ : renderPass_;
-  begin.framebuffer = framebuffer_;
-  begin.renderArea = {{0, 0}, {width_, height_}};
-  begin.clearValueCount = 2;
-  begin.pClearValues = clears;
-  const bool patches = drawsPatches(settings);
-  if (patches && statistics_) vkCmdResetQueryPool(cmd, statistics_, 0, 1);
-  vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, settings.mode == VGEO_MODE_OVERDRAW ? drawOverdraw_ : draw_);
-  vkCmdDrawIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, draw), 1, sizeof(VkDrawIndirectCommand));
-  // The leaf patches: one more indirect draw, tessellated (patch.tesc, patch.tese).
-  if (patches) {
-    if (statistics_) vkCmdBeginQuery(cmd, statistics_, 0, 0);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                      settings.mode == VGEO_MODE_OVERDRAW ? drawPatchesOverdraw_ : drawPatches_);
-    vkCmdDrawIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, patchDraw), 1, sizeof(VkDrawIndirectCommand));
-    if (statistics_) vkCmdEndQuery(cmd, statistics_, 0);
-  }
-  vkCmdEndRenderPass(cmd);
 }
 
 // The frame's constants (shaderio.h, FrameData) for these settings.
