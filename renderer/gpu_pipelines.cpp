@@ -207,32 +207,28 @@ VkPipeline GpuRenderer::resolvePipeline(uint32_t mode) {
 }
 
 void GpuRenderer::createComputePipelines(bool softwareRaster) {
-  VkDevice dev = vk_.device();
-  auto compute = [&](const uint32_t* code, size_t bytes, const VkSpecializationInfo* specialization = nullptr) {
-    return computePipeline(code, bytes, specialization);
-  };
-  cull_ = compute(cull_instances_comp, sizeof(cull_instances_comp));
-  cullSerial_ = compute(cull_instances_comp_cull_serial, sizeof(cull_instances_comp_cull_serial));
+  cull_ = computePipeline(cull_instances_comp, sizeof(cull_instances_comp));
+  cullSerial_ = computePipeline(cull_instances_comp_cull_serial, sizeof(cull_instances_comp_cull_serial));
   // Tests a lane between draw-list atomics (traverse_persistent.comp, runRound): 1 on lavapipe.
   const uint32_t laneTests = vk_.isLavapipe() ? 1u : 4u;
   const VkSpecializationMapEntry laneTestsEntry{VGEO_SPEC_LANE_TESTS, 0, sizeof(uint32_t)};
   const VkSpecializationInfo persistentSpecialization{1, &laneTestsEntry, sizeof(laneTests), &laneTests};
-  persistent_ = compute(traverse_persistent_comp, sizeof(traverse_persistent_comp), &persistentSpecialization);
+  persistent_ = computePipeline(traverse_persistent_comp, sizeof(traverse_persistent_comp), &persistentSpecialization);
   if (vk_.deviceClock())
-    persistentProfile_ =
-        compute(traverse_persistent_comp_profile, sizeof(traverse_persistent_comp_profile), &persistentSpecialization);
-  level_ = compute(traverse_level_comp, sizeof(traverse_level_comp));
-  prepareLevel_ = compute(prepare_level_comp, sizeof(prepare_level_comp));
-  flat_ = compute(traverse_flat_comp, sizeof(traverse_flat_comp));
-  prepareFlat_ = compute(prepare_flat_comp, sizeof(prepare_flat_comp));
-  resetFlat_ = compute(reset_flat_comp, sizeof(reset_flat_comp));
-  finalize_ = compute(finalize_comp, sizeof(finalize_comp));
-  cullTriangles_ = compute(cull_triangles_comp, sizeof(cull_triangles_comp));
-  preparePatches_ = compute(prepare_patches_comp, sizeof(prepare_patches_comp));
-  cullPatches_ = compute(cull_patches_comp, sizeof(cull_patches_comp));
-  finalizeTriangles_ = compute(finalize_triangles_comp, sizeof(finalize_triangles_comp));
+    persistentProfile_ = computePipeline(traverse_persistent_comp_profile, sizeof(traverse_persistent_comp_profile),
+                                         &persistentSpecialization);
+  level_ = computePipeline(traverse_level_comp, sizeof(traverse_level_comp));
+  prepareLevel_ = computePipeline(prepare_level_comp, sizeof(prepare_level_comp));
+  flat_ = computePipeline(traverse_flat_comp, sizeof(traverse_flat_comp));
+  prepareFlat_ = computePipeline(prepare_flat_comp, sizeof(prepare_flat_comp));
+  resetFlat_ = computePipeline(reset_flat_comp, sizeof(reset_flat_comp));
+  finalize_ = computePipeline(finalize_comp, sizeof(finalize_comp));
+  cullTriangles_ = computePipeline(cull_triangles_comp, sizeof(cull_triangles_comp));
+  preparePatches_ = computePipeline(prepare_patches_comp, sizeof(prepare_patches_comp));
+  cullPatches_ = computePipeline(cull_patches_comp, sizeof(cull_patches_comp));
+  finalizeTriangles_ = computePipeline(finalize_triangles_comp, sizeof(finalize_triangles_comp));
   if (softwareRaster) {
-    rasterSoftware_ = compute(raster_software_comp, sizeof(raster_software_comp));
+    rasterSoftware_ = computePipeline(raster_software_comp, sizeof(raster_software_comp));
   }
 }
 

@@ -100,6 +100,8 @@ class GpuRenderer {
   uint32_t persistentWorkgroups() const { return persistentWorkgroups_; }
   void setFrameMemoryLimit(uint64_t bytes) { frameMemoryLimit_ = bytes; }
   bool canProfileWorkers() const { return persistentProfile_ != VK_NULL_HANDLE; }
+  // Whether the device runs the software rasterizer (64-bit buffer atomics, a picture one buffer holds).
+  bool hasSoftwareRaster() const { return rasterSoftware_ != VK_NULL_HANDLE; }
   // Overrides the persistent traversal's workgroup count (benchmarks; the default is what the device
   // runs at once).
   void setPersistentWorkgroups(uint32_t count) { persistentWorkgroups_ = std::max(count, 1u); }
@@ -170,11 +172,6 @@ class GpuRenderer {
     return s.raster == Raster::Software ? VGEO_RASTER_ALL : VGEO_RASTER_SMALL;
   }
 
- public:
-  // Whether the device runs the software rasterizer (64-bit buffer atomics).
-  bool hasSoftwareRaster() const { return rasterSoftware_ != VK_NULL_HANDLE; }
-
- private:
   VulkanContext& vk_;
   const RenderScene& scene_;
   uint32_t width_, height_;
