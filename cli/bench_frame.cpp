@@ -92,9 +92,9 @@ void runBenchFrame(const FrameBenchArgs& a) {
           r["instance_cull_ms"] = median(cull);
           r["traversal_ms"] = median(traverse);
           r["triangle_cull_ms"] = median(triangles);
-          r["raster_ms"] = median(raster);    // the software rasterizer
+          r["raster_ms"] = median(raster);    // the compute rasterizers: small triangles, then patches
           r["draw_ms"] = median(draw);        // the render pass: hardware draws
-          r["resolve_ms"] = median(resolve);  // the software rasterizer's pixels shaded
+          r["resolve_ms"] = median(resolve);  // the compute rasterizers' pixels shaded
           r["frame_ms"] = median(frame);
           addFrameCounters(r, f, renderer, vk);
           r["pixels_covered"] = covered;
@@ -108,11 +108,12 @@ void runBenchFrame(const FrameBenchArgs& a) {
           std::fprintf(
               stderr,
               "%7zu instances %4ux%-4u %-7s triangle cull %-3s patches %-3s %-8s: cull %.3f  traversal "
-              "%.3f  triangles %.3f  raster %.3f  draw %.3f  resolve %.3f  frame %.3f ms (%u of %u triangles in "
-              "software)\n",
+              "%.3f  triangles %.3f  raster %.3f  draw %.3f  resolve %.3f  frame %.3f ms (%u of %u triangles, %u of "
+              "%u patches in compute)\n",
               scene.data.instances.size(), width, height, cameraName.c_str(), triangleCull ? "on" : "off",
               patches ? "on" : "off", variant.raster.c_str(), median(cull), median(traverse), median(triangles),
-              median(raster), median(draw), median(resolve), median(frame), f.softwareTriangles, f.trianglesDrawn);
+              median(raster), median(draw), median(resolve), median(frame), f.softwareTriangles, f.trianglesDrawn,
+              f.softwarePatches, f.patchesDrawn);
           records.push_back(r);
         }
       }

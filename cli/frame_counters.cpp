@@ -28,6 +28,7 @@ void addFrameCounters(nlohmann::ordered_json& r, const FrameResult& f, const Gpu
   // the tessellator made (pipeline statistics; -1 where the device has none).
   r["patch_clusters"] = c.patchClusters;
   r["patches_drawn"] = f.patchesDrawn;
+  r["software_patches"] = f.softwarePatches;  // of those, tessellated and drawn by the compute rasterizer
   r["patch_triangles"] = f.patchTriangles;
 }
 

@@ -15,11 +15,12 @@ void GpuRenderer::createQueueAndDrawList() {
   // A triangle-list entry holds the draw-list entry in 25 bits.
   drawCapacity_ = uint32_t(std::min<VkDeviceSize>({drawCapacity_, range / 8, VGEO_MAX_DRAW_ENTRIES}));
   triangleCapacity_ = uint32_t(std::min<VkDeviceSize>(triangleCapacity_, range / 4));
-  patchCapacity_ = uint32_t(std::min<VkDeviceSize>(patchCapacity_, range / 4));
+  // A visibility-buffer id holds the patch-list slot in 20 bits.
+  patchCapacity_ = uint32_t(std::min<VkDeviceSize>({patchCapacity_, range / 8, VGEO_MAX_PATCH_ENTRIES}));
   queue_ = vk_.createBuffer(VkDeviceSize(queueCapacity_) * 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   drawList_ = vk_.createBuffer(VkDeviceSize(drawCapacity_) * 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   triangleList_ = vk_.createBuffer(VkDeviceSize(triangleCapacity_) * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  patchList_ = vk_.createBuffer(VkDeviceSize(patchCapacity_) * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  patchList_ = vk_.createBuffer(VkDeviceSize(patchCapacity_) * 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   patchEntries_ = vk_.createBuffer(VkDeviceSize(drawCapacity_) * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   // Every queue slot starts unwritten; consumers put them back that way.
   VkCommandBuffer cmd = vk_.beginCommands();
@@ -56,7 +57,8 @@ void GpuRenderer::growOverflowedLists(const shaderio::Counters& c, float tau) {
                 {"draw-list entries", c.drawOverflow != 0, drawCapacity_, c.drawCount, 8,
                  std::min<uint64_t>(range / 8, VGEO_MAX_DRAW_ENTRIES)},
                 {"triangles", c.triangleOverflow != 0, triangleCapacity_, c.trianglesDrawn, 4, range / 4},
-                {"patches", c.patchOverflow != 0, patchCapacity_, c.patchesDrawn, 4, range / 4}};
+                {"patches", c.patchOverflow != 0, patchCapacity_, c.patchesDrawn, 8,
+                 std::min<uint64_t>(range / 8, VGEO_MAX_PATCH_ENTRIES)}};
   char tauText[32];
   std::snprintf(tauText, sizeof tauText, "%g", double(tau));
   uint64_t neededBytes = 0, wantedBytes = 0, want[4];

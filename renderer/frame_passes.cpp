@@ -12,14 +12,15 @@
 //                                the persistent traversal's last worker, reset_flat.comp, finalize.comp
 //   5. cull_triangles.comp       one workgroup a listed cluster -> triangle list, binned to the software
 //                                rasterizer or the hardware; patch-drawn clusters -> patch-entry list
-//      prepare_patches.comp,     with patches: one workgroup a patch-drawn cluster -> patch list
-//      cull_patches.comp
+//      prepare_patches.comp,     with patches: one workgroup a patch-drawn cluster -> patch list,
+//      cull_patches.comp         binned to the compute rasterizer or the tessellator
 //      finalize_triangles.comp   the draws' and the software rasterizer's indirect arguments
 //   6. raster_software.comp      the small triangles into the visibility buffer
+//      raster_patches.comp       the patches binned to compute: tessellated and rasterized there
 //   7. render pass               one vkCmdDrawIndirect of the hardware's triangles (draw.vert, draw.frag;
 //                                without triangle culling, of 384 vertices x listed clusters), then one of
 //                                the listed patches, one vertex a patch (patch.vert, patch.tesc, patch.tese)
-//   8. resolve.comp              the software rasterizer's pixels shaded into the colour target
+//   8. resolve.comp              the compute rasterizers' pixels shaded into the colour target
 //   9. copies back               counters (and the image / draw list when asked)
 #include "gpu_renderer.h"
 
@@ -141,9 +142,10 @@ void GpuRenderer::recordTriangleCull(VkCommandBuffer cmd, bool patches) {
                 VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
 }
 
-// 6. The software rasterizer: the visibility buffer (or the overdraw counts) cleared, then the triangles
-// binned to it drawn into it; read by the resolve after the render pass.
-void GpuRenderer::recordSoftwareRaster(VkCommandBuffer cmd) {
+// 6. The compute rasterizers: the visibility buffer (or the overdraw counts) cleared, then the triangles
+// binned to compute drawn into it, then the patches binned to compute; read by the resolve after the
+// render pass.
+void GpuRenderer::recordSoftwareRaster(VkCommandBuffer cmd, bool patches) {
   vkCmdFillBuffer(cmd, visibility_.buffer, 0, VK_WHOLE_SIZE, 0);
   vkCmdFillBuffer(cmd, overdraw_.buffer, 0, VK_WHOLE_SIZE, 0);
   globalBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
@@ -151,15 +153,20 @@ void GpuRenderer::recordSoftwareRaster(VkCommandBuffer cmd) {
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, rasterSoftware_);
   vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, rasterDispatch));
+  if (patches) {  // the patches binned to compute, a workgroup each (atomics on the same words: ordered)
+    computeToCompute(cmd);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, rasterPatches_);
+    vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, patchRasterDispatch));
+  }
   globalBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
 }
 
 // 8. The resolve of the software rasterizer's pixels where they are nearer than the render pass's
 // (resolve.comp), into the colour target.
-void GpuRenderer::recordResolve(VkCommandBuffer cmd, uint32_t mode) {
+void GpuRenderer::recordResolve(VkCommandBuffer cmd, uint32_t mode, bool patches) {
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, resolvePipeline(mode));
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, resolvePipeline(mode, patches));
   vkCmdDispatch(cmd, (width_ + 7) / 8, (height_ + 7) / 8, 1);
 }
 

@@ -15,6 +15,7 @@
 #include "shaders/patch_tese.h"
 #include "shaders/patch_vert.h"
 #include "shaders/prepare_flat_comp.h"
+#include "shaders/raster_patches_comp.h"
 #include "shaders/raster_software_comp.h"
 #include "shaders/prepare_level_comp.h"
 #include "shaders/prepare_patches_comp.h"
@@ -94,14 +95,14 @@ void GpuRenderer::createTargets() {
   subpass.colorAttachmentCount = 1;
   subpass.pColorAttachments = &colorRef;
   subpass.pDepthStencilAttachment = &depthRef;
-  // Earlier frames' copy of the colour image, resolve and depth use finish before this pass writes them again.
+  // Earlier frames' copy of the colour image and depth use finish before this pass writes them again
+  // (their resolve too, by the barrier that opens every frame). Not this frame's compute passes: the
+  // compute rasterizers may run beside the draws; the resolve waits for both.
   VkSubpassDependency deps[2] = {};
   deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
   deps[0].dstSubpass = 0;
-  deps[0].srcStageMask =
-      VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
-  deps[0].srcAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
-                          VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+  deps[0].srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+  deps[0].srcAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
   deps[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT;
   deps[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
                           VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT;
@@ -197,13 +198,16 @@ VkPipeline GpuRenderer::computePipeline(const uint32_t* code, size_t bytes,
   return pipeline;
 }
 
-VkPipeline GpuRenderer::resolvePipeline(uint32_t mode) {
-  if (!resolve_[mode]) {
-    const VkSpecializationMapEntry entry{VGEO_SPEC_VIEW_MODE, 0, sizeof(uint32_t)};
-    const VkSpecializationInfo view{1, &entry, sizeof(mode), &mode};
-    resolve_[mode] = computePipeline(resolve_comp, sizeof(resolve_comp), &view);
+VkPipeline GpuRenderer::resolvePipeline(uint32_t mode, bool patches) {
+  VkPipeline& pipeline = resolve_[mode][patches ? 1 : 0];
+  if (!pipeline) {
+    const uint32_t constants[2] = {mode, patches ? 1u : 0u};  // VkBool32
+    const VkSpecializationMapEntry entries[2] = {{VGEO_SPEC_VIEW_MODE, 0, sizeof(uint32_t)},
+                                                 {VGEO_SPEC_RESOLVE_PATCHES, sizeof(uint32_t), sizeof(uint32_t)}};
+    const VkSpecializationInfo view{2, entries, sizeof(constants), constants};
+    pipeline = computePipeline(resolve_comp, sizeof(resolve_comp), &view);
   }
-  return resolve_[mode];
+  return pipeline;
 }
 
 void GpuRenderer::createComputePipelines(bool softwareRaster) {
@@ -229,6 +233,7 @@ void GpuRenderer::createComputePipelines(bool softwareRaster) {
   finalizeTriangles_ = computePipeline(finalize_triangles_comp, sizeof(finalize_triangles_comp));
   if (softwareRaster) {
     rasterSoftware_ = computePipeline(raster_software_comp, sizeof(raster_software_comp));
+    rasterPatches_ = computePipeline(raster_patches_comp, sizeof(raster_patches_comp));
   }
 }
 

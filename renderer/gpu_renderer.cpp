@@ -99,6 +99,10 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
   overdraw_ = vk_.createBuffer(software ? pixels * 4 : 16,
                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+  // The compute-rasterized patches' grid points, as many as a grid word can address (16 MiB); patches
+  // past it go to the tessellator.
+  patchGridCapacity_ = software && vk_.tessellation() && !d.patches.empty() ? 1u << VGEO_PATCH_GRID_OFFSET_BITS : 1u;
+  patchGrid_ = vk_.createBuffer(VkDeviceSize(patchGridCapacity_) * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 
   if (vk_.isLavapipe()) {
     claimMode_ = 1;
@@ -157,11 +161,13 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
 GpuRenderer::~GpuRenderer() {
   VkDevice dev = vk_.device();
   vkDeviceWaitIdle(dev);
-  for (VkPipeline p : {cull_, cullSerial_, persistent_, persistentProfile_, level_, prepareLevel_, flat_, prepareFlat_,
-                       resetFlat_, finalize_, cullTriangles_, preparePatches_, cullPatches_, finalizeTriangles_, draw_,
-                       drawOverdraw_, drawPatches_, drawPatchesOverdraw_, rasterSoftware_})
+  for (VkPipeline p : {cull_,          cullSerial_,     persistent_,          persistentProfile_, level_,
+                       prepareLevel_,  flat_,           prepareFlat_,         resetFlat_,         finalize_,
+                       cullTriangles_, preparePatches_, cullPatches_,         finalizeTriangles_, draw_,
+                       drawOverdraw_,  drawPatches_,    drawPatchesOverdraw_, rasterSoftware_,    rasterPatches_})
     vkDestroyPipeline(dev, p, nullptr);
-  for (VkPipeline p : resolve_) vkDestroyPipeline(dev, p, nullptr);
+  for (auto& views : resolve_)
+    for (VkPipeline p : views) vkDestroyPipeline(dev, p, nullptr);
   vkDestroyPipelineLayout(dev, layout_, nullptr);
   vkDestroyDescriptorPool(dev, descriptorPool_, nullptr);
   vkDestroyDescriptorSetLayout(dev, setLayout_, nullptr);
@@ -179,7 +185,7 @@ GpuRenderer::~GpuRenderer() {
   vkFreeMemory(dev, depthMemory_, nullptr);
   for (Buffer* b :
        {&frameData_, &counters_, &countersReadback_, &queue_, &drawList_, &drawListReadback_, &imageReadback_,
-        &triangleList_, &patchList_, &patchEntries_, &workerProfile_, &visibility_, &overdraw_})
+        &triangleList_, &patchList_, &patchEntries_, &workerProfile_, &visibility_, &overdraw_, &patchGrid_})
     vk_.destroyBuffer(*b);
   for (auto& [binding, b] : sceneBuffers_) vk_.destroyBuffer(b);
 }
@@ -196,6 +202,7 @@ void GpuRenderer::writeDescriptors() {
   buffers[VGEO_BINDING_WORKER_PROFILE] = &workerProfile_;
   buffers[VGEO_BINDING_VISIBILITY] = &visibility_;
   buffers[VGEO_BINDING_OVERDRAW] = &overdraw_;
+  buffers[VGEO_BINDING_PATCH_GRID] = &patchGrid_;
   for (const auto& [binding, b] : sceneBuffers_) buffers[binding] = &b;
   const VkDescriptorImageInfo colorImage{VK_NULL_HANDLE, colorView_, VK_IMAGE_LAYOUT_GENERAL},
       depthImage{depthSampler_, depthView_, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL};
@@ -251,6 +258,8 @@ shaderio::FrameData GpuRenderer::frameConstants(const FrameSettings& settings) c
   frame.patchesPerInstance = vk_.isLavapipe() ? kLavapipePatchesPerInstance : kPatchesPerInstance;
   frame.patchCapacity = patchCapacity_;
   frame.softwareRaster = softwareRaster(settings);
+  frame.softwarePatches = rastersPatchesInCompute(settings) ? 1u : 0u;
+  frame.patchGridCapacity = patchGridCapacity_;
   return frame;
 }
 
@@ -287,9 +296,11 @@ void GpuRenderer::runPasses(const FrameSettings& settings, const shaderio::Frame
       {&result.traversalMs, true, [&](VkCommandBuffer cmd) { recordTraversal(cmd, settings); }},
       {&result.triangleCullMs, frame.triangleCull != 0u,
        [&](VkCommandBuffer cmd) { recordTriangleCull(cmd, frame.patches != 0u); }},
-      {&result.rasterMs, software, [&](VkCommandBuffer cmd) { recordSoftwareRaster(cmd); }},
+      {&result.rasterMs, software,
+       [&](VkCommandBuffer cmd) { recordSoftwareRaster(cmd, frame.softwarePatches != 0u); }},
       {&result.drawMs, settings.draw, [&](VkCommandBuffer cmd) { recordRenderPass(cmd, settings); }},
-      {&result.resolveMs, settings.draw && software, [&](VkCommandBuffer cmd) { recordResolve(cmd, settings.mode); }},
+      {&result.resolveMs, settings.draw && software,
+       [&](VkCommandBuffer cmd) { recordResolve(cmd, settings.mode, frame.softwarePatches != 0u); }},
       {nullptr, true, [&](VkCommandBuffer cmd) { recordReadback(cmd, settings); }},
   };
   static_assert(std::size(passes) + 1 == kTimestamps, "a timestamp before each pass and one after the last");
@@ -340,12 +351,13 @@ void GpuRenderer::readResults(const FrameSettings& settings, const shaderio::Fra
   result.softwareTriangles = std::min(c.softwareTriangles, triangleCapacity_);
   result.trianglesDrawn = cullTriangles ? std::min(c.trianglesDrawn, triangleCapacity_) : c.triangles;
   result.patchesDrawn = std::min(c.patchesDrawn, patchCapacity_);
+  result.softwarePatches = std::min(c.softwarePatches, patchCapacity_);
   if (patches && statistics_) {
     uint64_t primitives = 0;
     vkCheck(vkGetQueryPoolResults(vk_.device(), statistics_, 0, 1, sizeof(primitives), &primitives, sizeof(primitives),
                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
             "vkGetQueryPoolResults (statistics)");
-    result.patchTriangles = int64_t(primitives);
+    result.patchTriangles = int64_t(primitives) + c.softwarePatchTriangles;
   } else if (!patches) {
     result.patchTriangles = 0;
   }

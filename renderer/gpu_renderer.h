@@ -64,8 +64,9 @@ struct FrameResult {
   shaderio::Counters counters{};
   uint32_t trianglesDrawn = 0;     // sent to the rasterizers: after triangle culling, else the cut's triangles
   uint32_t softwareTriangles = 0;  // of those, drawn by the software rasterizer
-  uint32_t patchesDrawn = 0;       // patches in the tessellated draw
-  int64_t patchTriangles = -1;     // triangles the tessellator made of them (-1: no pipeline statistics)
+  uint32_t patchesDrawn = 0;       // patches tessellated: by the hardware draw or the compute rasterizer
+  uint32_t softwarePatches = 0;    // of those, drawn by the compute rasterizer
+  int64_t patchTriangles = -1;     // triangles made of them (-1: no pipeline statistics for the hardware's)
   std::vector<CutEntry> drawList;  // when readDrawList
   std::vector<uint8_t> rgba;       // when readImage: width x height x 4
   bool culledInTraversal = false;  // the persistent traversal culled the instances (instanceCullMs: the reset)
@@ -154,11 +155,11 @@ class GpuRenderer {
   }
   void recordTraversal(VkCommandBuffer cmd, const FrameSettings& settings);
   void recordTriangleCull(VkCommandBuffer cmd, bool patches);
-  void recordSoftwareRaster(VkCommandBuffer cmd);
+  void recordSoftwareRaster(VkCommandBuffer cmd, bool patches);
   void recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings);
-  void recordResolve(VkCommandBuffer cmd, uint32_t mode);
+  void recordResolve(VkCommandBuffer cmd, uint32_t mode, bool patches);
   VkPipeline computePipeline(const uint32_t* code, size_t bytes, const VkSpecializationInfo* specialization = nullptr);
-  VkPipeline resolvePipeline(uint32_t mode);
+  VkPipeline resolvePipeline(uint32_t mode, bool patches);
   void recordReadback(VkCommandBuffer cmd, const FrameSettings& settings);
   VkPipelineStageFlags drawShaderStages() const;
   // Whether a frame with these settings draws leaves as patches (the patch list is made by triangle culling).
@@ -171,11 +172,19 @@ class GpuRenderer {
       return VGEO_RASTER_NONE;
     return s.raster == Raster::Software ? VGEO_RASTER_ALL : VGEO_RASTER_SMALL;
   }
+  // Whether patch culling bins patches to the compute rasterizer too. Not by default on lavapipe: it runs
+  // every line of a shader whatever its lanes branch to (docs/gpu-notes.md, 17), so each grid point there
+  // pays for every kind of patch evaluation; its tessellator is the faster path.
+  bool rastersPatchesInCompute(const FrameSettings& s) const {
+    return drawsPatches(s) && softwareRaster(s) != VGEO_RASTER_NONE &&
+           (s.raster == Raster::Software || !vk_.isLavapipe());
+  }
 
   VulkanContext& vk_;
   const RenderScene& scene_;
   uint32_t width_, height_;
   uint32_t queueCapacity_ = 1u << 20, drawCapacity_ = 1u << 20, triangleCapacity_ = 1u << 22, patchCapacity_ = 1u << 18;
+  uint32_t patchGridCapacity_ = 1;
   uint32_t persistentWorkgroups_ = 0, iterationBudget_ = 0, claimMode_ = 0;
   uint32_t lastCullItems_ = 0;
   uint64_t frameMemoryLimit_ =
@@ -183,7 +192,7 @@ class GpuRenderer {
       << 20;  // the last frame's counters.cullItems: sizes the persistent traversal's first claim
 
   Buffer frameData_, counters_, countersReadback_, queue_, drawList_, drawListReadback_, imageReadback_, triangleList_,
-      patchList_, patchEntries_, visibility_, overdraw_,
+      patchList_, patchEntries_, visibility_, overdraw_, patchGrid_,
       workerProfile_;                                      // host-visible; a placeholder until a frame is profiled
   std::vector<std::pair<uint32_t, Buffer>> sceneBuffers_;  // the scene's arrays, uploaded once, by binding
   VkImage color_ = VK_NULL_HANDLE, depth_ = VK_NULL_HANDLE;
@@ -201,10 +210,10 @@ class GpuRenderer {
              finalize_ = VK_NULL_HANDLE, draw_ = VK_NULL_HANDLE, cullTriangles_ = VK_NULL_HANDLE,
              preparePatches_ = VK_NULL_HANDLE, cullPatches_ = VK_NULL_HANDLE, finalizeTriangles_ = VK_NULL_HANDLE,
              drawOverdraw_ = VK_NULL_HANDLE, drawPatches_ = VK_NULL_HANDLE, drawPatchesOverdraw_ = VK_NULL_HANDLE,
-             rasterSoftware_ = VK_NULL_HANDLE;
+             rasterSoftware_ = VK_NULL_HANDLE, rasterPatches_ = VK_NULL_HANDLE;
   // resolve.comp, one pipeline a view, made when first used (a shader with only its view's code: lavapipe
   // runs every line of a shader whatever branch its lanes take, docs/gpu-notes.md 17).
-  VkPipeline resolve_[VGEO_MODE_COUNT] = {};
+  VkPipeline resolve_[VGEO_MODE_COUNT][2] = {};  // [view][whether patches are in the visibility buffer]
   VkSampler depthSampler_ = VK_NULL_HANDLE;
   VkQueryPool queries_ = VK_NULL_HANDLE;
   VkQueryPool statistics_ = VK_NULL_HANDLE;  // clipping invocations of the patch draw (its triangles)

@@ -29,8 +29,11 @@ layout(set = 0, binding = VGEO_BINDING_CAGE_FACES, std430) readonly buffer CageF
 layout(set = 0, binding = VGEO_BINDING_CAGE_FACE_VERTICES, std430) readonly buffer CageFaceVertexBuffer { uint cageFaceVertices[]; };
 layout(set = 0, binding = VGEO_BINDING_PATCHES, std430) readonly buffer PatchBuffer { Patch patches[]; };
 layout(set = 0, binding = VGEO_BINDING_PATCH_POINTS, std430) readonly buffer PatchPointBuffer { uint patchPoints[]; };
-// Patch list (cull_triangles.comp): entry i is (draw-list entry << VGEO_TRIANGLE_BITS | cage face in its cluster).
+// Patch list (cull_patches.comp): entry i is patchList[2i] = (draw-list entry << VGEO_TRIANGLE_BITS | cage
+// face in its cluster) and patchList[2i + 1] its grid, for a compute-rasterized patch (shaderio_frame.h).
 layout(set = 0, binding = VGEO_BINDING_PATCH_LIST, std430) buffer PatchListBuffer { uint patchList[]; };
+// Patch grid (raster_patches.comp): the compute-rasterized patches' points, for the resolve.
+layout(set = 0, binding = VGEO_BINDING_PATCH_GRID, std430) buffer PatchGridBuffer { vec4 patchGrid[]; };
 // Patch-entry list (cull_triangles.comp): the draw-list entries of patch-drawn clusters, for cull_patches.comp.
 layout(set = 0, binding = VGEO_BINDING_PATCH_ENTRIES, std430) buffer PatchEntryBuffer { uint patchEntries[]; };
 

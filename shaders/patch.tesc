@@ -11,14 +11,14 @@ layout(location = 0) in uint vPatch[];     // the patch's index in the patch lis
 layout(location = 0) patch out uvec4 pIds;  // face, instance, cluster, level-0 group
 
 void main() {
-  if (vPatch[0] >= min(counters.patchesDrawn, frame.patchCapacity)) {  // past the list in the last instance
+  if (vPatch[0] >= min(counters.hardwarePatches, frame.patchCapacity)) {  // past the list in the last instance
     gl_TessLevelOuter[0] = 0.0;  // a zero outer level discards the patch
     gl_TessLevelOuter[1] = 0.0;
     gl_TessLevelOuter[2] = 0.0;
     gl_TessLevelOuter[3] = 0.0;
     return;
   }
-  uint packed = patchList[vPatch[0]];
+  uint packed = patchList[2u * vPatch[0]];
   uint entry = packed >> VGEO_TRIANGLE_BITS, local = packed & ((1u << VGEO_TRIANGLE_BITS) - 1u);
   uint instance = drawList[2u * entry], cluster = drawList[2u * entry + 1u] & ~VGEO_DRAW_PATCHES_BIT;
   Cluster c = clusters[cluster];

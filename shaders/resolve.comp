@@ -1,19 +1,24 @@
 #version 450
-// resolve.comp: the pixels of the software rasterizer (raster_software.comp), shaded from the visibility
-// buffer in the view of --mode after the render pass, one thread a pixel: where its depth is at least the
-// hardware draws' (the nearest surface either way; a tie goes to the software pixel), its colour is
-// written over theirs. From a pixel's triangle word come the draw-list entry (instance, cluster) and the
-// triangle, whose corners are projected again to find the pixel centre's barycentric coordinates (made
-// perspective-correct with the corners' w) for the normal, and the distance to the edges in pixels for
-// the wire view. A pixel nothing covers gets the background (the render pass leaves the colour
-// uncleared then). In --mode overdraw the pixel adds its count of software-rasterized samples instead.
-// The view is a specialization constant (one pipeline a view): see docs/gpu-notes.md, 17.
+// resolve.comp: the pixels of the compute rasterizers (raster_software.comp, raster_patches.comp), shaded
+// from the visibility buffer in the view of --mode after the render pass, one thread a pixel: where its
+// depth is at least the hardware draws' (the nearest surface either way; a tie goes to the compute
+// pixel), its colour is written over theirs. A pixel's id names a listed triangle (draw-list entry:
+// instance and cluster, and the triangle) or a patch's micro-triangle (patch-list slot: the entry, and
+// the grid whose points raster_patches.comp left in the patch grid). The triangle's corners are projected
+// again to find the pixel centre's barycentric coordinates (made perspective-correct with the corners'
+// w) for the normal, and the distance to the edges in pixels for the wire view. A pixel nothing covers
+// gets the background (the render pass leaves the colour uncleared then). In --mode overdraw the pixel
+// adds its count of compute-rasterized samples instead. The view is a specialization constant (one
+// pipeline a view: see docs/gpu-notes.md, 17), and so is whether the frame has patches in the visibility
+// buffer.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 #include "raster_setup.glsl"
+#include "patch_surface.glsl"
 #define VGEO_VISIBILITY_ACCESS readonly
 #include "visibility.glsl"
 layout(constant_id = VGEO_SPEC_VIEW_MODE) const uint kViewMode = VGEO_MODE_LIT;
+layout(constant_id = VGEO_SPEC_RESOLVE_PATCHES) const bool kPatches = false;
 #define VGEO_VIEW_MODE kViewMode
 #include "shade.glsl"
 
@@ -38,23 +43,50 @@ void main() {
     if (drawnDepth == 0.0) imageStore(colorImage, xy, vec4(VGEO_BACKGROUND_R, VGEO_BACKGROUND_G, VGEO_BACKGROUND_B, 1.0));
     return;
   }
-  float depth = uintBitsToFloat(uint(word >> 32));
-  if (depth < drawnDepth) return;
-  uint triangleWord = uint(word & 0xfffffffful);
-  uint entry = triangleWord >> VGEO_TRIANGLE_BITS, triangle = triangleWord & ((1u << VGEO_TRIANGLE_BITS) - 1u);
-  uint instance = drawList[2u * entry], cluster = drawList[2u * entry + 1u] & ~VGEO_DRAW_PATCHES_BIT;
-  Instance inst = instances[instance];
-  Cluster c = clusters[cluster];
+  if (visibilityDepth(word) < drawnDepth) return;
+  uint64_t id = visibilityId(word);
   vec2 s[3];
   float w[3];
   vec3 n[3];  // object space: one transform of the interpolated normal, not three
-  for (uint i = 0u; i < 3u; i++) {
-    uint vertex = triangleVertex(c, triangle, i);
-    vec4 clip = clipPosition(inst, vertexPosition(vertex));
-    s[i] = screenPosition(clip);
-    w[i] = clip.w;
-    n[i] = decodeNormal(normals[vertex]);
+  uint triangle, instance, cluster;
+  float largestFactor = 1.0;
+  bool isPatch = kPatches && (id & VGEO_VISIBILITY_PATCH_BIT) != 0ul;
+  if (isPatch) {
+    uint slot = uint(id >> VGEO_PATCH_TRIANGLE_BITS) & (VGEO_MAX_PATCH_ENTRIES - 1u);
+    uint gridTriangle = uint(id) & ((1u << VGEO_PATCH_TRIANGLE_BITS) - 1u);
+    uint entry = patchList[2u * slot] >> VGEO_TRIANGLE_BITS, grid = patchList[2u * slot + 1u];
+    instance = drawList[2u * entry];
+    cluster = drawList[2u * entry + 1u] & ~VGEO_DRAW_PATCHES_BIT;
+    Instance inst = instances[instance];
+    uvec2 cells = gridCells(grid);
+    largestFactor = float(max(cells.x, cells.y));  // an inner factor is at least its edges'
+    for (uint i = 0u; i < 3u; i++) {
+      uvec2 at = gridTriangleCorner(cells, gridTriangle, i);
+      vec4 point = patchGrid[gridOffset(grid) + at.y * (cells.x + 1u) + at.x];
+      vec4 clip = clipPosition(inst, point.xyz);
+      s[i] = screenPosition(clip);
+      w[i] = clip.w;
+      n[i] = decodeNormal(floatBitsToUint(point.w));
+    }
+    triangle = 0u;  // as the tessellated draw (patch.tese): a patch is one triangle of its cluster there
+  } else {
+    uint triangleWord = uint(id);
+    uint entry = triangleWord >> VGEO_TRIANGLE_BITS;
+    triangle = triangleWord & ((1u << VGEO_TRIANGLE_BITS) - 1u);
+    instance = drawList[2u * entry];
+    cluster = drawList[2u * entry + 1u] & ~VGEO_DRAW_PATCHES_BIT;
+    Instance inst = instances[instance];
+    Cluster c = clusters[cluster];
+    for (uint i = 0u; i < 3u; i++) {
+      uint vertex = triangleVertex(c, triangle, i);
+      vec4 clip = clipPosition(inst, vertexPosition(vertex));
+      s[i] = screenPosition(clip);
+      w[i] = clip.w;
+      n[i] = decodeNormal(normals[vertex]);
+    }
   }
+  Instance inst = instances[instance];
+  Cluster c = clusters[cluster];
   // Barycentric coordinate i: the edge from corner i + 1 to i + 2, over the whole.
   vec2 p = vec2(xy) + 0.5;
   float area = cross2(s[1] - s[0], s[2] - s[0]);
@@ -67,7 +99,7 @@ void main() {
   // Vulkan's front face (counter-clockwise, framebuffer y down) has a negative cross product here.
   if (area > 0.0) normal = -normal;
   float edge = 0.0;
-  if (VGEO_VIEW_MODE == VGEO_MODE_WIRE) {
+  if (VGEO_VIEW_MODE == VGEO_MODE_WIRE && !isPatch) {  // as patch.tese: no wire on patches
     vec3 d = (abs(edgeX) + abs(edgeY)) / abs(area);  // |dl/dx| + |dl/dy|, as fwidth would give
     vec3 a = smoothstep(vec3(0.0), d * 1.2, l);
     edge = 1.0 - min(min(a.x, a.y), a.z);
@@ -76,5 +108,6 @@ void main() {
   // The projected errors only where a view shows them.
   bool errorView = VGEO_VIEW_MODE == VGEO_MODE_ERROR || VGEO_VIEW_MODE == VGEO_MODE_FROZEN_DIFF;
   vec2 info = errorView ? clusterViewInfo(inst, c) : vec2(-1.0, 0.0);
+  if (isPatch && (errorView || VGEO_VIEW_MODE == VGEO_MODE_PATCH)) info = patchViewInfo(inst, c, largestFactor);
   imageStore(colorImage, xy, vec4(shadeSurface(normal, ids, triangle, info, edge), 1.0));
 }

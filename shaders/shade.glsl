@@ -42,6 +42,13 @@ vec2 clusterViewInfo(Instance inst, Cluster c) {
   return vec2(VGEO_VIEW_MODE == VGEO_MODE_PATCH ? -1.0 : self / frame.tau, state);
 }
 
+// What the patch, error and frozen-diff views show of a patch of a cluster whose largest tessellation
+// factor is `largest`: log2(largest) / 6 (1 -> 0, 64 -> 1) in the patch view, else the cluster's
+// projected self error / tau; the frozen-diff state 0.
+vec2 patchViewInfo(Instance inst, Cluster c, float largest) {
+  return vec2(VGEO_VIEW_MODE == VGEO_MODE_PATCH ? log2(largest) / 6.0 : projectedErrorWorld(inst, c.selfSphere, c.selfError) / frame.tau, 0.0);
+}
+
 // The colour of a surface point: n its world normal facing the eye, ids (cluster, group, instance,
 // level), its triangle in the cluster, info as clusterViewInfo (or a patch's), edge in [0, 1] how close
 // it lies to its triangle's edge (the wire view).

@@ -43,6 +43,8 @@ VGEO_NAMESPACE_BEGIN
 #define VGEO_SPEC_LANE_TESTS 0
 // Specialization constant of resolve.comp: its view (VGEO_MODE_*), one pipeline a view.
 #define VGEO_SPEC_VIEW_MODE 1
+// Specialization constant of resolve.comp: whether the frame's visibility buffer holds patches.
+#define VGEO_SPEC_RESOLVE_PATCHES 2
 // Worker profile (traverse_persistent.comp built with VGEO_PROFILE, binding 21; vgeo bench cut
 // --profile-workers): per workgroup VGEO_PROFILE_WORKER_WORDS words. Header: [0] working iterations
 // recorded, [1] iterations, [2] iterations without an item, [3] their summed clock ticks, [4,5] begin,
@@ -99,7 +101,8 @@ VGEO_NAMESPACE_BEGIN
 #define VGEO_BINDING_COLOR_IMAGE 26    // the frame's colour target as a storage image (resolve.comp writes it)
 #define VGEO_BINDING_DEPTH_IMAGE 27    // the hardware draws' depth, sampled (resolve.comp compares with it)
 #define VGEO_BINDING_PATCH_ENTRIES 28  // draw-list entries of patch-drawn clusters (cull_triangles.comp)
-#define VGEO_BINDING_COUNT 29
+#define VGEO_BINDING_PATCH_GRID 29     // the compute-rasterized patches' grid points (raster_patches.comp)
+#define VGEO_BINDING_COUNT 30
 
 // Per-frame constants (a uniform buffer). The cull camera selects the cut and culls; the draw camera
 // makes the picture. They differ only with --freeze-camera.
@@ -135,7 +138,8 @@ struct FrameData {
   uint patchesPerInstance;  // the patch draw: instances of this many patches (patch.vert), so that no run of
                             // lavapipe's tessellator outputs more vertices than its 16-bit indices address
   uint softwareRaster;      // VGEO_RASTER_*: which listed triangles raster_software.comp draws
-  uint framePad[2];
+  uint softwarePatches;     // 1: patch culling bins patches to raster_patches.comp too (by softwareRaster's rule)
+  uint patchGridCapacity;   // points in the patch grid (VGEO_BINDING_PATCH_GRID)
 };
 
 // The software rasterizer (raster_software.comp) takes the triangles triangle culling bins to it:
@@ -155,9 +159,22 @@ struct FrameData {
 #define VGEO_SUBPIXEL_SCALE 256.0f
 #define VGEO_RASTER_GUARD_BAND 16384.0f
 // The visibility buffer (VGEO_BINDING_VISIBILITY): one 64-bit word a pixel, the depth's float bits
-// (reversed depth: larger is nearer) high and the triangle-list word of the triangle (draw-list entry
-// << VGEO_TRIANGLE_BITS | triangle) low, so that atomicMax keeps the nearest; 0 is empty. The overdraw
-// buffer (VGEO_BINDING_OVERDRAW) counts the software path's samples a pixel in --mode overdraw.
+// (reversed depth in [0, 1]: larger is nearer, and below 2^30) above a VGEO_VISIBILITY_ID_BITS-bit id, so
+// that atomicMax keeps the nearest; 0 is empty. The id of a listed triangle is its triangle-list word
+// (draw-list entry << VGEO_TRIANGLE_BITS | triangle); that of a patch's micro-triangle (raster_patches.comp)
+// is VGEO_VISIBILITY_PATCH_BIT | patch-list slot << VGEO_PATCH_TRIANGLE_BITS | triangle of its grid. The
+// overdraw buffer (VGEO_BINDING_OVERDRAW) counts the compute rasterizers' samples a pixel in --mode overdraw.
+#define VGEO_VISIBILITY_ID_BITS 34
+#define VGEO_VISIBILITY_PATCH_BIT (uint64_t(1) << 33)
+#define VGEO_PATCH_TRIANGLE_BITS 13u       // 2 x 64 x 64 triangles at most (patch_factors.glsl, kMaxFactor)
+#define VGEO_MAX_PATCH_ENTRIES (1u << 20)  // patch-list slots the id can name
+// The compute rasterizer takes a patch (raster_patches.comp) in front of the near plane, within the guard
+// band, and, with VGEO_RASTER_SMALL, whose grid cells span at most this many pixels (its bounding
+// sphere's projected diameter over its smaller inner factor).
+#define VGEO_SOFTWARE_PATCH_MAX_CELL_PIXELS 64.0f
+// Grid cells a workgroup of raster_patches.comp evaluates and rasterizes at once (a tile of the patch:
+// (n + 1)^2 points in shared memory, 2 n^2 triangles a thread each).
+#define VGEO_PATCH_TILE 4u
 
 // GPU counters of one frame, and the indirect arguments built from them. The counters the persistent
 // traversal's workers hit all the time each have a 128-byte line of their own (atomics on one line are
@@ -182,38 +199,48 @@ struct Counters {
   uint triangles;   // triangles of the listed clusters
   uint levelStart;  // levels traversal: the window of the queue processed by one dispatch
   uint levelEnd;
-  uint queueHighWater;        // largest queueWrite seen
-  uint workgroupsExited;      // persistent traversal: workers that left
-  uint budgetExits;           // of those, left on the iteration budget (lavapipe)
-  uint dispatch[4];           // indirect dispatch arguments (x, y, z): levels and flat traversal, triangle culling
-  uint draw[4];               // VkDrawIndirectCommand
-  uint trianglesDrawn;        // triangles that survived triangle culling (requested; see triangleOverflow)
-  uint triangleOverflow;      // triangles that did not fit the triangle list
-  uint patchesDrawn;          // patches listed for the tessellated draw (requested; see patchOverflow)
-  uint patchOverflow;         // patches that did not fit the patch list
-  uint patchClusters;         // draw-list entries drawn as patches
-  uint patchDraw[4];          // VkDrawIndirectCommand of the patch draw (one vertex a patch)
-  uint sweepTests;            // cluster tests claimed for sweeps (may pass frame.sweepBudget: then not swept)
-  uint sweptTests;            // of those, swept
-  uint cullItems;             // queue items instance culling wrote: sizes the next frame's first claim
-  uint hardwareTriangles;     // of trianglesDrawn, those for the hardware draw, listed from the triangle list's start
-  uint softwareTriangles;     // of trianglesDrawn, those for the software rasterizer, listed from its end
-  uint rasterDispatch[4];     // indirect dispatch of raster_software.comp
-  uint patchEntries;          // draw-list entries drawn as patches, listed for cull_patches.comp
-  uint patchCullDispatch[4];  // its indirect dispatch
-  uint counterPad[5];
+  uint queueHighWater;          // largest queueWrite seen
+  uint workgroupsExited;        // persistent traversal: workers that left
+  uint budgetExits;             // of those, left on the iteration budget (lavapipe)
+  uint dispatch[4];             // indirect dispatch arguments (x, y, z): levels and flat traversal, triangle culling
+  uint draw[4];                 // VkDrawIndirectCommand
+  uint trianglesDrawn;          // triangles that survived triangle culling (requested; see triangleOverflow)
+  uint triangleOverflow;        // triangles that did not fit the triangle list
+  uint patchesDrawn;            // patches listed for the tessellated draw (requested; see patchOverflow)
+  uint patchOverflow;           // patches that did not fit the patch list
+  uint patchClusters;           // draw-list entries drawn as patches
+  uint patchDraw[4];            // VkDrawIndirectCommand of the patch draw (one vertex a patch)
+  uint sweepTests;              // cluster tests claimed for sweeps (may pass frame.sweepBudget: then not swept)
+  uint sweptTests;              // of those, swept
+  uint cullItems;               // queue items instance culling wrote: sizes the next frame's first claim
+  uint hardwareTriangles;       // of trianglesDrawn, those for the hardware draw, listed from the triangle list's start
+  uint softwareTriangles;       // of trianglesDrawn, those for the software rasterizer, listed from its end
+  uint rasterDispatch[4];       // indirect dispatch of raster_software.comp
+  uint patchEntries;            // draw-list entries drawn as patches, listed for cull_patches.comp
+  uint patchCullDispatch[4];    // its indirect dispatch
+  uint hardwarePatches;         // of patchesDrawn, those for the tessellated draw, listed from the patch list's start
+  uint softwarePatches;         // of patchesDrawn, those for raster_patches.comp, listed from its end
+  uint patchRasterDispatch[4];  // indirect dispatch of raster_patches.comp, a workgroup a patch
+  uint softwarePatchTriangles;  // triangles of the grids raster_patches.comp drew
+  uint patchGridPoints;         // grid points patch culling asked for (past patchGridCapacity: tessellator)
+  uint counterPad[1];
 };
 
-// Triangle list entry: draw-list entry << 7 | triangle within its cluster. Patch list entry: draw-list
-// entry << 7 | cage face within its (leaf) cluster.
+// Triangle list entry: draw-list entry << 7 | triangle within its cluster. Patch list entry: two words,
+// draw-list entry << 7 | cage face within its (leaf) cluster, then for a patch of the compute rasterizer
+// its grid: the offset of its first point in the patch grid (VGEO_PATCH_GRID_OFFSET_BITS) and its
+// inner factors less one, 6 bits each (along u, then v). The patch grid holds a point a vec4: the
+// object-space position, and the octahedral normal (as the normals section's) in w's bits; point (i, j)
+// of a grid of (nu, nv) cells at offset + j (nu + 1) + i.
 #define VGEO_TRIANGLE_BITS 7u
+#define VGEO_PATCH_GRID_OFFSET_BITS 20u
 // Draw-list cluster word: set when the leaf cluster is drawn as patches (its chord error projects above tau).
 #define VGEO_DRAW_PATCHES_BIT 0x80000000u
 #define VGEO_MAX_DRAW_ENTRIES (1u << 25)
 
 #ifdef __cplusplus
 static_assert(sizeof(FrameData) == 64 + 96 + 32 + 96, "FrameData layout");
-static_assert(sizeof(Counters) == 5 * 128 + 64, "Counters layout");
+static_assert(sizeof(Counters) == 5 * 128 + 80, "Counters layout");
 static_assert(offsetof(Counters, itemsDone) == 4 * 128, "Counters: the hot words on lines of their own");
 #endif
 

@@ -1,7 +1,10 @@
-// test_render_patches.cpp: leaves drawn as tessellated limit-surface patches (patch.tesc, patch.tese),
-// on lavapipe (or any device) with the validation layer: no crack where most leaves are patches nor at
-// the transition between patch-drawn and triangle-drawn leaves, a silhouette within a pixel of the
-// surface subdivided 6 levels deeper, the same shading as the triangles, and the stats.
+// test_render_patches.cpp: leaves drawn as tessellated limit-surface patches, on lavapipe (or any device)
+// with the validation layer, each test twice: with --raster auto (on lavapipe the hardware tessellator,
+// patch.tesc and patch.tese) and with --raster software (every patch it can take tessellated and
+// rasterized in compute, raster_patches.comp): no crack where most leaves are patches nor at the
+// transition between patch-drawn and triangle-drawn leaves, a silhouette within a pixel of the surface
+// subdivided 6 levels deeper, the same shading as the triangles, the same picture either way, and the
+// stats.
 #include <algorithm>
 #include <cmath>
 
@@ -16,7 +19,7 @@ namespace {
 
 constexpr uint32_t kW = 256, kH = 192;
 
-class RenderPatches : public test::GpuSuite {
+class RenderPatches : public test::GpuSuite, public ::testing::WithParamInterface<Raster> {
  protected:
   static void SetUpTestSuite() {
     openSuite("vgeo_render_patch_tests");
@@ -35,7 +38,15 @@ class RenderPatches : public test::GpuSuite {
   static FrameSettings settings(const RenderScene& scene, const Camera& camera, float tau, bool patches) {
     FrameSettings s = test::frameSettings(scene, camera, tau, kW, kH);
     s.patches = patches;
+    s.raster = GetParam();
     return s;
+  }
+  // With --raster software, the compute rasterizer drew patches (not those whose micro-triangles would
+  // be too large for one invocation, or that reach the near plane: the tessellator draws them).
+  static void expectPatchesInCompute(const FrameResult& r) {
+    if (GetParam() == Raster::Software && r.patchesDrawn > 0) {
+      EXPECT_GT(r.softwarePatches, 0u) << r.patchesDrawn << " patches";
+    }
   }
   // Pixels covered in `a` with no pixel of `b` within `radius` (Chebyshev distance), inside a margin.
   static int farFrom(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, int radius, bool covered) {
@@ -56,7 +67,7 @@ class RenderPatches : public test::GpuSuite {
 RenderScene* RenderPatches::horned = nullptr;
 RenderScene* RenderPatches::hornedFine = nullptr;
 
-TEST_F(RenderPatches, NoCracksCloseUpAndAtTheTransition) {
+TEST_P(RenderPatches, NoCracksCloseUpAndAtTheTransition) {
   // Background where the fine surface (subdiv 5, every leaf, no patches) covers a pixel and all its
   // neighbours within ceil(tau) + 1 would be a crack. Close views draw most leaves as patches; farther
   // ones mix patch-drawn and triangle-drawn leaves.
@@ -69,6 +80,7 @@ TEST_F(RenderPatches, NoCracksCloseUpAndAtTheTransition) {
     for (float tau : {0.5f, 1.0f, 4.0f}) {
       FrameResult r = renderer.renderFrame(settings(*horned, camera, tau, true));
       ASSERT_TRUE(r.complete);
+      expectPatchesInCompute(r);
       const uint32_t listed = r.counters.drawCount, patched = r.counters.patchClusters;
       if (patched * 2 > listed) closeViews++;
       if (patched > 0 && patched < listed) transitionViews++;
@@ -80,7 +92,7 @@ TEST_F(RenderPatches, NoCracksCloseUpAndAtTheTransition) {
   EXPECT_GE(transitionViews, 4) << "views mixing patch-drawn and triangle-drawn leaves";
 }
 
-TEST_F(RenderPatches, ThousandsOfPatchesCoverWhatTheTrianglesCover) {
+TEST_P(RenderPatches, ThousandsOfPatchesCoverWhatTheTrianglesCover) {
   // A close-up of CGAL's cow after one round with over 10,000 patches drawn at 1920x1080: the patches
   // are the surface the leaf triangles sample, so they cover the same pixels (within 0.1%: silhouettes
   // move by under a pixel), and the same frame twice is the same image. A patch list indexed wrongly
@@ -94,7 +106,9 @@ TEST_F(RenderPatches, ThousandsOfPatchesCoverWhatTheTrianglesCover) {
   camera.target = {0.0f, 0.0f, 0.0f};
   FrameSettings s = test::frameSettings(cow, camera, 0.25f, w, h);
   s.patches = true;
+  s.raster = GetParam();
   FrameResult with = renderer.renderFrame(s), again = renderer.renderFrame(s);
+  expectPatchesInCompute(with);
   s.patches = false;
   FrameResult without = renderer.renderFrame(s);
   ASSERT_GT(with.patchesDrawn, 10000u);
@@ -108,7 +122,7 @@ TEST_F(RenderPatches, ThousandsOfPatchesCoverWhatTheTrianglesCover) {
   EXPECT_TRUE(with.rgba == again.rgba) << "the same frame twice gave different images";
 }
 
-TEST_F(RenderPatches, ATauFarBelowTheLeavesCostsAboutThePixels) {
+TEST_P(RenderPatches, ATauFarBelowTheLeavesCostsAboutThePixels) {
   // tau = 1e-9 asks every leaf for more detail than any tessellation gives. No segment is made shorter
   // than two pixels (by an estimate that ignores foreshortening), so patches and their triangles stay a
   // few a covered pixel, front and back sides together (at factor 64 everywhere they were 8,192 a
@@ -134,7 +148,7 @@ TEST_F(RenderPatches, ATauFarBelowTheLeavesCostsAboutThePixels) {
   }
 }
 
-TEST_F(RenderPatches, ShadingMatchesTheTriangles) {
+TEST_P(RenderPatches, ShadingMatchesTheTriangles) {
   // The same close view with and without patches: patches are the surface the leaf triangles sample,
   // with the same normals at the corners, so the lit pictures differ little (a flipped winding or normal
   // would darken every patch).
@@ -143,6 +157,7 @@ TEST_F(RenderPatches, ShadingMatchesTheTriangles) {
   FrameResult with = renderer.renderFrame(settings(*horned, camera, 0.25f, true));
   FrameResult without = renderer.renderFrame(settings(*horned, camera, 0.25f, false));
   ASSERT_GT(with.patchesDrawn, 100u);
+  expectPatchesInCompute(with);
   EXPECT_EQ(without.patchesDrawn, 0u);
   EXPECT_EQ(without.patchTriangles, 0);
   if (with.patchTriangles >= 0) {
@@ -169,7 +184,7 @@ TEST_F(RenderPatches, ShadingMatchesTheTriangles) {
   EXPECT_GT(tinted, both / 2);
 }
 
-TEST_F(RenderPatches, SilhouetteWithinAPixelOfSixLevelsDeeper) {
+TEST_P(RenderPatches, SilhouetteWithinAPixelOfSixLevelsDeeper) {
   // A cube cage after one round (every face a ring around a valence-3 vertex), drawn close up with
   // patches, against the same cage after 7 rounds drawn as its leaf triangles (at limit positions).
   std::string cage = test::cubeCage(test::tempDir());
@@ -181,6 +196,7 @@ TEST_F(RenderPatches, SilhouetteWithinAPixelOfSixLevelsDeeper) {
     Camera camera = test::orbit(coarse, 0.5f + 1.7f * float(view), 0.35f * float(view % 3) - 0.3f, 1.35f);
     FrameResult r = withPatches.renderFrame(settings(coarse, camera, 1.0f, true));
     ASSERT_GT(r.patchesDrawn, 0u) << "view " << view;
+    expectPatchesInCompute(r);
     std::vector<uint8_t> a = test::coverage(r),
                          b = test::coverage(reference.renderFrame(settings(deep, camera, 0.0f, false)));
     EXPECT_EQ(farFrom(a, b, 1, true), 0) << "view " << view
@@ -192,7 +208,7 @@ TEST_F(RenderPatches, SilhouetteWithinAPixelOfSixLevelsDeeper) {
   }
 }
 
-TEST_F(RenderPatches, BoundaryAndTreePatchesWithinAPixelOfSixLevelsDeeper) {
+TEST_P(RenderPatches, BoundaryAndTreePatchesWithinAPixelOfSixLevelsDeeper) {
   // Open cages (boundary patches with phantom points; trees at an extraordinary boundary vertex) and a
   // triangle cage after one round (every face a tree): close up with patches against the cage 6 rounds
   // deeper. Background inside the deep silhouette would be a crack; coverage outside it a wrong surface.
@@ -209,6 +225,7 @@ TEST_F(RenderPatches, BoundaryAndTreePatchesWithinAPixelOfSixLevelsDeeper) {
       FrameResult r = withPatches.renderFrame(settings(coarse, camera, 1.0f, true));
       ASSERT_TRUE(r.complete);
       EXPECT_GT(r.patchesDrawn, 0u) << cage << " view " << view;
+      expectPatchesInCompute(r);
       std::vector<uint8_t> a = test::coverage(r),
                            b = test::coverage(reference.renderFrame(settings(deep, camera, 0.0f, false)));
       EXPECT_EQ(farFrom(a, b, 1, true), 0)
@@ -221,6 +238,45 @@ TEST_F(RenderPatches, BoundaryAndTreePatchesWithinAPixelOfSixLevelsDeeper) {
     EXPECT_GT(flatMisses, 20) << cage << ": drawn as its leaf triangles the cage is visibly off (the test can fail)";
   }
 }
+
+TEST_P(RenderPatches, ComputeMatchesTheTessellator) {
+  // Close views drawn with the patches in compute and through the tessellator: the same edge points
+  // (patch_surface.glsl) and the same surface, triangulated differently inside a face, so the covered
+  // pixels agree but for silhouette pixels (none more than a pixel from the other's) and the shading
+  // barely differs (normals interpolated over other triangles).
+  if (GetParam() != Raster::Software) GTEST_SKIP() << "compares the two paths once";
+  GpuRenderer renderer(*vk, *horned, kW, kH);
+  for (int view = 0; view < 3; view++) {
+    Camera camera =
+        test::orbit(*horned, 0.9f + 2.0f * float(view), 0.4f - 0.3f * float(view), 0.7f + 0.3f * float(view));
+    FrameSettings s = settings(*horned, camera, 0.5f, true);
+    FrameResult compute = renderer.renderFrame(s);
+    s.raster = Raster::Hardware;
+    FrameResult tessellated = renderer.renderFrame(s);
+    ASSERT_GT(compute.softwarePatches, 50u) << "view " << view;
+    EXPECT_EQ(tessellated.softwarePatches, 0u);
+    EXPECT_EQ(compute.patchesDrawn, tessellated.patchesDrawn) << "view " << view;
+    std::vector<uint8_t> a = test::coverage(compute), b = test::coverage(tessellated);
+    EXPECT_EQ(farFrom(a, b, 1, true), 0) << "view " << view;
+    EXPECT_EQ(farFrom(a, b, 1, false), 0) << "view " << view;
+    uint64_t both = 0, apart = 0;
+    for (uint32_t i = 0; i < kW * kH; i++)
+      if (a[i] && b[i]) {
+        both++;
+        int most = 0;
+        for (int c = 0; c < 3; c++)
+          most = std::max(most, std::abs(int(compute.rgba[4 * i + c]) - int(tessellated.rgba[4 * i + c])));
+        if (most > 8) apart++;
+      }
+    ASSERT_GT(both, kW * kH / 8) << "view " << view;
+    EXPECT_LE(apart * 100, both) << "view " << view << ": pixels whose colour differs by more than 8 of 255";
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Rasters, RenderPatches, ::testing::Values(Raster::Auto, Raster::Software),
+                         [](const ::testing::TestParamInfo<Raster>& info) {
+                           return info.param == Raster::Software ? "Compute" : "Auto";
+                         });
 
 }  // namespace
 }  // namespace vgeo
