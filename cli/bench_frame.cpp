@@ -3,6 +3,8 @@
 // several grid sizes, viewport sizes and cameras, in variants: for each rasterizer of --rasters, triangle
 // culling with patches (the default) and with leaves as triangles; then neither (hardware). Medians over frames after
 // warm-up; one JSON record each.
+#include <chrono>
+
 #include <nlohmann/json.hpp>
 
 #include "../renderer/gpu_renderer.h"
@@ -12,6 +14,8 @@
 
 namespace vgeo {
 namespace {
+
+constexpr double kWarmUpSeconds = 0.3;
 
 struct FrameBenchArgs {
   std::string input, output, grids = "32", sizes = "1280x720,1920x1080", cameras = "corner,inside",
@@ -66,6 +70,11 @@ void runBenchFrame(const FrameBenchArgs& a) {
             s.mode = VGEO_MODE_LIT;
           }
           s.readImage = false;  // measured frames: no image copy
+          // GPUs raise their clocks only under load: the first records of a run took up to 4x longer on
+          // the H100 after a few frames of warm-up. Frames for kWarmUpSeconds first, each variant.
+          const auto warmStart = std::chrono::steady_clock::now();
+          while (std::chrono::duration<double>(std::chrono::steady_clock::now() - warmStart).count() < kWarmUpSeconds)
+            renderer.renderFrame(s);
           std::vector<double> cull, traverse, triangles, raster, draw, resolve, frame;
           for (uint32_t i = 0; i < a.frames; i++) {
             f = renderer.renderFrame(s);
