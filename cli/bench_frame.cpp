@@ -15,6 +15,8 @@
 namespace vgeo {
 namespace {
 
+// Frames before each variant's records, for the GPU's clocks to rise. On an idle H100 it shortens the
+// first records' lag but does not cure it (bench/README.md): compare runs after the first.
 constexpr double kWarmUpSeconds = 0.3;
 
 struct FrameBenchArgs {
@@ -70,8 +72,7 @@ void runBenchFrame(const FrameBenchArgs& a) {
             s.mode = VGEO_MODE_LIT;
           }
           s.readImage = false;  // measured frames: no image copy
-          // GPUs raise their clocks only under load: the first records of a run took up to 4x longer on
-          // the H100 after a few frames of warm-up. Frames for kWarmUpSeconds first, each variant.
+          // GPUs raise their clocks only under load: frames for a while before the records.
           const auto warmStart = std::chrono::steady_clock::now();
           while (std::chrono::duration<double>(std::chrono::steady_clock::now() - warmStart).count() < kWarmUpSeconds)
             renderer.renderFrame(s);
