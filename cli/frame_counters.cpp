@@ -28,7 +28,11 @@ void addFrameCounters(nlohmann::ordered_json& r, const FrameResult& f, const Gpu
   // the tessellator made (pipeline statistics; -1 where the device has none).
   r["patch_clusters"] = c.patchClusters;
   r["patches_drawn"] = f.patchesDrawn;
-  r["software_patches"] = f.softwarePatches;  // of those, tessellated and drawn by the compute rasterizer
+  r["software_patches"] = f.softwarePatches;
+  // "visibility": the hardware's triangles went into the visibility buffer too (no depth target);
+  // "depth": the render pass drew with depth (patches for the tessellator, or no compute rasterizer).
+  r["render_pass"] =
+      f.bareRenderPass ? "visibility" : "depth";  // of those, tessellated and drawn by the compute rasterizer
   r["patch_triangles"] = f.patchTriangles;
 }
 

@@ -17,9 +17,11 @@
 //      finalize_triangles.comp   the draws' and the software rasterizer's indirect arguments
 //   6. raster_software.comp      the small triangles into the visibility buffer
 //      raster_patches.comp       the patches binned to compute: tessellated and rasterized there
-//   7. render pass               one vkCmdDrawIndirect of the hardware's triangles (draw.vert, draw.frag;
-//                                without triangle culling, of 384 vertices x listed clusters), then one of
-//                                the listed patches, one vertex a patch (patch.vert, patch.tesc, patch.tese)
+//   7. render pass               one vkCmdDrawIndirect of the hardware's triangles (draw.vert; without
+//                                triangle culling, of 384 vertices x listed clusters): into the
+//                                visibility buffer in a pass without attachments (draw_visibility.frag),
+//                                or shaded with depth (draw.frag) and then one draw of the tessellator's
+//                                patches, one vertex a patch (patch.vert, patch.tesc, patch.tese)
 //   8. resolve.comp              the compute rasterizers' pixels shaded into the colour target
 //   9. copies back               counters (and the image / draw list when asked)
 #include "gpu_renderer.h"
@@ -164,9 +166,20 @@ void GpuRenderer::recordSoftwareRaster(VkCommandBuffer cmd, bool patches) {
 
 // 8. The resolve of the software rasterizer's pixels where they are nearer than the render pass's
 // (resolve.comp), into the colour target.
-void GpuRenderer::recordResolve(VkCommandBuffer cmd, uint32_t mode, bool patches) {
+void GpuRenderer::recordResolve(VkCommandBuffer cmd, uint32_t mode, bool patches, bool bare) {
+  if (bare) {  // the colour target, untouched by the bare render pass, into the resolve's layout
+    VkImageMemoryBarrier toGeneral{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+    toGeneral.dstAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+    toGeneral.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    toGeneral.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+    toGeneral.srcQueueFamilyIndex = toGeneral.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    toGeneral.image = color_;
+    toGeneral.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0,
+                         nullptr, 1, &toGeneral);
+  }
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, resolvePipeline(mode, patches));
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, resolvePipeline(mode, patches, bare));
   vkCmdDispatch(cmd, (width_ + 7) / 8, (height_ + 7) / 8, 1);
 }
 
@@ -200,7 +213,19 @@ void GpuRenderer::recordReadback(VkCommandBuffer cmd, const FrameSettings& setti
 }
 
 // 7. The render pass: one indirect draw of the listed hardware triangles, one of the patches.
-void GpuRenderer::recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings) {
+void GpuRenderer::recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings, bool bare) {
+  if (bare) {  // the hardware's triangles into the visibility buffer, no attachments (draw_visibility.frag)
+    VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+    begin.renderPass = renderPassVisibility_;
+    begin.framebuffer = framebufferVisibility_;
+    begin.renderArea = {{0, 0}, {width_, height_}};
+    vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawVisibility_);
+    vkCmdDrawIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, draw), 1, sizeof(VkDrawIndirectCommand));
+    vkCmdEndRenderPass(cmd);
+    return;
+  }
   VkClearValue clears[2];
   clears[0].color = {{VGEO_BACKGROUND_R, VGEO_BACKGROUND_G, VGEO_BACKGROUND_B, 1.0f}};
   clears[1].depthStencil = {0.0f, 0};

@@ -9,6 +9,8 @@
 #include "shaders/cull_triangles_comp.h"
 #include "shaders/draw_frag.h"
 #include "shaders/draw_vert.h"
+#include "shaders/draw_vert_visibility_only.h"
+#include "shaders/draw_visibility_frag.h"
 #include "shaders/finalize_comp.h"
 #include "shaders/finalize_triangles_comp.h"
 #include "shaders/patch_tesc.h"
@@ -133,6 +135,42 @@ void GpuRenderer::createTargets() {
   fb.height = height_;
   fb.layers = 1;
   vkCheck(vkCreateFramebuffer(dev, &fb, nullptr, &framebuffer_), "vkCreateFramebuffer");
+  // The render pass of frames whose hardware triangles go into the visibility buffer too
+  // (draw_visibility.frag): no attachments, so nothing to clear or store. Its fragments' atomics come
+  // after the compute rasterizers' and before the resolve's reads.
+  VkSubpassDescription bare{};
+  bare.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  VkSubpassDependency bareDeps[2] = {};
+  bareDeps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
+  bareDeps[0].srcStageMask = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+  bareDeps[0].srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+  bareDeps[0].dstStageMask = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
+  bareDeps[0].dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+  bareDeps[1].dstSubpass = VK_SUBPASS_EXTERNAL;
+  bareDeps[1].srcStageMask = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
+  bareDeps[1].srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+  bareDeps[1].dstStageMask = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+  bareDeps[1].dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
+  rp.attachmentCount = 0;
+  rp.pSubpasses = &bare;
+  rp.pDependencies = bareDeps;
+  vkCheck(vkCreateRenderPass(dev, &rp, nullptr, &renderPassVisibility_), "vkCreateRenderPass (visibility)");
+  fb.renderPass = renderPassVisibility_;
+  fb.attachmentCount = 0;
+  vkCheck(vkCreateFramebuffer(dev, &fb, nullptr, &framebufferVisibility_), "vkCreateFramebuffer (visibility)");
+  // The resolve's descriptor names the depth image in its read-only layout even in frames that skip the
+  // depth pass: it starts there.
+  VkCommandBuffer cmd = vk_.beginCommands();
+  VkImageMemoryBarrier toRead{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+  toRead.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
+  toRead.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  toRead.newLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+  toRead.srcQueueFamilyIndex = toRead.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  toRead.image = depth_;
+  toRead.subresourceRange = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, 0, 1};
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0,
+                       nullptr, 1, &toRead);
+  vk_.submitAndWait(cmd);
   VkSamplerCreateInfo sampler{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};  // texelFetch only
   vkCheck(vkCreateSampler(dev, &sampler, nullptr, &depthSampler_), "vkCreateSampler");
 }
@@ -198,13 +236,15 @@ VkPipeline GpuRenderer::computePipeline(const uint32_t* code, size_t bytes,
   return pipeline;
 }
 
-VkPipeline GpuRenderer::resolvePipeline(uint32_t mode, bool patches) {
-  VkPipeline& pipeline = resolve_[mode][patches ? 1 : 0];
+VkPipeline GpuRenderer::resolvePipeline(uint32_t mode, bool patches, bool everyPixel) {
+  VkPipeline& pipeline = resolve_[mode][patches ? 1 : 0][everyPixel ? 1 : 0];
   if (!pipeline) {
-    const uint32_t constants[2] = {mode, patches ? 1u : 0u};  // VkBool32
-    const VkSpecializationMapEntry entries[2] = {{VGEO_SPEC_VIEW_MODE, 0, sizeof(uint32_t)},
-                                                 {VGEO_SPEC_RESOLVE_PATCHES, sizeof(uint32_t), sizeof(uint32_t)}};
-    const VkSpecializationInfo view{2, entries, sizeof(constants), constants};
+    const uint32_t constants[3] = {mode, patches ? 1u : 0u, everyPixel ? 1u : 0u};  // VkBool32
+    const VkSpecializationMapEntry entries[3] = {
+        {VGEO_SPEC_VIEW_MODE, 0, sizeof(uint32_t)},
+        {VGEO_SPEC_RESOLVE_PATCHES, sizeof(uint32_t), sizeof(uint32_t)},
+        {VGEO_SPEC_RESOLVE_EVERY_PIXEL, 2 * sizeof(uint32_t), sizeof(uint32_t)}};
+    const VkSpecializationInfo view{3, entries, sizeof(constants), constants};
     pipeline = computePipeline(resolve_comp, sizeof(resolve_comp), &view);
   }
   return pipeline;
@@ -302,6 +342,29 @@ void GpuRenderer::createDrawPipelines() {
     vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &overdraw), what);
   };
   createViews(stages, 2, draw_, drawOverdraw_, "vkCreateGraphicsPipelines");
+  // The same draw into the visibility buffer (draw_visibility.frag): no attachments, no depth test, no
+  // blending; every view (the fragment shader counts in the overdraw view).
+  if (rasterSoftware_) {
+    VkShaderModule visibilityVert =
+        vk_.createShaderModule(draw_vert_visibility_only, sizeof(draw_vert_visibility_only));
+    VkShaderModule visibilityFrag = vk_.createShaderModule(draw_visibility_frag, sizeof(draw_visibility_frag));
+    VkPipelineShaderStageCreateInfo visibilityStages[2] = {
+        {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, visibilityVert,
+         "main", nullptr},
+        {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_FRAGMENT_BIT, visibilityFrag,
+         "main", nullptr}};
+    info.stageCount = 2;
+    info.pStages = visibilityStages;
+    info.renderPass = renderPassVisibility_;
+    depth.depthTestEnable = depth.depthWriteEnable = VK_FALSE;
+    blendState.attachmentCount = 0;
+    vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &drawVisibility_),
+            "vkCreateGraphicsPipelines (visibility)");
+    blendState.attachmentCount = 1;
+    info.renderPass = renderPass_;
+    vkDestroyShaderModule(dev, visibilityVert, nullptr);
+    vkDestroyShaderModule(dev, visibilityFrag, nullptr);
+  }
   // The patch draw: the same state, one control point a patch, tessellated (patch.tesc, patch.tese).
   // Without tessellation shaders on the device, leaves stay triangles.
   if (vk_.tessellation()) {

@@ -161,13 +161,15 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
 GpuRenderer::~GpuRenderer() {
   VkDevice dev = vk_.device();
   vkDeviceWaitIdle(dev);
-  for (VkPipeline p : {cull_,          cullSerial_,     persistent_,          persistentProfile_, level_,
-                       prepareLevel_,  flat_,           prepareFlat_,         resetFlat_,         finalize_,
-                       cullTriangles_, preparePatches_, cullPatches_,         finalizeTriangles_, draw_,
-                       drawOverdraw_,  drawPatches_,    drawPatchesOverdraw_, rasterSoftware_,    rasterPatches_})
+  for (VkPipeline p :
+       {cull_,           cullSerial_,        persistent_,    persistentProfile_, level_,         prepareLevel_,
+        flat_,           prepareFlat_,       resetFlat_,     finalize_,          cullTriangles_, preparePatches_,
+        cullPatches_,    finalizeTriangles_, draw_,          drawOverdraw_,      drawPatches_,   drawPatchesOverdraw_,
+        rasterSoftware_, rasterPatches_,     drawVisibility_})
     vkDestroyPipeline(dev, p, nullptr);
-  for (auto& views : resolve_)
-    for (VkPipeline p : views) vkDestroyPipeline(dev, p, nullptr);
+  for (auto& view : resolve_)
+    for (auto& variants : view)
+      for (VkPipeline p : variants) vkDestroyPipeline(dev, p, nullptr);
   vkDestroyPipelineLayout(dev, layout_, nullptr);
   vkDestroyDescriptorPool(dev, descriptorPool_, nullptr);
   vkDestroyDescriptorSetLayout(dev, setLayout_, nullptr);
@@ -175,6 +177,8 @@ GpuRenderer::~GpuRenderer() {
   if (statistics_) vkDestroyQueryPool(dev, statistics_, nullptr);
   vkDestroySampler(dev, depthSampler_, nullptr);
   vkDestroyFramebuffer(dev, framebuffer_, nullptr);
+  vkDestroyFramebuffer(dev, framebufferVisibility_, nullptr);
+  vkDestroyRenderPass(dev, renderPassVisibility_, nullptr);
   vkDestroyRenderPass(dev, renderPass_, nullptr);
   vkDestroyRenderPass(dev, renderPassResolved_, nullptr);
   vkDestroyImageView(dev, colorView_, nullptr);
@@ -284,7 +288,8 @@ void GpuRenderer::prepareReadbacks(const FrameSettings& settings, bool profile) 
 // Records and submits the passes in frame order
 // and times each: GPU timestamps in one submission, or on lavapipe one submission a pass timed on the
 // host.
-void GpuRenderer::runPasses(const FrameSettings& settings, const shaderio::FrameData& frame, FrameResult& result) {
+void GpuRenderer::runPasses(const FrameSettings& settings, const shaderio::FrameData& frame, bool bare,
+                            FrameResult& result) {
   // The frame's passes in order, each with where its time goes (nullptr: the frame's only).
   const bool software = frame.softwareRaster != VGEO_RASTER_NONE;
   struct Pass {
@@ -298,9 +303,9 @@ void GpuRenderer::runPasses(const FrameSettings& settings, const shaderio::Frame
        [&](VkCommandBuffer cmd) { recordTriangleCull(cmd, frame.patches != 0u); }},
       {&result.rasterMs, software,
        [&](VkCommandBuffer cmd) { recordSoftwareRaster(cmd, frame.softwarePatches != 0u); }},
-      {&result.drawMs, settings.draw, [&](VkCommandBuffer cmd) { recordRenderPass(cmd, settings); }},
+      {&result.drawMs, settings.draw, [&](VkCommandBuffer cmd) { recordRenderPass(cmd, settings, bare); }},
       {&result.resolveMs, settings.draw && software,
-       [&](VkCommandBuffer cmd) { recordResolve(cmd, settings.mode, frame.softwarePatches != 0u); }},
+       [&](VkCommandBuffer cmd) { recordResolve(cmd, settings.mode, frame.softwarePatches != 0u, bare); }},
       {nullptr, true, [&](VkCommandBuffer cmd) { recordReadback(cmd, settings); }},
   };
   static_assert(std::size(passes) + 1 == kTimestamps, "a timestamp before each pass and one after the last");
@@ -342,7 +347,7 @@ void GpuRenderer::runPasses(const FrameSettings& settings, const shaderio::Frame
 
 // Copies what the frame left in host-visible memory into the result: counters, tessellator statistics,
 // image, draw list, worker profile.
-void GpuRenderer::readResults(const FrameSettings& settings, const shaderio::FrameData& frame, bool profile,
+void GpuRenderer::readResults(const FrameSettings& settings, const shaderio::FrameData& frame, bool profile, bool bare,
                               FrameResult& result) {
   std::memcpy(&result.counters, countersReadback_.mapped, sizeof(result.counters));
   const auto& c = result.counters;
@@ -352,14 +357,14 @@ void GpuRenderer::readResults(const FrameSettings& settings, const shaderio::Fra
   result.trianglesDrawn = cullTriangles ? std::min(c.trianglesDrawn, triangleCapacity_) : c.triangles;
   result.patchesDrawn = std::min(c.patchesDrawn, patchCapacity_);
   result.softwarePatches = std::min(c.softwarePatches, patchCapacity_);
-  if (patches && statistics_) {
+  if (patches && statistics_ && !bare) {  // the query runs around the tessellated draw, in the depth pass
     uint64_t primitives = 0;
     vkCheck(vkGetQueryPoolResults(vk_.device(), statistics_, 0, 1, sizeof(primitives), &primitives, sizeof(primitives),
                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
             "vkGetQueryPoolResults (statistics)");
     result.patchTriangles = int64_t(primitives) + c.softwarePatchTriangles;
-  } else if (!patches) {
-    result.patchTriangles = 0;
+  } else if (!patches || bare) {
+    result.patchTriangles = c.softwarePatchTriangles;
   }
   if (settings.readImage && settings.draw) {
     result.rgba.resize(size_t(width_) * height_ * 4);
@@ -410,8 +415,18 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
   prepareReadbacks(settings, profile);
   FrameResult result;
   result.culledInTraversal = frame.cullInTraversal != 0u;
-  runPasses(settings, frame, result);
-  readResults(settings, frame, profile, result);
+  const bool bare = drawsIntoVisibility(settings, frame);
+  runPasses(settings, frame, bare, result);
+  readResults(settings, frame, profile, bare, result);
+  if (bare && result.counters.hardwarePatches > 0) {
+    // Patches for the tessellator, which needs the render pass with depth: this frame again with it.
+    result = FrameResult{};
+    result.culledInTraversal = frame.cullInTraversal != 0u;
+    runPasses(settings, frame, false, result);
+    readResults(settings, frame, profile, false, result);
+  }
+  lastHardwarePatches_ = result.counters.hardwarePatches;
+  result.bareRenderPass = bare && result.counters.hardwarePatches == 0;
   if (checkDrained(result)) growOverflowedLists(result.counters, settings.tau);
   return result;
 }

@@ -70,6 +70,7 @@ struct FrameResult {
   std::vector<CutEntry> drawList;  // when readDrawList
   std::vector<uint8_t> rgba;       // when readImage: width x height x 4
   bool culledInTraversal = false;  // the persistent traversal culled the instances (instanceCullMs: the reset)
+  bool bareRenderPass = false;     // the render pass had no attachments: every pixel from the visibility buffer
   // The passes' times: rasterMs the software rasterizer, drawMs the render pass (hardware draws), resolveMs
   // the shading of the software rasterizer's pixels; frameMs all of them and the read-back copies.
   double instanceCullMs = 0.0, traversalMs = 0.0, triangleCullMs = 0.0, rasterMs = 0.0, drawMs = 0.0, resolveMs = 0.0,
@@ -138,8 +139,9 @@ class GpuRenderer {
   // renderFrame's steps, in order (gpu_renderer.cpp).
   shaderio::FrameData frameConstants(const FrameSettings& settings) const;
   void prepareReadbacks(const FrameSettings& settings, bool profile);
-  void runPasses(const FrameSettings& settings, const shaderio::FrameData& frame, FrameResult& result);
-  void readResults(const FrameSettings& settings, const shaderio::FrameData& frame, bool profile, FrameResult& result);
+  void runPasses(const FrameSettings& settings, const shaderio::FrameData& frame, bool bare, FrameResult& result);
+  void readResults(const FrameSettings& settings, const shaderio::FrameData& frame, bool profile, bool bare,
+                   FrameResult& result);
   bool checkDrained(FrameResult& result);
   void growOverflowedLists(const shaderio::Counters& counters, float tau);
   void recordCounterReset(VkCommandBuffer cmd, uint32_t nodesPending = 0);
@@ -156,10 +158,10 @@ class GpuRenderer {
   void recordTraversal(VkCommandBuffer cmd, const FrameSettings& settings);
   void recordTriangleCull(VkCommandBuffer cmd, bool patches);
   void recordSoftwareRaster(VkCommandBuffer cmd, bool patches);
-  void recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings);
-  void recordResolve(VkCommandBuffer cmd, uint32_t mode, bool patches);
+  void recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings, bool bare);
+  void recordResolve(VkCommandBuffer cmd, uint32_t mode, bool patches, bool bare);
   VkPipeline computePipeline(const uint32_t* code, size_t bytes, const VkSpecializationInfo* specialization = nullptr);
-  VkPipeline resolvePipeline(uint32_t mode, bool patches);
+  VkPipeline resolvePipeline(uint32_t mode, bool patches, bool everyPixel);
   void recordReadback(VkCommandBuffer cmd, const FrameSettings& settings);
   VkPipelineStageFlags drawShaderStages() const;
   // Whether a frame with these settings draws leaves as patches (the patch list is made by triangle culling).
@@ -175,6 +177,14 @@ class GpuRenderer {
   // Whether patch culling bins patches to the compute rasterizer too. Not by default on lavapipe: it runs
   // every line of a shader whatever its lanes branch to (docs/gpu-notes.md, 17), so each grid point there
   // pays for every kind of patch evaluation; its tessellator is the faster path.
+  // Whether the frame's render pass is the bare one (no attachments): its triangles go into the visibility
+  // buffer and the resolve shades every pixel. Not when patches go to the tessellator (it draws with
+  // depth): certainly where the compute rasterizer takes none, and where the last frame had some (a
+  // frame that finds some runs again with depth, renderFrame).
+  bool drawsIntoVisibility(const FrameSettings& s, const shaderio::FrameData& frame) const {
+    return s.draw && frame.softwareRaster != VGEO_RASTER_NONE && drawVisibility_ != VK_NULL_HANDLE &&
+           (frame.patches == 0u || (frame.softwarePatches != 0u && lastHardwarePatches_ == 0u));
+  }
   bool rastersPatchesInCompute(const FrameSettings& s) const {
     return drawsPatches(s) && softwareRaster(s) != VGEO_RASTER_NONE &&
            (s.raster == Raster::Software || !vk_.isLavapipe());
@@ -185,6 +195,7 @@ class GpuRenderer {
   uint32_t width_, height_;
   uint32_t queueCapacity_ = 1u << 20, drawCapacity_ = 1u << 20, triangleCapacity_ = 1u << 22, patchCapacity_ = 1u << 18;
   uint32_t patchGridCapacity_ = 1;
+  uint32_t lastHardwarePatches_ = 0;  // the last frame's patches for the tessellator (drawsIntoVisibility)
   uint32_t persistentWorkgroups_ = 0, iterationBudget_ = 0, claimMode_ = 0;
   uint32_t lastCullItems_ = 0;
   uint64_t frameMemoryLimit_ =
@@ -198,8 +209,9 @@ class GpuRenderer {
   VkImage color_ = VK_NULL_HANDLE, depth_ = VK_NULL_HANDLE;
   VkDeviceMemory colorMemory_ = VK_NULL_HANDLE, depthMemory_ = VK_NULL_HANDLE;
   VkImageView colorView_ = VK_NULL_HANDLE, depthView_ = VK_NULL_HANDLE;
-  VkRenderPass renderPass_ = VK_NULL_HANDLE, renderPassResolved_ = VK_NULL_HANDLE;
-  VkFramebuffer framebuffer_ = VK_NULL_HANDLE;
+  VkRenderPass renderPass_ = VK_NULL_HANDLE, renderPassResolved_ = VK_NULL_HANDLE,
+               renderPassVisibility_ = VK_NULL_HANDLE;  // no attachments: draw_visibility.frag
+  VkFramebuffer framebuffer_ = VK_NULL_HANDLE, framebufferVisibility_ = VK_NULL_HANDLE;
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
   VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
@@ -210,10 +222,11 @@ class GpuRenderer {
              finalize_ = VK_NULL_HANDLE, draw_ = VK_NULL_HANDLE, cullTriangles_ = VK_NULL_HANDLE,
              preparePatches_ = VK_NULL_HANDLE, cullPatches_ = VK_NULL_HANDLE, finalizeTriangles_ = VK_NULL_HANDLE,
              drawOverdraw_ = VK_NULL_HANDLE, drawPatches_ = VK_NULL_HANDLE, drawPatchesOverdraw_ = VK_NULL_HANDLE,
-             rasterSoftware_ = VK_NULL_HANDLE, rasterPatches_ = VK_NULL_HANDLE;
+             rasterSoftware_ = VK_NULL_HANDLE, rasterPatches_ = VK_NULL_HANDLE, drawVisibility_ = VK_NULL_HANDLE;
   // resolve.comp, one pipeline a view, made when first used (a shader with only its view's code: lavapipe
   // runs every line of a shader whatever branch its lanes take, docs/gpu-notes.md 17).
-  VkPipeline resolve_[VGEO_MODE_COUNT][2] = {};  // [view][whether patches are in the visibility buffer]
+  // [view][whether patches are in the visibility buffer][whether every pixel is (no render-pass attachments)]
+  VkPipeline resolve_[VGEO_MODE_COUNT][2][2] = {};
   VkSampler depthSampler_ = VK_NULL_HANDLE;
   VkQueryPool queries_ = VK_NULL_HANDLE;
   VkQueryPool statistics_ = VK_NULL_HANDLE;  // clipping invocations of the patch draw (its triangles)

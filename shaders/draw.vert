@@ -4,16 +4,22 @@
 // With triangle culling (the default), instance i draws triangles 128 i .. 128 i + 127 of the triangle
 // list, each naming its entry and triangle; without, instance i is draw-list entry i and vertex / 3 the
 // cluster's triangle. Slots past the end collapse to a point outside the clip volume.
+// Built with VGEO_VISIBILITY_ONLY for the bare render pass (draw_visibility.frag): the position and the
+// triangle's word only.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 #include "raster_setup.glsl"
 #include "shade.glsl"
 
+#ifdef VGEO_VISIBILITY_ONLY
+layout(location = 5) flat out uint outWord;  // entry << VGEO_TRIANGLE_BITS | triangle
+#else
 layout(location = 0) out vec3 outNormal;
 layout(location = 1) out vec3 outBarycentric;
 layout(location = 2) flat out uvec4 outIds;   // cluster, group, instance, level
 layout(location = 4) flat out uint outTriangle;
 layout(location = 3) flat out vec2 outInfo;   // projected self error / tau; frozen-diff state
+#endif
 
 void main() {
   uint entry = uint(gl_InstanceIndex), triangle = uint(gl_VertexIndex) / 3u, corner = uint(gl_VertexIndex) % 3u;
@@ -31,20 +37,26 @@ void main() {
   // A patch-drawn cluster lists the triangles of its faces that need no tessellation (cull_triangles.comp).
   uint cluster = drawList[2 * entry + 1] & ~VGEO_DRAW_PATCHES_BIT;
   Cluster c = clusters[cluster];
+#ifdef VGEO_VISIBILITY_ONLY
+  outWord = entry << VGEO_TRIANGLE_BITS | triangle;
+#else
   outBarycentric = vec3(corner == 0u ? 1.0 : 0.0, corner == 1u ? 1.0 : 0.0, corner == 2u ? 1.0 : 0.0);
   outIds = uvec4(cluster, c.group, instance, clusterLevel(c.counts));
   outTriangle = triangle;
+#endif
   if (triangle >= clusterTriangleCount(c.counts)) {
     gl_Position = vec4(0.0, 0.0, 2.0, 1.0);
+#ifndef VGEO_VISIBILITY_ONLY
     outNormal = vec3(0.0);
     outInfo = vec2(0.0);
+#endif
     return;
   }
   uint vertex = triangleVertex(c, triangle, corner);
   Instance inst = instances[instance];
   gl_Position = clipPosition(inst, vertexPosition(vertex));
-  vec3 n = decodeNormal(normals[vertex]);
-  outNormal = normalToWorld(inst, n);
-
+#ifndef VGEO_VISIBILITY_ONLY
+  outNormal = normalToWorld(inst, decodeNormal(normals[vertex]));
   outInfo = clusterViewInfo(inst, c);
+#endif
 }

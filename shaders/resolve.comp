@@ -9,8 +9,9 @@
 // w) for the normal, and the distance to the edges in pixels for the wire view. A pixel nothing covers
 // gets the background (the render pass leaves the colour uncleared then). In --mode overdraw the pixel
 // adds its count of compute-rasterized samples instead. The view is a specialization constant (one
-// pipeline a view: see docs/gpu-notes.md, 17), and so is whether the frame has patches in the visibility
-// buffer.
+// pipeline a view: see docs/gpu-notes.md, 17), and so are whether the frame has patches in the visibility
+// buffer and whether the render pass left every pixel to it (its triangles in the visibility buffer too,
+// draw_visibility.frag).
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 #include "raster_setup.glsl"
@@ -19,6 +20,9 @@
 #include "visibility.glsl"
 layout(constant_id = VGEO_SPEC_VIEW_MODE) const uint kViewMode = VGEO_MODE_LIT;
 layout(constant_id = VGEO_SPEC_RESOLVE_PATCHES) const bool kPatches = false;
+// Whether the render pass had no attachments (its triangles are in the visibility buffer too): then
+// every pixel is this pass's, and the depth image is not read.
+layout(constant_id = VGEO_SPEC_RESOLVE_EVERY_PIXEL) const bool kEveryPixel = false;
 #define VGEO_VIEW_MODE kViewMode
 #include "shade.glsl"
 
@@ -34,11 +38,16 @@ void main() {
   uint pixel = uint(xy.y) * uint(frame.viewportWidth) + uint(xy.x);
   if (VGEO_VIEW_MODE == VGEO_MODE_OVERDRAW) {
     uint samples = overdraw[pixel];
-    if (samples != 0u) imageStore(colorImage, xy, vec4(imageLoad(colorImage, xy).rgb + kOverdrawColor * float(samples), 1.0));
+    if (kEveryPixel) {
+      vec3 background = vec3(VGEO_BACKGROUND_R, VGEO_BACKGROUND_G, VGEO_BACKGROUND_B);
+      imageStore(colorImage, xy, vec4(background + kOverdrawColor * float(samples), 1.0));
+    } else if (samples != 0u) {
+      imageStore(colorImage, xy, vec4(imageLoad(colorImage, xy).rgb + kOverdrawColor * float(samples), 1.0));
+    }
     return;
   }
   uint64_t word = visibility[pixel];
-  float drawnDepth = texelFetch(depthImage, xy, 0).r;  // 0: the render pass drew nothing here
+  float drawnDepth = kEveryPixel ? 0.0 : texelFetch(depthImage, xy, 0).r;  // 0: the render pass drew nothing here
   if (word == 0ul) {
     if (drawnDepth == 0.0) imageStore(colorImage, xy, vec4(VGEO_BACKGROUND_R, VGEO_BACKGROUND_G, VGEO_BACKGROUND_B, 1.0));
     return;

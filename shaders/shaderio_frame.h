@@ -45,6 +45,9 @@ VGEO_NAMESPACE_BEGIN
 #define VGEO_SPEC_VIEW_MODE 1
 // Specialization constant of resolve.comp: whether the frame's visibility buffer holds patches.
 #define VGEO_SPEC_RESOLVE_PATCHES 2
+// Specialization constant of resolve.comp: whether the render pass had no attachments (every pixel is the
+// resolve's: the hardware triangles are in the visibility buffer too).
+#define VGEO_SPEC_RESOLVE_EVERY_PIXEL 3
 // Worker profile (traverse_persistent.comp built with VGEO_PROFILE, binding 21; vgeo bench cut
 // --profile-workers): per workgroup VGEO_PROFILE_WORKER_WORDS words. Header: [0] working iterations
 // recorded, [1] iterations, [2] iterations without an item, [3] their summed clock ticks, [4,5] begin,
