@@ -24,11 +24,13 @@ class RenderInstances : public test::GpuSuite {
   static void SetUpTestSuite() { openSuite("vgeo_render_instance_tests"); }
   static void TearDownTestSuite() { closeSuite(); }
 
-  static FrameResult render(const std::string& path, const Camera& camera, float tau, bool patches) {
+  static FrameResult render(const std::string& path, const Camera& camera, float tau, bool patches,
+                            Raster raster = Raster::Auto) {
     RenderScene scene = loadRenderScene(path);
     GpuRenderer renderer(*vk, scene, kW, kH);
     FrameSettings s = test::frameSettings(scene, camera, tau, kW, kH);
     s.patches = patches;
+    s.raster = raster;
     s.mode = VGEO_MODE_NORMAL;
     FrameResult r = renderer.renderFrame(s);
     EXPECT_TRUE(r.complete);
@@ -93,6 +95,7 @@ TEST_F(RenderInstances, MirroredInstancesLookLikeTheirMirrorImage) {
     Camera camera;
     float tau;
     bool patches;
+    Raster raster = Raster::Auto;
   };
   const std::vector<Case> cases = {
       {"scale [-1, 1, 1]", "cow0.vgeo", "", ", \"scale\": [-1, 1, 1]", onMirrorPlane(0.0f, 0.0f, 1.3f), 1.0f, false},
@@ -100,12 +103,18 @@ TEST_F(RenderInstances, MirroredInstancesLookLikeTheirMirrorImage) {
        false},
       {"patches, scale [-1, 1, 1]", "cow1.vgeo", "", ", \"scale\": [-1, 1, 1]", onMirrorPlane(0.1f, 0.0f, 0.45f), 0.5f,
        true},
+      // The same with the patches tessellated and rasterized in compute, shaded by the resolve.
+      {"patches in compute, scale [-1, 1, 1]", "cow1.vgeo", "", ", \"scale\": [-1, 1, 1]",
+       onMirrorPlane(0.1f, 0.0f, 0.45f), 0.5f, true, Raster::Software},
   };
   for (const Case& c : cases) {
-    FrameResult plain = render(scene("plain.json", c.vgeo, c.plain), c.camera, c.tau, c.patches);
-    FrameResult mirrored = render(scene("mirrored.json", c.vgeo, c.mirrored), c.camera, c.tau, c.patches);
+    FrameResult plain = render(scene("plain.json", c.vgeo, c.plain), c.camera, c.tau, c.patches, c.raster);
+    FrameResult mirrored = render(scene("mirrored.json", c.vgeo, c.mirrored), c.camera, c.tau, c.patches, c.raster);
     if (c.patches) {
       EXPECT_GT(mirrored.patchesDrawn, 200u) << c.what;
+    }
+    if (c.raster == Raster::Software) {
+      EXPECT_GT(mirrored.softwarePatches, 200u) << c.what;
     }
     EXPECT_EQ(plain.counters.drawCount, mirrored.counters.drawCount)
         << c.what << ": the mirrored cut has as many clusters";
