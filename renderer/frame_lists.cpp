@@ -21,6 +21,8 @@ void GpuRenderer::createQueueAndDrawList() {
   drawList_ = vk_.createBuffer(VkDeviceSize(drawCapacity_) * 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   triangleList_ = vk_.createBuffer(VkDeviceSize(triangleCapacity_) * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   patchList_ = vk_.createBuffer(VkDeviceSize(patchCapacity_) * 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  patchDraws_ = vk_.createBuffer(VkDeviceSize(patchCapacity_) * sizeof(VkDrawIndirectCommand),
+                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
   patchEntries_ = vk_.createBuffer(VkDeviceSize(drawCapacity_) * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   // Every queue slot starts unwritten; consumers put them back that way.
   VkCommandBuffer cmd = vk_.beginCommands();
@@ -34,6 +36,7 @@ void GpuRenderer::setCapacities(uint32_t queueItems, uint32_t drawEntries, uint3
   vk_.destroyBuffer(drawList_);
   vk_.destroyBuffer(triangleList_);
   vk_.destroyBuffer(patchList_);
+  vk_.destroyBuffer(patchDraws_);
   vk_.destroyBuffer(patchEntries_);
   patchCapacity_ = std::max(patches, 1u);
   queueCapacity_ = std::max(queueItems, 1u);

@@ -20,8 +20,9 @@
 //   7. render pass               one vkCmdDrawIndirect of the hardware's triangles (draw.vert; without
 //                                triangle culling, of 384 vertices x listed clusters): into the
 //                                visibility buffer in a pass without attachments (draw_visibility.frag),
-//                                or shaded with depth (draw.frag) and then one draw of the tessellator's
-//                                patches, one vertex a patch (patch.vert, patch.tesc, patch.tese)
+//                                with the patch grids left to the hardware (patch_grid.vert, a draw
+//                                each); or shaded with depth (draw.frag) and then one draw of the
+//                                tessellator's patches, one vertex a patch (patch.vert, .tesc, .tese)
 //   8. resolve.comp              the compute rasterizers' pixels shaded into the colour target
 //   9. copies back               counters (and the image / draw list when asked)
 #include "gpu_renderer.h"
@@ -160,8 +161,11 @@ void GpuRenderer::recordSoftwareRaster(VkCommandBuffer cmd, bool patches) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, rasterPatches_);
     vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, patchRasterDispatch));
   }
+  // Read by the resolve, and with patches in compute by the draw of the hardware's patch grids.
   globalBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+                VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT |
+                    (patches ? VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_VERTEX_SHADER_BIT : 0u),
+                VK_ACCESS_SHADER_READ_BIT | (patches ? VkAccessFlags(VK_ACCESS_INDIRECT_COMMAND_READ_BIT) : 0u));
 }
 
 // 8. The resolve of the software rasterizer's pixels where they are nearer than the render pass's
@@ -223,6 +227,12 @@ void GpuRenderer::recordRenderPass(VkCommandBuffer cmd, const FrameSettings& set
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawVisibility_);
     vkCmdDrawIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, draw), 1, sizeof(VkDrawIndirectCommand));
+    if (rastersPatchesInCompute(settings)) {  // the patches left to the hardware, from their grids
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawGridVisibility_);
+      vkCmdDrawIndirectCount(cmd, patchDraws_.buffer, 0, counters_.buffer,
+                             offsetof(shaderio::Counters, hardwarePatches), patchCapacity_,
+                             sizeof(VkDrawIndirectCommand));
+    }
     vkCmdEndRenderPass(cmd);
     return;
   }

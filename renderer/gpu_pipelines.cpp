@@ -13,6 +13,7 @@
 #include "shaders/draw_visibility_frag.h"
 #include "shaders/finalize_comp.h"
 #include "shaders/finalize_triangles_comp.h"
+#include "shaders/patch_grid_vert.h"
 #include "shaders/patch_tesc.h"
 #include "shaders/patch_tese.h"
 #include "shaders/patch_vert.h"
@@ -137,14 +138,15 @@ void GpuRenderer::createTargets() {
   vkCheck(vkCreateFramebuffer(dev, &fb, nullptr, &framebuffer_), "vkCreateFramebuffer");
   // The render pass of frames whose hardware triangles go into the visibility buffer too
   // (draw_visibility.frag): no attachments, so nothing to clear or store. Its fragments' atomics come
-  // after the compute rasterizers' and before the resolve's reads.
+  // after the compute rasterizers' (and its vertices read the patch grids they wrote), and before the
+  // resolve's reads.
   VkSubpassDescription bare{};
   bare.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
   VkSubpassDependency bareDeps[2] = {};
   bareDeps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
   bareDeps[0].srcStageMask = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
   bareDeps[0].srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-  bareDeps[0].dstStageMask = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
+  bareDeps[0].dstStageMask = VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
   bareDeps[0].dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
   bareDeps[1].dstSubpass = VK_SUBPASS_EXTERNAL;
   bareDeps[1].srcStageMask = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
@@ -360,6 +362,12 @@ void GpuRenderer::createDrawPipelines() {
     blendState.attachmentCount = 0;
     vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &drawVisibility_),
             "vkCreateGraphicsPipelines (visibility)");
+    // The hardware's patches from their grids (patch_grid.vert), into the same buffer.
+    VkShaderModule gridVert = vk_.createShaderModule(patch_grid_vert, sizeof(patch_grid_vert));
+    visibilityStages[0].module = gridVert;
+    vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &drawGridVisibility_),
+            "vkCreateGraphicsPipelines (patch grids)");
+    vkDestroyShaderModule(dev, gridVert, nullptr);
     blendState.attachmentCount = 1;
     info.renderPass = renderPass_;
     vkDestroyShaderModule(dev, visibilityVert, nullptr);

@@ -162,10 +162,10 @@ GpuRenderer::~GpuRenderer() {
   VkDevice dev = vk_.device();
   vkDeviceWaitIdle(dev);
   for (VkPipeline p :
-       {cull_,           cullSerial_,        persistent_,    persistentProfile_, level_,         prepareLevel_,
-        flat_,           prepareFlat_,       resetFlat_,     finalize_,          cullTriangles_, preparePatches_,
-        cullPatches_,    finalizeTriangles_, draw_,          drawOverdraw_,      drawPatches_,   drawPatchesOverdraw_,
-        rasterSoftware_, rasterPatches_,     drawVisibility_})
+       {cull_,           cullSerial_,        persistent_,     persistentProfile_, level_,         prepareLevel_,
+        flat_,           prepareFlat_,       resetFlat_,      finalize_,          cullTriangles_, preparePatches_,
+        cullPatches_,    finalizeTriangles_, draw_,           drawOverdraw_,      drawPatches_,   drawPatchesOverdraw_,
+        rasterSoftware_, rasterPatches_,     drawVisibility_, drawGridVisibility_})
     vkDestroyPipeline(dev, p, nullptr);
   for (auto& view : resolve_)
     for (auto& variants : view)
@@ -187,9 +187,9 @@ GpuRenderer::~GpuRenderer() {
   vkDestroyImage(dev, depth_, nullptr);
   vkFreeMemory(dev, colorMemory_, nullptr);
   vkFreeMemory(dev, depthMemory_, nullptr);
-  for (Buffer* b :
-       {&frameData_, &counters_, &countersReadback_, &queue_, &drawList_, &drawListReadback_, &imageReadback_,
-        &triangleList_, &patchList_, &patchEntries_, &workerProfile_, &visibility_, &overdraw_, &patchGrid_})
+  for (Buffer* b : {&frameData_, &counters_, &countersReadback_, &queue_, &drawList_, &drawListReadback_,
+                    &imageReadback_, &triangleList_, &patchList_, &patchDraws_, &patchEntries_, &workerProfile_,
+                    &visibility_, &overdraw_, &patchGrid_})
     vk_.destroyBuffer(*b);
   for (auto& [binding, b] : sceneBuffers_) vk_.destroyBuffer(b);
 }
@@ -202,6 +202,7 @@ void GpuRenderer::writeDescriptors() {
   buffers[VGEO_BINDING_DRAW_LIST] = &drawList_;
   buffers[VGEO_BINDING_TRIANGLE_LIST] = &triangleList_;
   buffers[VGEO_BINDING_PATCH_LIST] = &patchList_;
+  buffers[VGEO_BINDING_PATCH_DRAWS] = &patchDraws_;
   buffers[VGEO_BINDING_PATCH_ENTRIES] = &patchEntries_;
   buffers[VGEO_BINDING_WORKER_PROFILE] = &workerProfile_;
   buffers[VGEO_BINDING_VISIBILITY] = &visibility_;
@@ -418,15 +419,7 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
   const bool bare = drawsIntoVisibility(settings, frame);
   runPasses(settings, frame, bare, result);
   readResults(settings, frame, profile, bare, result);
-  if (bare && result.counters.hardwarePatches > 0) {
-    // Patches for the tessellator, which needs the render pass with depth: this frame again with it.
-    result = FrameResult{};
-    result.culledInTraversal = frame.cullInTraversal != 0u;
-    runPasses(settings, frame, false, result);
-    readResults(settings, frame, profile, false, result);
-  }
-  lastHardwarePatches_ = result.counters.hardwarePatches;
-  result.bareRenderPass = bare && result.counters.hardwarePatches == 0;
+  result.bareRenderPass = bare;
   if (checkDrained(result)) growOverflowedLists(result.counters, settings.tau);
   return result;
 }

@@ -177,16 +177,15 @@ class GpuRenderer {
   // Whether patch culling bins patches to the compute rasterizer too. Not by default on lavapipe: it runs
   // every line of a shader whatever its lanes branch to (docs/gpu-notes.md, 17), so each grid point there
   // pays for every kind of patch evaluation; its tessellator is the faster path.
-  // Whether the frame's render pass is the bare one (no attachments): its triangles go into the visibility
-  // buffer and the resolve shades every pixel. Not when patches go to the tessellator (it draws with
-  // depth): certainly where the compute rasterizer takes none, and where the last frame had some (a
-  // frame that finds some runs again with depth, renderFrame).
+  // Whether the frame's render pass is the bare one (no attachments): its triangles (and the patches the
+  // compute rasterizer leaves to the hardware, from their grids) go into the visibility buffer and the
+  // resolve shades every pixel. Not when patches go to the tessellator: it draws with depth.
   bool drawsIntoVisibility(const FrameSettings& s, const shaderio::FrameData& frame) const {
     return s.draw && frame.softwareRaster != VGEO_RASTER_NONE && drawVisibility_ != VK_NULL_HANDLE &&
-           (frame.patches == 0u || (frame.softwarePatches != 0u && lastHardwarePatches_ == 0u));
+           (frame.patches == 0u || frame.softwarePatches != 0u);
   }
   bool rastersPatchesInCompute(const FrameSettings& s) const {
-    return drawsPatches(s) && softwareRaster(s) != VGEO_RASTER_NONE &&
+    return drawsPatches(s) && softwareRaster(s) != VGEO_RASTER_NONE && vk_.drawIndirectCount() &&
            (s.raster == Raster::Software || !vk_.isLavapipe());
   }
 
@@ -195,7 +194,6 @@ class GpuRenderer {
   uint32_t width_, height_;
   uint32_t queueCapacity_ = 1u << 20, drawCapacity_ = 1u << 20, triangleCapacity_ = 1u << 22, patchCapacity_ = 1u << 18;
   uint32_t patchGridCapacity_ = 1;
-  uint32_t lastHardwarePatches_ = 0;  // the last frame's patches for the tessellator (drawsIntoVisibility)
   uint32_t persistentWorkgroups_ = 0, iterationBudget_ = 0, claimMode_ = 0;
   uint32_t lastCullItems_ = 0;
   uint64_t frameMemoryLimit_ =
@@ -203,7 +201,7 @@ class GpuRenderer {
       << 20;  // the last frame's counters.cullItems: sizes the persistent traversal's first claim
 
   Buffer frameData_, counters_, countersReadback_, queue_, drawList_, drawListReadback_, imageReadback_, triangleList_,
-      patchList_, patchEntries_, visibility_, overdraw_, patchGrid_,
+      patchList_, patchDraws_, patchEntries_, visibility_, overdraw_, patchGrid_,
       workerProfile_;                                      // host-visible; a placeholder until a frame is profiled
   std::vector<std::pair<uint32_t, Buffer>> sceneBuffers_;  // the scene's arrays, uploaded once, by binding
   VkImage color_ = VK_NULL_HANDLE, depth_ = VK_NULL_HANDLE;
@@ -222,7 +220,8 @@ class GpuRenderer {
              finalize_ = VK_NULL_HANDLE, draw_ = VK_NULL_HANDLE, cullTriangles_ = VK_NULL_HANDLE,
              preparePatches_ = VK_NULL_HANDLE, cullPatches_ = VK_NULL_HANDLE, finalizeTriangles_ = VK_NULL_HANDLE,
              drawOverdraw_ = VK_NULL_HANDLE, drawPatches_ = VK_NULL_HANDLE, drawPatchesOverdraw_ = VK_NULL_HANDLE,
-             rasterSoftware_ = VK_NULL_HANDLE, rasterPatches_ = VK_NULL_HANDLE, drawVisibility_ = VK_NULL_HANDLE;
+             rasterSoftware_ = VK_NULL_HANDLE, rasterPatches_ = VK_NULL_HANDLE, drawVisibility_ = VK_NULL_HANDLE,
+             drawGridVisibility_ = VK_NULL_HANDLE;
   // resolve.comp, one pipeline a view, made when first used (a shader with only its view's code: lavapipe
   // runs every line of a shader whatever branch its lanes take, docs/gpu-notes.md 17).
   // [view][whether patches are in the visibility buffer][whether every pixel is (no render-pass attachments)]

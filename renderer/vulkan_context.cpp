@@ -231,8 +231,10 @@ void VulkanContext::createDevice() {
     features2.pNext = &vulkan12;
     vkGetPhysicalDeviceFeatures2(physical_, &features2);
     int64Atomics_ = supported.shaderInt64 && vulkan12.shaderBufferInt64Atomics;
+    drawIndirectCount_ = vulkan12.drawIndirectCount == VK_TRUE;
     vulkan12 = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     vulkan12.shaderBufferInt64Atomics = int64Atomics_;
+    vulkan12.drawIndirectCount = drawIndirectCount_;
     enabled.shaderInt64 = int64Atomics_;
   }
   const char* clockExtension = VK_KHR_SHADER_CLOCK_EXTENSION_NAME;

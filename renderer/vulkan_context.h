@@ -41,8 +41,9 @@ class VulkanContext {
   bool pipelineStatistics() const { return pipelineStatistics_; }  // pipelineStatisticsQuery enabled
   // shaderInt64 and shaderBufferInt64Atomics enabled: the software rasterizer's visibility buffer
   bool int64Atomics() const { return int64Atomics_; }
-  bool deviceClock() const { return deviceClock_; }  // VK_KHR_shader_clock's device clock enabled
-  bool hasDeviceExtension(const char* name) const;   // the physical device offers it
+  bool drawIndirectCount() const { return drawIndirectCount_; }  // vkCmdDrawIndirectCount (patch grids)
+  bool deviceClock() const { return deviceClock_; }              // VK_KHR_shader_clock's device clock enabled
+  bool hasDeviceExtension(const char* name) const;               // the physical device offers it
   // Nanoseconds per timestamp tick; 0 when the queue has no timestamps.
   double timestampPeriod() const { return timestampValidBits_ ? double(properties_.limits.timestampPeriod) : 0.0; }
   // Validation messages seen so far (warnings and errors); each is also printed to stderr.
@@ -81,7 +82,8 @@ class VulkanContext {
   VkPhysicalDeviceProperties properties_{};
   VkPhysicalDeviceMemoryProperties memory_{};
   VkDriverId driverId_{};
-  bool tessellation_ = false, pipelineStatistics_ = false, deviceClock_ = false, int64Atomics_ = false;
+  bool tessellation_ = false, pipelineStatistics_ = false, deviceClock_ = false, int64Atomics_ = false,
+       drawIndirectCount_ = false;
   std::vector<VkExtensionProperties> deviceExtensions_;
   std::string driverName_;
   uint32_t validationMessages_ = 0;

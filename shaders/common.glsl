@@ -34,6 +34,9 @@ layout(set = 0, binding = VGEO_BINDING_PATCH_POINTS, std430) readonly buffer Pat
 layout(set = 0, binding = VGEO_BINDING_PATCH_LIST, std430) buffer PatchListBuffer { uint patchList[]; };
 // Patch grid (raster_patches.comp): the compute-rasterized patches' points, for the resolve.
 layout(set = 0, binding = VGEO_BINDING_PATCH_GRID, std430) buffer PatchGridBuffer { vec4 patchGrid[]; };
+// Patch draws (raster_patches.comp): for slot i of the patch list's hardware part, with patches in
+// compute, the VkDrawIndirectCommand of its grid's triangles (patch_grid.vert, first instance = slot).
+layout(set = 0, binding = VGEO_BINDING_PATCH_DRAWS, std430) buffer PatchDrawBuffer { uvec4 patchDraws[]; };
 // Patch-entry list (cull_triangles.comp): the draw-list entries of patch-drawn clusters, for cull_patches.comp.
 layout(set = 0, binding = VGEO_BINDING_PATCH_ENTRIES, std430) buffer PatchEntryBuffer { uint patchEntries[]; };
 

@@ -4,10 +4,13 @@
 // (its corners, grown by its chord error: the surface is that close to its triangles) is outside the
 // frustum: from the list's end for the compute rasterizer (raster_patches.comp) when it takes the face
 // (in front of the near plane and its grid cells small on screen), else from its start for the
-// tessellated draw (patch.tesc); finalize_triangles.comp counts an overflow when the two meet. A face
-// whose tessellation factors are all 1 (patch_factors.glsl: small on screen, or flat enough) would be
-// drawn as its two corner triangles anyway: its leaf triangles join the triangle list instead (binned as
-// cull_triangles.comp bins), so the patch list holds only faces that gain from tessellation.
+// hardware: drawn from its grid (patch_grid.vert) when the frame has patches in compute, else by the
+// tessellator (patch.tesc). finalize_triangles.comp counts an overflow when the two meet. With patches
+// in compute each listed face reserves its grid's points in the patch grid; a face whose grid does not
+// fit is drawn as its leaf triangles. A face whose tessellation factors are all 1 (patch_factors.glsl:
+// small on screen, or flat enough) would be drawn as its two corner triangles anyway: its leaf
+// triangles join the triangle list instead (binned as cull_triangles.comp bins), so the patch list
+// holds only faces that gain from tessellation.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 #include "patch_factors.glsl"
@@ -68,17 +71,21 @@ void listPatches(uint entry, Instance inst, Cluster c) {
     tessellate = max(max(edge[0], edge[1]), max(edge[2], edge[3])) > 1.0 || max(inner[0], inner[1]) > 1.0;
     software = tessellate && softwareRasterTakesPatch(sphere, min(inner[0], inner[1]));
     cells = uvec2(inner[0], inner[1]);
-    CageFace f = cageFaces[c.cageFaceOffset + local];
-    firstTriangle = f.firstTriangle;
-    triangles = tessellate ? 0u : f.vertexCount - 2u;
+    firstTriangle = cageFaces[c.cageFaceOffset + local].firstTriangle;
   }
-  uint points = software ? (cells.x + 1u) * (cells.y + 1u) : 0u;
+  // With patches in compute every tessellated face has a grid: the rest are drawn from theirs by the
+  // hardware (patch_grid.vert) instead of the tessellator.
+  bool grid = tessellate && frame.softwarePatches != 0u;
+  uint points = grid ? (cells.x + 1u) * (cells.y + 1u) : 0u;
   uint gridPoint = points > 0u ? atomicAdd(sGridPoints, points) : 0u;
   barrier();
   if (local == 0u) sBaseGridPoints = sGridPoints == 0u ? 0u : atomicAdd(counters.patchGridPoints, sGridPoints);
   barrier();
   gridPoint += sBaseGridPoints;
-  if (software && gridPoint + points > frame.patchGridCapacity) software = false;
+  if (grid && gridPoint + points > frame.patchGridCapacity) {  // the grid is full: its leaf triangles
+    tessellate = software = grid = false;
+  }
+  if (seen && !tessellate) triangles = cageFaces[c.cageFaceOffset + local].vertexCount - 2u;
   uint slot = software ? atomicAdd(sSoftwarePatches, 1u) : tessellate ? atomicAdd(sHardware, 1u) : 0u;
   uint bins[2] = uint[2](triangles > 0u ? binTriangle(inst, c, firstTriangle) : kCulled,
                          triangles > 1u ? binTriangle(inst, c, firstTriangle + 1u) : kCulled);
@@ -98,7 +105,10 @@ void listPatches(uint entry, Instance inst, Cluster c) {
     }
   } else if (tessellate) {
     slot += sBaseHardware;
-    if (slot < frame.patchCapacity) patchList[2u * slot] = word;
+    if (slot < frame.patchCapacity) {
+      patchList[2u * slot] = word;
+      if (grid) patchList[2u * slot + 1u] = gridWord(gridPoint, cells);
+    }
   }
 }
 

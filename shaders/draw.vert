@@ -12,7 +12,7 @@
 #include "shade.glsl"
 
 #ifdef VGEO_VISIBILITY_ONLY
-layout(location = 5) flat out uint outWord;  // entry << VGEO_TRIANGLE_BITS | triangle
+layout(location = 5) flat out uvec2 outId;  // visibility id: (entry << VGEO_TRIANGLE_BITS | triangle, 0)
 #else
 layout(location = 0) out vec3 outNormal;
 layout(location = 1) out vec3 outBarycentric;
@@ -38,7 +38,7 @@ void main() {
   uint cluster = drawList[2 * entry + 1] & ~VGEO_DRAW_PATCHES_BIT;
   Cluster c = clusters[cluster];
 #ifdef VGEO_VISIBILITY_ONLY
-  outWord = entry << VGEO_TRIANGLE_BITS | triangle;
+  outId = uvec2(entry << VGEO_TRIANGLE_BITS | triangle, 0u);
 #else
   outBarycentric = vec3(corner == 0u ? 1.0 : 0.0, corner == 1u ? 1.0 : 0.0, corner == 2u ? 1.0 : 0.0);
   outIds = uvec4(cluster, c.group, instance, clusterLevel(c.counts));

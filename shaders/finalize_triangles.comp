@@ -32,7 +32,8 @@ void main() {
   counters.patchDraw[1] = (patchCount + frame.patchesPerInstance - 1u) / frame.patchesPerInstance;
   counters.patchDraw[2] = 0u;
   counters.patchDraw[3] = 0u;
-  uint patchGroups = min(softwarePatches, frame.patchCapacity);
+  // raster_patches.comp: a workgroup a compute patch, then one a grid for the hardware.
+  uint patchGroups = min(softwarePatches, frame.patchCapacity) + (frame.softwarePatches != 0u ? patchCount : 0u);
   counters.patchRasterDispatch[0] = min(patchGroups, 65535u);
   counters.patchRasterDispatch[1] = (patchGroups + 65534u) / 65535u;
   counters.patchRasterDispatch[2] = 1u;

@@ -22,9 +22,13 @@ shared ivec2 sScreen[kTilePoints];  // snapped, 1/VGEO_SUBPIXEL_SCALE pixels
 shared float sDepth[kTilePoints];
 
 void main() {
+  // Workgroups first for the compute rasterizer's patches (from the list's end), then for the hardware's
+  // (from its start), whose grids are only evaluated: patch_grid.vert draws them.
   uint index = gl_WorkGroupID.y * 65535u + gl_WorkGroupID.x;
-  if (index >= min(counters.softwarePatches, frame.patchCapacity)) return;  // the whole workgroup
-  uint slot = frame.patchCapacity - 1u - index;
+  uint software = min(counters.softwarePatches, frame.patchCapacity);
+  bool rasterize = index < software;
+  if (!rasterize && index - software >= min(counters.hardwarePatches, frame.patchCapacity)) return;  // the whole workgroup
+  uint slot = rasterize ? frame.patchCapacity - 1u - index : index - software;
   uint word = patchList[2u * slot], grid = patchList[2u * slot + 1u];
   uint entry = word >> VGEO_TRIANGLE_BITS, local = word & ((1u << VGEO_TRIANGLE_BITS) - 1u);
   Instance inst = instances[drawList[2u * entry]];
@@ -35,6 +39,17 @@ void main() {
   uvec2 cells = gridCells(grid);
   uvec4 edges = uvec4(edge[0], edge[1], edge[2], edge[3]);
   if (gl_LocalInvocationIndex == 0u) atomicAdd(counters.softwarePatchTriangles, 2u * cells.x * cells.y);
+  if (!rasterize) {  // evaluate the grid points only, each once; patch_grid.vert draws its triangles
+    if (gl_LocalInvocationIndex == 0u) patchDraws[slot] = uvec4(6u * cells.x * cells.y, 1u, 0u, slot);
+    uint points = (cells.x + 1u) * (cells.y + 1u);
+    for (uint k = gl_LocalInvocationIndex; k < points; k += gl_WorkGroupSize.x) {
+      vec3 normal;
+      uvec2 at = uvec2(k % (cells.x + 1u), k / (cells.x + 1u));
+      vec3 p = gridPoint(face, cells, edges, at.x, at.y, normal);
+      patchGrid[gridOffset(grid) + at.y * (cells.x + 1u) + at.x] = gridRecord(p, normal);
+    }
+    return;
+  }
   uvec2 tiles = (cells + VGEO_PATCH_TILE - 1u) / VGEO_PATCH_TILE;
   for (uint tile = 0u; tile < tiles.x * tiles.y; tile++) {
     uvec2 origin = uvec2(tile % tiles.x, tile / tiles.x) * VGEO_PATCH_TILE;

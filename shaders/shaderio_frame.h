@@ -105,7 +105,8 @@ VGEO_NAMESPACE_BEGIN
 #define VGEO_BINDING_DEPTH_IMAGE 27    // the hardware draws' depth, sampled (resolve.comp compares with it)
 #define VGEO_BINDING_PATCH_ENTRIES 28  // draw-list entries of patch-drawn clusters (cull_triangles.comp)
 #define VGEO_BINDING_PATCH_GRID 29     // the compute-rasterized patches' grid points (raster_patches.comp)
-#define VGEO_BINDING_COUNT 30
+#define VGEO_BINDING_PATCH_DRAWS 30    // a VkDrawIndirectCommand a hardware patch slot (patch_grid.vert)
+#define VGEO_BINDING_COUNT 31
 
 // Per-frame constants (a uniform buffer). The cull camera selects the cut and culls; the draw camera
 // makes the picture. They differ only with --freeze-camera.

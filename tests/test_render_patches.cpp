@@ -81,9 +81,9 @@ TEST_P(RenderPatches, NoCracksCloseUpAndAtTheTransition) {
       FrameResult r = renderer.renderFrame(settings(*horned, camera, tau, true));
       ASSERT_TRUE(r.complete);
       expectPatchesInCompute(r);
-      // The tessellator's patches need the render pass with depth; without them the bare one is enough.
+      // With patches in compute, those left to the hardware are drawn from their grids: no depth pass.
       if (GetParam() == Raster::Software) {
-        EXPECT_EQ(r.bareRenderPass, r.counters.hardwarePatches == 0) << "view " << view << " tau " << tau;
+        EXPECT_TRUE(r.bareRenderPass) << "view " << view << " tau " << tau;
       }
       const uint32_t listed = r.counters.drawCount, patched = r.counters.patchClusters;
       if (patched * 2 > listed) closeViews++;
