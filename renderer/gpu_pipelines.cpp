@@ -163,15 +163,9 @@ void GpuRenderer::createTargets() {
   // The resolve's descriptor names the depth image in its read-only layout even in frames that skip the
   // depth pass: it starts there.
   VkCommandBuffer cmd = vk_.beginCommands();
-  VkImageMemoryBarrier toRead{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-  toRead.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
-  toRead.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  toRead.newLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
-  toRead.srcQueueFamilyIndex = toRead.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  toRead.image = depth_;
-  toRead.subresourceRange = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, 0, 1};
-  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0,
-                       nullptr, 1, &toRead);
+  layoutBarrier(cmd, depth_, VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+                VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
   vk_.submitAndWait(cmd);
   VkSamplerCreateInfo sampler{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};  // texelFetch only
   vkCheck(vkCreateSampler(dev, &sampler, nullptr, &depthSampler_), "vkCreateSampler");

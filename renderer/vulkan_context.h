@@ -92,4 +92,10 @@ class VulkanContext {
 // Throws std::runtime_error naming the call when a Vulkan call fails.
 void vkCheck(VkResult result, const char* what);
 
+// Records a barrier that moves the whole of a one-level image (`aspect`) from layout `from` to `to`, after
+// `srcAccess` in `srcStage` and before `dstAccess` in `dstStage`.
+void layoutBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,
+                   VkPipelineStageFlags srcStage, VkAccessFlags srcAccess, VkPipelineStageFlags dstStage,
+                   VkAccessFlags dstAccess);
+
 }  // namespace vgeo
