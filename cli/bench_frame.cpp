@@ -23,6 +23,7 @@ struct FrameBenchArgs {
   std::string input, output, grids = "32", sizes = "1280x720,1920x1080", cameras = "corner,inside",
                              traversal = "persistent", device, rasters = "auto,hardware";
   uint32_t frames = 5;
+  int32_t packedCullBelow = -1;
   float fov = 60.0f, tau = 1.0f;
 };
 
@@ -60,6 +61,7 @@ void runBenchFrame(const FrameBenchArgs& a) {
           s.traversal = traversal;
           s.triangleCull = triangleCull;
           s.patches = patches;
+          s.packedCullBelow = a.packedCullBelow;
           // Warm-up and growth after an overflow; this frame's image gives the pixels covered, and the
           // patch view's the pixels the patches cover.
           FrameResult f = renderer.renderFrame(s);
@@ -151,6 +153,7 @@ void addBenchFrameCommand(CLI::App& bench, int& exitCode) {
   cmd->add_option("--rasters", a->rasters,
                   "Rasterizers to compare (auto, hardware, software), each with and without patches")
       ->capture_default_str();
+  addPackedCullOption(cmd, a->packedCullBelow);
   addDeviceOption(cmd, a->device);
   cmd->callback([a, &exitCode] {
     runBenchFrame(*a);

@@ -24,15 +24,16 @@ void addFrameCounters(nlohmann::ordered_json& r, const FrameResult& f, const Gpu
   r["triangles"] = c.triangles;
   r["triangles_drawn"] = f.trianglesDrawn;
   r["software_triangles"] = f.softwareTriangles;  // of those, drawn by the software rasterizer
+  // Triangle culling took many listed clusters a workgroup (cull_small_clusters.comp).
+  r["packed_triangle_cull"] = c.packedCullDispatch[0] != 0u;
   // Leaves too coarse for tau drawn as tessellated patches: clusters, faces (patches) and the triangles
   // the tessellator made (pipeline statistics; -1 where the device has none).
   r["patch_clusters"] = c.patchClusters;
   r["patches_drawn"] = f.patchesDrawn;
-  r["software_patches"] = f.softwarePatches;
+  r["software_patches"] = f.softwarePatches;  // of those, tessellated and drawn by the compute rasterizer
   // "visibility": the hardware's triangles went into the visibility buffer too (no depth target);
   // "depth": the render pass drew with depth (patches for the tessellator, or no compute rasterizer).
-  r["render_pass"] =
-      f.bareRenderPass ? "visibility" : "depth";  // of those, tessellated and drawn by the compute rasterizer
+  r["render_pass"] = f.bareRenderPass ? "visibility" : "depth";
   r["patch_triangles"] = f.patchTriangles;
 }
 

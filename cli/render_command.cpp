@@ -37,6 +37,7 @@ struct RenderArgs {
   uint32_t grid = 1, frames = 2, queueCapacity = 0, drawCapacity = 0, triangleCapacity = 0, workgroups = 0,
            cullLanes = 0;
   uint32_t sweepBudget = kDefaultSweepBudget, maxFrameMemoryMiB = kDefaultFrameMemoryMiB;
+  int32_t packedCullBelow = -1;
   std::string instanceCulling = "auto", raster = "auto";
   bool compareCpu = false, validate = false, noTriangleCull = false, noPatches = false;
 };
@@ -57,6 +58,7 @@ FrameSettings frameSettings(const RenderArgs& a, const RenderScene& scene, const
   settings.triangleCull = !a.noTriangleCull;
   settings.patches = !a.noPatches;
   settings.raster = rasterNamed("--raster", a.raster);
+  settings.packedCullBelow = a.packedCullBelow;
   return settings;
 }
 
@@ -273,6 +275,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
                       " (default: the renderer's; sweeps need " + std::to_string(VGEO_CULL_INSTANCE_LANES) + ")")
       ->check(CLI::IsMember({1u, uint32_t(VGEO_CULL_INSTANCE_LANES)}));
   addInstanceCullingOption(cmd, a->instanceCulling);
+  addPackedCullOption(cmd, a->packedCullBelow);
   cmd->add_option(
          "--raster", a->raster,
          "Rasterizer of the listed triangles: auto (small ones in compute where the device has 64-bit "

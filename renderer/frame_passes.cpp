@@ -12,6 +12,7 @@
 //                                the persistent traversal's last worker, reset_flat.comp, finalize.comp
 //   5. cull_triangles.comp       one workgroup a listed cluster -> triangle list, binned to the software
 //                                rasterizer or the hardware; patch-drawn clusters -> patch-entry list
+//      cull_small_clusters.comp  the same, 64 listed clusters a workgroup, when the frame's are small
 //      prepare_patches.comp,     with patches: one workgroup a patch-drawn cluster -> patch list,
 //      cull_patches.comp         binned to the compute rasterizer or the tessellator
 //      finalize_triangles.comp   the draws' and the software rasterizer's indirect arguments
@@ -128,6 +129,8 @@ void GpuRenderer::recordTriangleCull(VkCommandBuffer cmd, bool patches) {
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cullTriangles_);
   vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, dispatch));
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, cullSmallClusters_);  // the frame runs one of the two
+  vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, packedCullDispatch));
   computeToCompute(cmd);
   if (patches) {  // the patch-drawn clusters that triangle culling listed, a workgroup each
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, preparePatches_);

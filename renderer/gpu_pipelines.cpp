@@ -6,6 +6,7 @@
 #include "shaders/cull_instances_comp.h"
 #include "shaders/cull_instances_comp_cull_serial.h"
 #include "shaders/cull_patches_comp.h"
+#include "shaders/cull_small_clusters_comp.h"
 #include "shaders/cull_triangles_comp.h"
 #include "shaders/draw_frag.h"
 #include "shaders/draw_vert.h"
@@ -264,6 +265,7 @@ void GpuRenderer::createComputePipelines(bool softwareRaster) {
   resetFlat_ = computePipeline(reset_flat_comp, sizeof(reset_flat_comp));
   finalize_ = computePipeline(finalize_comp, sizeof(finalize_comp));
   cullTriangles_ = computePipeline(cull_triangles_comp, sizeof(cull_triangles_comp));
+  cullSmallClusters_ = computePipeline(cull_small_clusters_comp, sizeof(cull_small_clusters_comp));
   preparePatches_ = computePipeline(prepare_patches_comp, sizeof(prepare_patches_comp));
   cullPatches_ = computePipeline(cull_patches_comp, sizeof(cull_patches_comp));
   finalizeTriangles_ = computePipeline(finalize_triangles_comp, sizeof(finalize_triangles_comp));

@@ -32,6 +32,12 @@ constexpr size_t kFewWorkgroupsInstances = 32768;
 // where one instance of all patches joined unrelated vertices in close-ups. GPUs: one instance holds
 // many (the count has no effect on the picture).
 constexpr uint32_t kLavapipePatchesPerInstance = 15, kPatchesPerInstance = 4096;
+// Triangle culling packs 64 clusters a workgroup when the draw list's clusters average fewer triangles
+// than this: far instances list roots of ~13 triangles, which leave most lanes of a workgroup a cluster
+// idle (lavapipe pays for every lane and every workgroup: 3.8x, the H100 1.9x). Above it, one cluster a
+// workgroup, whose loads are the same for every lane, is the faster (bench/README.md, software
+// rasterizer).
+constexpr uint32_t kPackedCullBelow = 32;
 // Frame start, then the end of each pass of runPasses.
 constexpr uint32_t kTimestamps = 8;
 
@@ -161,12 +167,14 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
 GpuRenderer::~GpuRenderer() {
   VkDevice dev = vk_.device();
   vkDeviceWaitIdle(dev);
-  for (VkPipeline p :
-       {cull_,           cullSerial_,        persistent_,     persistentProfile_, level_,         prepareLevel_,
-        flat_,           prepareFlat_,       resetFlat_,      finalize_,          cullTriangles_, preparePatches_,
-        cullPatches_,    finalizeTriangles_, draw_,           drawOverdraw_,      drawPatches_,   drawPatchesOverdraw_,
-        rasterSoftware_, rasterPatches_,     drawVisibility_, drawGridVisibility_})
-    vkDestroyPipeline(dev, p, nullptr);
+  const VkPipeline computePipelines[] = {
+      cull_,           cullSerial_,  persistent_,        persistentProfile_, level_,         prepareLevel_,
+      flat_,           prepareFlat_, resetFlat_,         finalize_,          cullTriangles_, cullSmallClusters_,
+      preparePatches_, cullPatches_, finalizeTriangles_, rasterSoftware_,    rasterPatches_};
+  const VkPipeline drawPipelines[] = {draw_,           drawOverdraw_,      drawPatches_, drawPatchesOverdraw_,
+                                      drawVisibility_, drawGridVisibility_};
+  for (VkPipeline p : computePipelines) vkDestroyPipeline(dev, p, nullptr);
+  for (VkPipeline p : drawPipelines) vkDestroyPipeline(dev, p, nullptr);
   for (auto& view : resolve_)
     for (auto& variants : view)
       for (VkPipeline p : variants) vkDestroyPipeline(dev, p, nullptr);
@@ -265,6 +273,7 @@ shaderio::FrameData GpuRenderer::frameConstants(const FrameSettings& settings) c
   frame.softwareRaster = softwareRaster(settings);
   frame.softwarePatches = rastersPatchesInCompute(settings) ? 1u : 0u;
   frame.patchGridCapacity = patchGridCapacity_;
+  frame.packedCullBelow = settings.packedCullBelow >= 0 ? uint32_t(settings.packedCullBelow) : kPackedCullBelow;
   return frame;
 }
 

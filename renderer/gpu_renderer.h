@@ -56,8 +56,11 @@ struct FrameSettings {
   // dependent steps); claimed level by level in instance culling until spent. 0: never sweep.
   uint32_t sweepBudget = kDefaultSweepBudget;
   Raster raster = Raster::Auto;  // with triangleCull
-  bool profileWorkers = false;   // persistent traversal on a device with a shader device clock: record the
-                                 // workers' iterations in FrameResult::workerProfile (benchmarks)
+  // Triangle culling takes many clusters a workgroup (cull_small_clusters.comp) when the draw list's
+  // average fewer triangles than this: -1 the renderer's choice, 0 never (tests force both ways).
+  int32_t packedCullBelow = -1;
+  bool profileWorkers = false;  // persistent traversal on a device with a shader device clock: record the
+                                // workers' iterations in FrameResult::workerProfile (benchmarks)
 };
 
 struct FrameResult {
@@ -218,10 +221,10 @@ class GpuRenderer {
              persistentProfile_ = VK_NULL_HANDLE, level_ = VK_NULL_HANDLE, prepareLevel_ = VK_NULL_HANDLE,
              flat_ = VK_NULL_HANDLE, prepareFlat_ = VK_NULL_HANDLE, resetFlat_ = VK_NULL_HANDLE,
              finalize_ = VK_NULL_HANDLE, draw_ = VK_NULL_HANDLE, cullTriangles_ = VK_NULL_HANDLE,
-             preparePatches_ = VK_NULL_HANDLE, cullPatches_ = VK_NULL_HANDLE, finalizeTriangles_ = VK_NULL_HANDLE,
-             drawOverdraw_ = VK_NULL_HANDLE, drawPatches_ = VK_NULL_HANDLE, drawPatchesOverdraw_ = VK_NULL_HANDLE,
-             rasterSoftware_ = VK_NULL_HANDLE, rasterPatches_ = VK_NULL_HANDLE, drawVisibility_ = VK_NULL_HANDLE,
-             drawGridVisibility_ = VK_NULL_HANDLE;
+             cullSmallClusters_ = VK_NULL_HANDLE, preparePatches_ = VK_NULL_HANDLE, cullPatches_ = VK_NULL_HANDLE,
+             finalizeTriangles_ = VK_NULL_HANDLE, drawOverdraw_ = VK_NULL_HANDLE, drawPatches_ = VK_NULL_HANDLE,
+             drawPatchesOverdraw_ = VK_NULL_HANDLE, rasterSoftware_ = VK_NULL_HANDLE, rasterPatches_ = VK_NULL_HANDLE,
+             drawVisibility_ = VK_NULL_HANDLE, drawGridVisibility_ = VK_NULL_HANDLE;
   // resolve.comp, one pipeline a view, made when first used (a shader with only its view's code: lavapipe
   // runs every line of a shader whatever branch its lanes take, docs/gpu-notes.md 17).
   // [view][whether patches are in the visibility buffer][whether every pixel is (no render-pass attachments)]

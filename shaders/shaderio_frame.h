@@ -144,6 +144,8 @@ struct FrameData {
   uint softwareRaster;      // VGEO_RASTER_*: which listed triangles raster_software.comp draws
   uint softwarePatches;     // 1: patch culling bins patches to raster_patches.comp too (by softwareRaster's rule)
   uint patchGridCapacity;   // points in the patch grid (VGEO_BINDING_PATCH_GRID)
+  uint packedCullBelow;     // draw lists whose clusters average fewer triangles are culled by
+                            // cull_small_clusters.comp (0: never)
 };
 
 // The software rasterizer (raster_software.comp) takes the triangles triangle culling bins to it:
@@ -180,6 +182,10 @@ struct FrameData {
 // (n + 1)^2 points in shared memory, 2 n^2 triangles a thread each).
 #define VGEO_PATCH_TILE 4u
 
+// Triangle culling of draw lists whose clusters average fewer than frame.packedCullBelow triangles goes
+// through VGEO_PACKED_CULL_ENTRIES entries a workgroup (cull_small_clusters.comp).
+#define VGEO_PACKED_CULL_ENTRIES 64u
+
 // GPU counters of one frame, and the indirect arguments built from them. The counters the persistent
 // traversal's workers hit all the time each have a 128-byte line of their own (atomics on one line are
 // served one after another at the L2).
@@ -203,27 +209,28 @@ struct Counters {
   uint triangles;   // triangles of the listed clusters
   uint levelStart;  // levels traversal: the window of the queue processed by one dispatch
   uint levelEnd;
-  uint queueHighWater;          // largest queueWrite seen
-  uint workgroupsExited;        // persistent traversal: workers that left
-  uint budgetExits;             // of those, left on the iteration budget (lavapipe)
-  uint dispatch[4];             // indirect dispatch arguments (x, y, z): levels and flat traversal, triangle culling
-  uint draw[4];                 // VkDrawIndirectCommand
-  uint trianglesDrawn;          // triangles that survived triangle culling (requested; see triangleOverflow)
-  uint triangleOverflow;        // triangles that did not fit the triangle list
-  uint patchesDrawn;            // patches listed for the tessellated draw (requested; see patchOverflow)
-  uint patchOverflow;           // patches that did not fit the patch list
-  uint patchClusters;           // draw-list entries drawn as patches
-  uint patchDraw[4];            // VkDrawIndirectCommand of the patch draw (one vertex a patch)
-  uint sweepTests;              // cluster tests claimed for sweeps (may pass frame.sweepBudget: then not swept)
-  uint sweptTests;              // of those, swept
-  uint cullItems;               // queue items instance culling wrote: sizes the next frame's first claim
-  uint hardwareTriangles;       // of trianglesDrawn, those for the hardware draw, listed from the triangle list's start
-  uint softwareTriangles;       // of trianglesDrawn, those for the software rasterizer, listed from its end
-  uint rasterDispatch[4];       // indirect dispatch of raster_software.comp
-  uint patchEntries;            // draw-list entries drawn as patches, listed for cull_patches.comp
-  uint patchCullDispatch[4];    // its indirect dispatch
-  uint hardwarePatches;         // of patchesDrawn, those for the tessellated draw, listed from the patch list's start
-  uint softwarePatches;         // of patchesDrawn, those for raster_patches.comp, listed from its end
+  uint queueHighWater;         // largest queueWrite seen
+  uint workgroupsExited;       // persistent traversal: workers that left
+  uint budgetExits;            // of those, left on the iteration budget (lavapipe)
+  uint dispatch[4];            // indirect dispatch arguments (x, y, z): levels and flat traversal, triangle culling
+  uint packedCullDispatch[4];  // the dispatch of cull_small_clusters.comp (0 workgroups when the frame takes the other)
+  uint draw[4];                // VkDrawIndirectCommand
+  uint trianglesDrawn;         // triangles that survived triangle culling (requested; see triangleOverflow)
+  uint triangleOverflow;       // triangles that did not fit the triangle list
+  uint patchesDrawn;           // patches listed for the tessellated draw (requested; see patchOverflow)
+  uint patchOverflow;          // patches that did not fit the patch list
+  uint patchClusters;          // draw-list entries drawn as patches
+  uint patchDraw[4];           // VkDrawIndirectCommand of the patch draw (one vertex a patch)
+  uint sweepTests;             // cluster tests claimed for sweeps (may pass frame.sweepBudget: then not swept)
+  uint sweptTests;             // of those, swept
+  uint cullItems;              // queue items instance culling wrote: sizes the next frame's first claim
+  uint hardwareTriangles;      // of trianglesDrawn, those for the hardware draw, listed from the triangle list's start
+  uint softwareTriangles;      // of trianglesDrawn, those for the software rasterizer, listed from its end
+  uint rasterDispatch[4];      // indirect dispatch of raster_software.comp
+  uint patchEntries;           // draw-list entries drawn as patches, listed for cull_patches.comp
+  uint patchCullDispatch[4];   // its indirect dispatch
+  uint hardwarePatches;        // of patchesDrawn, those for the tessellated draw, listed from the patch list's start
+  uint softwarePatches;        // of patchesDrawn, those for raster_patches.comp, listed from its end
   uint patchRasterDispatch[4];  // indirect dispatch of raster_patches.comp, a workgroup a patch
   uint softwarePatchTriangles;  // triangles of the grids raster_patches.comp drew
   uint patchGridPoints;         // grid points patch culling asked for (past patchGridCapacity: tessellator)
@@ -243,8 +250,8 @@ struct Counters {
 #define VGEO_MAX_DRAW_ENTRIES (1u << 25)
 
 #ifdef __cplusplus
-static_assert(sizeof(FrameData) == 64 + 96 + 32 + 96, "FrameData layout");
-static_assert(sizeof(Counters) == 5 * 128 + 80, "Counters layout");
+static_assert(sizeof(FrameData) == 64 + 96 + 32 + 100, "FrameData layout");
+static_assert(sizeof(Counters) == 5 * 128 + 96, "Counters layout");
 static_assert(offsetof(Counters, itemsDone) == 4 * 128, "Counters: the hot words on lines of their own");
 #endif
 

@@ -495,6 +495,34 @@ TEST_F(Render, TriangleCullingKeepsThePicture) {
   }
 }
 
+TEST_F(Render, PackedTriangleCullingListsWhatOneClusterAWorkgroupLists) {
+  // cull_small_clusters.comp (64 clusters a workgroup) against cull_triangles.comp (one), forced either
+  // way: far views (roots of a few triangles), a close one with patch-drawn clusters, and the view from
+  // inside; the same triangles binned the same way make the same ids, so the same pixels.
+  GpuRenderer renderer(*vk, *grid, kW, kH);
+  for (int view = 0; view < 4; view++) {
+    Camera camera = test::orbit(*grid, 0.9f * float(view), 0.4f, view == 0 ? 0.4f : 2.0f + 4.0f * float(view));
+    FrameSettings s = settingsFor(*grid, camera, view == 0 ? 0.1f : 2.0f);
+    s.mode = VGEO_MODE_TRIANGLE;
+    s.packedCullBelow = 0;
+    FrameResult one = renderer.renderFrame(s);
+    s.packedCullBelow = VGEO_MAX_CLUSTER_TRIANGLES + 1;
+    FrameResult packed = renderer.renderFrame(s);
+    ASSERT_TRUE(one.complete && packed.complete);
+    EXPECT_EQ(one.counters.packedCullDispatch[0], 0u);
+    EXPECT_GT(packed.counters.packedCullDispatch[0], 0u);
+    EXPECT_EQ(packed.counters.dispatch[0], 0u);
+    EXPECT_GT(one.trianglesDrawn, 0u) << "view " << view;
+    EXPECT_EQ(packed.trianglesDrawn, one.trianglesDrawn) << "view " << view;
+    EXPECT_EQ(packed.softwareTriangles, one.softwareTriangles) << "view " << view;
+    EXPECT_EQ(packed.patchesDrawn, one.patchesDrawn) << "view " << view;
+    if (view == 0) {
+      EXPECT_GT(one.patchesDrawn, 0u);
+    }
+    EXPECT_EQ(differingPixels(packed, one), 0u) << "view " << view;
+  }
+}
+
 // The software rasterizer covers the pixels the hardware does with the same triangles: the same cluster
 // list drawn each way shows the same triangle (its colour in the triangle view, within the rounding of a
 // normal interpolated two ways) in at least 99.9% of the pixels either covers. The rest: samples on an
