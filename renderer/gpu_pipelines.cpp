@@ -4,31 +4,62 @@
 #include "gpu_renderer.h"
 
 #include "shaders/cull_instances_comp.h"
+#include "shaders/cull_instances_comp_by_address.h"
 #include "shaders/cull_instances_comp_cull_serial.h"
+#include "shaders/cull_instances_comp_cull_serial_by_address.h"
 #include "shaders/cull_patches_comp.h"
+#include "shaders/cull_patches_comp_by_address.h"
 #include "shaders/cull_small_clusters_comp.h"
+#include "shaders/cull_small_clusters_comp_by_address.h"
 #include "shaders/cull_triangles_comp.h"
+#include "shaders/cull_triangles_comp_by_address.h"
 #include "shaders/draw_frag.h"
+#include "shaders/draw_frag_by_address.h"
 #include "shaders/draw_vert.h"
+#include "shaders/draw_vert_by_address.h"
 #include "shaders/draw_vert_visibility_only.h"
+#include "shaders/draw_vert_visibility_only_by_address.h"
 #include "shaders/draw_visibility_frag.h"
+#include "shaders/draw_visibility_frag_by_address.h"
 #include "shaders/finalize_comp.h"
+#include "shaders/finalize_comp_by_address.h"
 #include "shaders/finalize_triangles_comp.h"
+#include "shaders/finalize_triangles_comp_by_address.h"
 #include "shaders/patch_grid_vert.h"
+#include "shaders/patch_grid_vert_by_address.h"
 #include "shaders/patch_tesc.h"
+#include "shaders/patch_tesc_by_address.h"
 #include "shaders/patch_tese.h"
+#include "shaders/patch_tese_by_address.h"
 #include "shaders/patch_vert.h"
+#include "shaders/patch_vert_by_address.h"
 #include "shaders/prepare_flat_comp.h"
+#include "shaders/prepare_flat_comp_by_address.h"
 #include "shaders/raster_patches_comp.h"
+#include "shaders/raster_patches_comp_by_address.h"
 #include "shaders/raster_software_comp.h"
+#include "shaders/raster_software_comp_by_address.h"
 #include "shaders/prepare_level_comp.h"
+#include "shaders/prepare_level_comp_by_address.h"
 #include "shaders/prepare_patches_comp.h"
+#include "shaders/prepare_patches_comp_by_address.h"
 #include "shaders/reset_flat_comp.h"
+#include "shaders/reset_flat_comp_by_address.h"
 #include "shaders/resolve_comp.h"
+#include "shaders/resolve_comp_by_address.h"
 #include "shaders/traverse_flat_comp.h"
+#include "shaders/traverse_flat_comp_by_address.h"
 #include "shaders/traverse_level_comp.h"
+#include "shaders/traverse_level_comp_by_address.h"
 #include "shaders/traverse_persistent_comp.h"
+#include "shaders/traverse_persistent_comp_by_address.h"
 #include "shaders/traverse_persistent_comp_profile.h"
+#include "shaders/traverse_persistent_comp_profile_by_address.h"
+
+// A shader's SPIR-V in the variant the scene needs: its arrays at their bindings, or by address (each
+// shader is built both ways, CMakeLists.txt).
+#define VGEO_SPIRV(name) \
+  (sceneByAddress_ ? name##_by_address : name), (sceneByAddress_ ? sizeof(name##_by_address) : sizeof(name))
 
 namespace vgeo {
 namespace {
@@ -194,10 +225,10 @@ void GpuRenderer::createDescriptorSet() {
   setInfo.bindingCount = kRendererBindings;
   setInfo.pBindings = bindings;
   vkCheck(vkCreateDescriptorSetLayout(dev, &setInfo, nullptr, &setLayout_), "vkCreateDescriptorSetLayout");
-  VkDescriptorPoolSize sizes[4] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+  VkDescriptorPoolSize sizes[4] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
                                    {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1},
                                    {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1},
-                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kRendererBindings - 3}};
+                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kRendererBindings - 4}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = 1;
   poolInfo.poolSizeCount = 4;
@@ -242,36 +273,35 @@ VkPipeline GpuRenderer::resolvePipeline(uint32_t mode, bool patches, bool everyP
         {VGEO_SPEC_RESOLVE_PATCHES, sizeof(uint32_t), sizeof(uint32_t)},
         {VGEO_SPEC_RESOLVE_EVERY_PIXEL, 2 * sizeof(uint32_t), sizeof(uint32_t)}};
     const VkSpecializationInfo view{3, entries, sizeof(constants), constants};
-    pipeline = computePipeline(resolve_comp, sizeof(resolve_comp), &view);
+    pipeline = computePipeline(VGEO_SPIRV(resolve_comp), &view);
   }
   return pipeline;
 }
 
 void GpuRenderer::createComputePipelines(bool softwareRaster) {
-  cull_ = computePipeline(cull_instances_comp, sizeof(cull_instances_comp));
-  cullSerial_ = computePipeline(cull_instances_comp_cull_serial, sizeof(cull_instances_comp_cull_serial));
+  cull_ = computePipeline(VGEO_SPIRV(cull_instances_comp));
+  cullSerial_ = computePipeline(VGEO_SPIRV(cull_instances_comp_cull_serial));
   // Tests a lane between draw-list atomics (traverse_persistent.comp, runRound): 1 on lavapipe.
   const uint32_t laneTests = vk_.isLavapipe() ? 1u : 4u;
   const VkSpecializationMapEntry laneTestsEntry{VGEO_SPEC_LANE_TESTS, 0, sizeof(uint32_t)};
   const VkSpecializationInfo persistentSpecialization{1, &laneTestsEntry, sizeof(laneTests), &laneTests};
-  persistent_ = computePipeline(traverse_persistent_comp, sizeof(traverse_persistent_comp), &persistentSpecialization);
+  persistent_ = computePipeline(VGEO_SPIRV(traverse_persistent_comp), &persistentSpecialization);
   if (vk_.deviceClock())
-    persistentProfile_ = computePipeline(traverse_persistent_comp_profile, sizeof(traverse_persistent_comp_profile),
-                                         &persistentSpecialization);
-  level_ = computePipeline(traverse_level_comp, sizeof(traverse_level_comp));
-  prepareLevel_ = computePipeline(prepare_level_comp, sizeof(prepare_level_comp));
-  flat_ = computePipeline(traverse_flat_comp, sizeof(traverse_flat_comp));
-  prepareFlat_ = computePipeline(prepare_flat_comp, sizeof(prepare_flat_comp));
-  resetFlat_ = computePipeline(reset_flat_comp, sizeof(reset_flat_comp));
-  finalize_ = computePipeline(finalize_comp, sizeof(finalize_comp));
-  cullTriangles_ = computePipeline(cull_triangles_comp, sizeof(cull_triangles_comp));
-  cullSmallClusters_ = computePipeline(cull_small_clusters_comp, sizeof(cull_small_clusters_comp));
-  preparePatches_ = computePipeline(prepare_patches_comp, sizeof(prepare_patches_comp));
-  cullPatches_ = computePipeline(cull_patches_comp, sizeof(cull_patches_comp));
-  finalizeTriangles_ = computePipeline(finalize_triangles_comp, sizeof(finalize_triangles_comp));
+    persistentProfile_ = computePipeline(VGEO_SPIRV(traverse_persistent_comp_profile), &persistentSpecialization);
+  level_ = computePipeline(VGEO_SPIRV(traverse_level_comp));
+  prepareLevel_ = computePipeline(VGEO_SPIRV(prepare_level_comp));
+  flat_ = computePipeline(VGEO_SPIRV(traverse_flat_comp));
+  prepareFlat_ = computePipeline(VGEO_SPIRV(prepare_flat_comp));
+  resetFlat_ = computePipeline(VGEO_SPIRV(reset_flat_comp));
+  finalize_ = computePipeline(VGEO_SPIRV(finalize_comp));
+  cullTriangles_ = computePipeline(VGEO_SPIRV(cull_triangles_comp));
+  cullSmallClusters_ = computePipeline(VGEO_SPIRV(cull_small_clusters_comp));
+  preparePatches_ = computePipeline(VGEO_SPIRV(prepare_patches_comp));
+  cullPatches_ = computePipeline(VGEO_SPIRV(cull_patches_comp));
+  finalizeTriangles_ = computePipeline(VGEO_SPIRV(finalize_triangles_comp));
   if (softwareRaster) {
-    rasterSoftware_ = computePipeline(raster_software_comp, sizeof(raster_software_comp));
-    rasterPatches_ = computePipeline(raster_patches_comp, sizeof(raster_patches_comp));
+    rasterSoftware_ = computePipeline(VGEO_SPIRV(raster_software_comp));
+    rasterPatches_ = computePipeline(VGEO_SPIRV(raster_patches_comp));
   }
 }
 
@@ -279,8 +309,8 @@ void GpuRenderer::createComputePipelines(bool softwareRaster) {
 // two for patches where the device has tessellation shaders.
 void GpuRenderer::createDrawPipelines() {
   VkDevice dev = vk_.device();
-  VkShaderModule vert = vk_.createShaderModule(draw_vert, sizeof(draw_vert));
-  VkShaderModule frag = vk_.createShaderModule(draw_frag, sizeof(draw_frag));
+  VkShaderModule vert = vk_.createShaderModule(VGEO_SPIRV(draw_vert));
+  VkShaderModule frag = vk_.createShaderModule(VGEO_SPIRV(draw_frag));
   VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
                                                 VK_SHADER_STAGE_VERTEX_BIT, vert, "main", nullptr},
                                                {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0,
@@ -343,9 +373,8 @@ void GpuRenderer::createDrawPipelines() {
   // The same draw into the visibility buffer (draw_visibility.frag): no attachments, no depth test, no
   // blending; every view (the fragment shader counts in the overdraw view).
   if (rasterSoftware_) {
-    VkShaderModule visibilityVert =
-        vk_.createShaderModule(draw_vert_visibility_only, sizeof(draw_vert_visibility_only));
-    VkShaderModule visibilityFrag = vk_.createShaderModule(draw_visibility_frag, sizeof(draw_visibility_frag));
+    VkShaderModule visibilityVert = vk_.createShaderModule(VGEO_SPIRV(draw_vert_visibility_only));
+    VkShaderModule visibilityFrag = vk_.createShaderModule(VGEO_SPIRV(draw_visibility_frag));
     VkPipelineShaderStageCreateInfo visibilityStages[2] = {
         {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, visibilityVert,
          "main", nullptr},
@@ -359,7 +388,7 @@ void GpuRenderer::createDrawPipelines() {
     vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &drawVisibility_),
             "vkCreateGraphicsPipelines (visibility)");
     // The hardware's patches from their grids (patch_grid.vert), into the same buffer.
-    VkShaderModule gridVert = vk_.createShaderModule(patch_grid_vert, sizeof(patch_grid_vert));
+    VkShaderModule gridVert = vk_.createShaderModule(VGEO_SPIRV(patch_grid_vert));
     visibilityStages[0].module = gridVert;
     vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &drawGridVisibility_),
             "vkCreateGraphicsPipelines (patch grids)");
@@ -372,9 +401,9 @@ void GpuRenderer::createDrawPipelines() {
   // The patch draw: the same state, one control point a patch, tessellated (patch.tesc, patch.tese).
   // Without tessellation shaders on the device, leaves stay triangles.
   if (vk_.tessellation()) {
-    VkShaderModule patchVert = vk_.createShaderModule(patch_vert, sizeof(patch_vert));
-    VkShaderModule tesc = vk_.createShaderModule(patch_tesc, sizeof(patch_tesc));
-    VkShaderModule tese = vk_.createShaderModule(patch_tese, sizeof(patch_tese));
+    VkShaderModule patchVert = vk_.createShaderModule(VGEO_SPIRV(patch_vert));
+    VkShaderModule tesc = vk_.createShaderModule(VGEO_SPIRV(patch_tesc));
+    VkShaderModule tese = vk_.createShaderModule(VGEO_SPIRV(patch_tese));
     VkPipelineShaderStageCreateInfo patchStages[4] = {
         {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_VERTEX_BIT, patchVert, "main",
          nullptr},

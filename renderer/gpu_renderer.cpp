@@ -51,46 +51,63 @@ const char* traversalName(Traversal t) {
   return t == Traversal::Persistent ? "persistent" : t == Traversal::Levels ? "levels" : "flat";
 }
 
-GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint32_t width, uint32_t height)
-    : vk_(context), scene_(scene), width_(width), height_(height) {
+GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint32_t width, uint32_t height,
+                         bool sceneByAddress)
+    : vk_(context), scene_(scene), width_(width), height_(height), sceneByAddress_(sceneByAddress) {
   const VgeoData& d = scene.data;
   VkDeviceSize range = vk_.properties().limits.maxStorageBufferRange;
-  // The scene's arrays, each uploaded once to its binding (shaderio.h, VGEO_BINDING_*).
+  // The scene's arrays, each uploaded once; the shaders read them at their bindings or, when one passes
+  // what a binding may hold, by address (shaderio_frame.h, SceneArrays; common.glsl).
   auto bytes = [](const auto& v) { return v.size() * sizeof(v[0]); };
+  shaderio::SceneArrays addresses{};
   struct SceneArray {
     uint32_t binding;
+    glm::uvec2* address;
     const void* data;
     size_t bytes;
   } sections[] = {
-      {VGEO_BINDING_GEOMETRIES, d.geometries.data(), bytes(d.geometries)},
-      {VGEO_BINDING_INSTANCES, d.instances.data(), bytes(d.instances)},
-      {VGEO_BINDING_POSITIONS, d.positions.data(), bytes(d.positions)},
-      {VGEO_BINDING_NORMALS, d.normals.data(), bytes(d.normals)},
-      {VGEO_BINDING_CLUSTERS, d.clusters.data(), bytes(d.clusters)},
-      {VGEO_BINDING_CLUSTER_VERTICES, d.clusterVertices.data(), bytes(d.clusterVertices)},
-      {VGEO_BINDING_CLUSTER_TRIANGLES, d.clusterTriangles.data(), bytes(d.clusterTriangles)},
-      {VGEO_BINDING_GROUPS, d.groups.data(), bytes(d.groups)},
-      {VGEO_BINDING_NODES, d.nodes.data(), bytes(d.nodes)},
-      {VGEO_BINDING_CLUSTER_CONES, d.clusterCones.data(), bytes(d.clusterCones)},
-      {VGEO_BINDING_CONTROL_POINTS, d.controlPoints.data(), bytes(d.controlPoints)},
-      {VGEO_BINDING_CAGE_FACES, d.cageFaces.data(), bytes(d.cageFaces)},
-      {VGEO_BINDING_CAGE_FACE_VERTICES, d.cageFaceVertices.data(), bytes(d.cageFaceVertices)},
-      {VGEO_BINDING_PATCHES, d.patches.data(), bytes(d.patches)},
-      {VGEO_BINDING_PATCH_POINTS, d.patchPoints.data(), bytes(d.patchPoints)},
-      {VGEO_BINDING_LEVEL_CLUSTER_RUNS, scene.levelClusterRuns.data(), bytes(scene.levelClusterRuns)},
-      {VGEO_BINDING_INSTANCE_ROOTS, scene.instanceRoots.data(), bytes(scene.instanceRoots)},
+      {VGEO_BINDING_GEOMETRIES, &addresses.geometries, d.geometries.data(), bytes(d.geometries)},
+      {VGEO_BINDING_INSTANCES, &addresses.instances, d.instances.data(), bytes(d.instances)},
+      {VGEO_BINDING_POSITIONS, &addresses.positions, d.positions.data(), bytes(d.positions)},
+      {VGEO_BINDING_NORMALS, &addresses.normals, d.normals.data(), bytes(d.normals)},
+      {VGEO_BINDING_CLUSTERS, &addresses.clusters, d.clusters.data(), bytes(d.clusters)},
+      {VGEO_BINDING_CLUSTER_VERTICES, &addresses.clusterVertices, d.clusterVertices.data(), bytes(d.clusterVertices)},
+      {VGEO_BINDING_CLUSTER_TRIANGLES, &addresses.clusterTriangles, d.clusterTriangles.data(),
+       bytes(d.clusterTriangles)},
+      {VGEO_BINDING_GROUPS, &addresses.groups, d.groups.data(), bytes(d.groups)},
+      {VGEO_BINDING_NODES, &addresses.nodes, d.nodes.data(), bytes(d.nodes)},
+      {VGEO_BINDING_CLUSTER_CONES, &addresses.clusterCones, d.clusterCones.data(), bytes(d.clusterCones)},
+      {VGEO_BINDING_CONTROL_POINTS, &addresses.controlPoints, d.controlPoints.data(), bytes(d.controlPoints)},
+      {VGEO_BINDING_CAGE_FACES, &addresses.cageFaces, d.cageFaces.data(), bytes(d.cageFaces)},
+      {VGEO_BINDING_CAGE_FACE_VERTICES, &addresses.cageFaceVertices, d.cageFaceVertices.data(),
+       bytes(d.cageFaceVertices)},
+      {VGEO_BINDING_PATCHES, &addresses.patches, d.patches.data(), bytes(d.patches)},
+      {VGEO_BINDING_PATCH_POINTS, &addresses.patchPoints, d.patchPoints.data(), bytes(d.patchPoints)},
+      {VGEO_BINDING_LEVEL_CLUSTER_RUNS, &addresses.levelClusterRuns, scene.levelClusterRuns.data(),
+       bytes(scene.levelClusterRuns)},
+      {VGEO_BINDING_INSTANCE_ROOTS, &addresses.instanceRoots, scene.instanceRoots.data(), bytes(scene.instanceRoots)},
   };
   // Sweep runs carry their length above the instance index (shaderio.h, VGEO_ITEM_RUN_BIT).
   if (d.instances.size() >= (size_t(1) << VGEO_RUN_INSTANCE_BITS))
     throw std::runtime_error("scene too large: " + std::to_string(d.instances.size()) + " instances (at most " +
                              std::to_string((1u << VGEO_RUN_INSTANCE_BITS) - 1) + ")");
+  // Refused before any upload when the arrays alone exceed the device's memory.
+  uint64_t sceneBytes = 0;
+  for (const auto& s : sections) sceneBytes += s.bytes;
+  if (sceneBytes > vk_.deviceLocalBytes())
+    throw std::runtime_error("scene too large for this device: its arrays need " + std::to_string(sceneBytes >> 20) +
+                             " MiB, the device's memory is " + std::to_string(vk_.deviceLocalBytes() >> 20) + " MiB");
+  for (const auto& s : sections) sceneByAddress_ = sceneByAddress_ || s.bytes > range;
   for (const auto& s : sections) {
-    if (s.bytes > range)
-      throw std::runtime_error("scene too large for this device: a buffer of " + std::to_string(s.bytes >> 20) +
-                               " MiB exceeds maxStorageBufferRange (" + std::to_string(range >> 20) + " MiB)");
-    sceneBuffers_.push_back({s.binding, vk_.createBuffer(s.bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT)});
-    vk_.upload(sceneBuffers_.back().second, s.data, s.bytes);
+    sceneBuffers_.push_back({s.binding, vk_.createBuffer(s.bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                                                      VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT)});
+    const Buffer& b = sceneBuffers_.back().second;
+    vk_.upload(b, s.data, s.bytes);
+    const VkDeviceAddress address = vk_.deviceAddress(b);
+    *s.address = glm::uvec2(uint32_t(address), uint32_t(address >> 32));
   }
+  sceneArrays_ = vk_.createBuffer(sizeof(addresses), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+  vk_.upload(sceneArrays_, &addresses, sizeof(addresses));
   frameData_ = vk_.createBuffer(sizeof(shaderio::FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
   counters_ = vk_.createBuffer(sizeof(shaderio::Counters),
                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
@@ -200,11 +217,14 @@ GpuRenderer::~GpuRenderer() {
                     &visibility_, &overdraw_, &patchGrid_})
     vk_.destroyBuffer(*b);
   for (auto& [binding, b] : sceneBuffers_) vk_.destroyBuffer(b);
+  vk_.destroyBuffer(sceneArrays_);
 }
 
 void GpuRenderer::writeDescriptors() {
+  const VkDeviceSize range = vk_.properties().limits.maxStorageBufferRange;
   const Buffer* buffers[kRendererBindings] = {};
   buffers[VGEO_BINDING_FRAME] = &frameData_;
+  buffers[VGEO_BINDING_SCENE] = &sceneArrays_;
   buffers[VGEO_BINDING_COUNTERS] = &counters_;
   buffers[VGEO_BINDING_QUEUE] = &queue_;
   buffers[VGEO_BINDING_DRAW_LIST] = &drawList_;
@@ -225,7 +245,8 @@ void GpuRenderer::writeDescriptors() {
     const VkDescriptorType type = descriptorType(i);
     const bool image = type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE || type == VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     if (!image && !buffers[i]) throw std::logic_error("binding " + std::to_string(i) + " has no buffer");
-    if (!image) infos[i] = {buffers[i]->buffer, 0, VK_WHOLE_SIZE};
+    // An array past a binding's range is read by address; its binding shows what fits (unused).
+    if (!image) infos[i] = {buffers[i]->buffer, 0, std::min<VkDeviceSize>(buffers[i]->size, range)};
     writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
                  nullptr,
                  set_,
@@ -267,7 +288,7 @@ shaderio::FrameData GpuRenderer::frameConstants(const FrameSettings& settings) c
   frame.triangleCapacity = triangleCapacity_;
   frame.viewportWidth = float(width_);
   frame.viewportHeight = float(height_);
-  frame.patches = drawsPatches(settings) ? 1u : 0u;
+  frame.drawPatches = drawsPatches(settings) ? 1u : 0u;
   frame.patchesPerInstance = vk_.isLavapipe() ? kLavapipePatchesPerInstance : kPatchesPerInstance;
   frame.patchCapacity = patchCapacity_;
   frame.softwareRaster = softwareRaster(settings);
@@ -310,7 +331,7 @@ void GpuRenderer::runPasses(const FrameSettings& settings, const shaderio::Frame
       {&result.instanceCullMs, true, [&](VkCommandBuffer cmd) { recordInstanceCull(cmd, settings); }},
       {&result.traversalMs, true, [&](VkCommandBuffer cmd) { recordTraversal(cmd, settings); }},
       {&result.triangleCullMs, frame.triangleCull != 0u,
-       [&](VkCommandBuffer cmd) { recordTriangleCull(cmd, frame.patches != 0u); }},
+       [&](VkCommandBuffer cmd) { recordTriangleCull(cmd, frame.drawPatches != 0u); }},
       {&result.rasterMs, software,
        [&](VkCommandBuffer cmd) { recordSoftwareRaster(cmd, frame.softwarePatches != 0u); }},
       {&result.drawMs, settings.draw, [&](VkCommandBuffer cmd) { recordRenderPass(cmd, settings, bare); }},
@@ -361,7 +382,7 @@ void GpuRenderer::readResults(const FrameSettings& settings, const shaderio::Fra
                               FrameResult& result) {
   std::memcpy(&result.counters, countersReadback_.mapped, sizeof(result.counters));
   const auto& c = result.counters;
-  const bool patches = frame.patches != 0u, cullTriangles = frame.triangleCull != 0u;
+  const bool patches = frame.drawPatches != 0u, cullTriangles = frame.triangleCull != 0u;
   lastCullItems_ = settings.traversal == Traversal::Persistent ? c.cullItems : 0u;
   result.softwareTriangles = std::min(c.softwareTriangles, triangleCapacity_);
   result.trianglesDrawn = cullTriangles ? std::min(c.trianglesDrawn, triangleCapacity_) : c.triangles;

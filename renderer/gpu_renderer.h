@@ -87,7 +87,10 @@ struct FrameResult {
 
 class GpuRenderer {
  public:
-  GpuRenderer(VulkanContext& context, const RenderScene& scene, uint32_t width, uint32_t height);
+  // The shaders read the scene's arrays at their bindings, or by address when one passes what a binding
+  // may hold or when `sceneByAddress` (tests compare the two).
+  GpuRenderer(VulkanContext& context, const RenderScene& scene, uint32_t width, uint32_t height,
+              bool sceneByAddress = false);
   ~GpuRenderer();
   GpuRenderer(const GpuRenderer&) = delete;
   GpuRenderer& operator=(const GpuRenderer&) = delete;
@@ -107,6 +110,7 @@ class GpuRenderer {
   bool canProfileWorkers() const { return persistentProfile_ != VK_NULL_HANDLE; }
   // Whether the device runs the software rasterizer (64-bit buffer atomics, a picture one buffer holds).
   bool hasSoftwareRaster() const { return rasterSoftware_ != VK_NULL_HANDLE; }
+  bool readsSceneByAddress() const { return sceneByAddress_; }
   // Overrides the persistent traversal's workgroup count (benchmarks; the default is what the device
   // runs at once).
   void setPersistentWorkgroups(uint32_t count) { persistentWorkgroups_ = std::max(count, 1u); }
@@ -185,7 +189,7 @@ class GpuRenderer {
   // resolve shades every pixel. Not when patches go to the tessellator: it draws with depth.
   bool drawsIntoVisibility(const FrameSettings& s, const shaderio::FrameData& frame) const {
     return s.draw && frame.softwareRaster != VGEO_RASTER_NONE && drawVisibility_ != VK_NULL_HANDLE &&
-           (frame.patches == 0u || frame.softwarePatches != 0u);
+           (frame.drawPatches == 0u || frame.softwarePatches != 0u);
   }
   bool rastersPatchesInCompute(const FrameSettings& s) const {
     return drawsPatches(s) && softwareRaster(s) != VGEO_RASTER_NONE && vk_.drawIndirectCount() &&
@@ -207,6 +211,8 @@ class GpuRenderer {
       patchList_, patchDraws_, patchEntries_, visibility_, overdraw_, patchGrid_,
       workerProfile_;                                      // host-visible; a placeholder until a frame is profiled
   std::vector<std::pair<uint32_t, Buffer>> sceneBuffers_;  // the scene's arrays, uploaded once, by binding
+  Buffer sceneArrays_;                                     // their addresses (VGEO_BINDING_SCENE)
+  bool sceneByAddress_ = false;  // an array passes maxStorageBufferRange: the shaders' by-address variant
   VkImage color_ = VK_NULL_HANDLE, depth_ = VK_NULL_HANDLE;
   VkDeviceMemory colorMemory_ = VK_NULL_HANDLE, depthMemory_ = VK_NULL_HANDLE;
   VkImageView colorView_ = VK_NULL_HANDLE, depthView_ = VK_NULL_HANDLE;
@@ -239,10 +245,10 @@ const char* traversalName(Traversal t);
 // Binding count of the one descriptor set (shaderio.h, VGEO_BINDING_*).
 constexpr uint32_t kRendererBindings = VGEO_BINDING_COUNT;
 inline VkDescriptorType descriptorType(uint32_t binding) {
-  return binding == VGEO_BINDING_FRAME         ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
-         : binding == VGEO_BINDING_COLOR_IMAGE ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
-         : binding == VGEO_BINDING_DEPTH_IMAGE ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
-                                               : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  return binding == VGEO_BINDING_FRAME || binding == VGEO_BINDING_SCENE ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
+         : binding == VGEO_BINDING_COLOR_IMAGE                          ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
+         : binding == VGEO_BINDING_DEPTH_IMAGE                          ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
+                                                                        : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 }
 
 }  // namespace vgeo

@@ -21,7 +21,7 @@ struct RenderScene {
   // clusters below it as (first cluster, count), what a sweep tests instead of walking the subtree;
   // (0, 0) for other nodes and for a subtree whose clusters are not one run.
   std::vector<glm::uvec2> levelClusterRuns;
-  std::vector<glm::uvec2> instanceRoots;  // shaderio_frame.h, VGEO_BINDING_INSTANCE_ROOTS
+  std::vector<glm::uvec2> instanceRoots;  // shaderio_frame.h, SceneArrays
 };
 
 // Loads a .vgeo, or a scene file (JSON, see README: geometries by path, instances with transforms),

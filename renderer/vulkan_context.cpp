@@ -246,9 +246,13 @@ void VulkanContext::createDevice() {
     vkGetPhysicalDeviceFeatures2(physical_, &features2);
     int64Atomics_ = supported.shaderInt64 && vulkan12.shaderBufferInt64Atomics;
     drawIndirectCount_ = vulkan12.drawIndirectCount == VK_TRUE;
+    // The scene's arrays are read by device address (shaderio_frame.h, SceneArrays).
+    if (!vulkan12.bufferDeviceAddress)
+      throw std::runtime_error("vulkan: " + deviceName() + " lacks bufferDeviceAddress (Vulkan 1.2)");
     vulkan12 = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     vulkan12.shaderBufferInt64Atomics = int64Atomics_;
     vulkan12.drawIndirectCount = drawIndirectCount_;
+    vulkan12.bufferDeviceAddress = VK_TRUE;
     enabled.shaderInt64 = int64Atomics_;
   }
   const char* clockExtension = VK_KHR_SHADER_CLOCK_EXTENSION_NAME;
@@ -307,6 +311,9 @@ Buffer VulkanContext::createBuffer(VkDeviceSize size, VkBufferUsageFlags usage, 
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(device_, b.buffer, &req);
   VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
+  flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
+  if (usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT) alloc.pNext = &flags;
   alloc.allocationSize = req.size;
   alloc.memoryTypeIndex = memoryType(
       req.memoryTypeBits, hostVisible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
@@ -319,6 +326,20 @@ Buffer VulkanContext::createBuffer(VkDeviceSize size, VkBufferUsageFlags usage, 
   vkCheck(vkBindBufferMemory(device_, b.buffer, b.memory, 0), "vkBindBufferMemory");
   if (hostVisible) vkCheck(vkMapMemory(device_, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped), "vkMapMemory");
   return b;
+}
+
+VkDeviceAddress VulkanContext::deviceAddress(const Buffer& b) const {
+  VkBufferDeviceAddressInfo info{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
+  info.buffer = b.buffer;
+  return vkGetBufferDeviceAddress(device_, &info);
+}
+
+VkDeviceSize VulkanContext::deviceLocalBytes() const {
+  VkDeviceSize largest = 0;
+  for (uint32_t i = 0; i < memory_.memoryHeapCount; i++)
+    if (memory_.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
+      largest = std::max(largest, memory_.memoryHeaps[i].size);
+  return largest;
 }
 
 void VulkanContext::destroyBuffer(Buffer& b) {

@@ -52,6 +52,10 @@ class VulkanContext {
   // Device-local buffer (usage | transfer dst/src), or host-visible and mapped when `hostVisible`.
   Buffer createBuffer(VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible = false);
   void destroyBuffer(Buffer& buffer);
+  // The address shaders read a buffer at (made with VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT).
+  VkDeviceAddress deviceAddress(const Buffer& buffer) const;
+  // The size of the largest device-local memory heap.
+  VkDeviceSize deviceLocalBytes() const;
   // Copies host data into a device-local buffer through a staging buffer (blocking).
   void upload(const Buffer& dst, const void* data, VkDeviceSize size, VkDeviceSize offset = 0);
 

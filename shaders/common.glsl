@@ -1,9 +1,50 @@
 // common.glsl: the bindings every renderer pass shares, and the tests of the cut (docs/design.md, invariant 4)
 // in world space. Included by the compute passes and the draw shaders.
 #extension GL_GOOGLE_include_directive : require
+#ifdef VGEO_SCENE_BY_ADDRESS
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
+#endif
 #include "shaderio.h"
 
 layout(set = 0, binding = VGEO_BINDING_FRAME) uniform FrameBlock { FrameData frame; };
+
+// The scene's arrays: each at a binding of its own, or in the VGEO_SCENE_BY_ADDRESS variant (scenes with
+// an array past maxStorageBufferRange) by device address (shaderio_frame.h, SceneArrays), each name then
+// a macro that reads as the array (positions[i]). The .vgeo's arrays (shaderio_scene.h), then the
+// renderer's two (scene.h). Bindings are the faster on lavapipe (bench/README.md, scene arrays).
+#ifdef VGEO_SCENE_BY_ADDRESS
+layout(set = 0, binding = VGEO_BINDING_SCENE) uniform SceneBlock { SceneArrays sceneArrays; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer GeometryArray { Geometry v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer InstanceArray { Instance v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer ClusterArray { Cluster v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer GroupArray { Group v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer BvhNodeArray { BvhNode v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer ClusterConeArray { ClusterCone v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer CageFaceArray { CageFace v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer PatchArray { Patch v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 8) readonly buffer Uvec2Array { uvec2 v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer FloatArray { float v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer UintArray { uint v[]; };
+#define geometries GeometryArray(sceneArrays.geometries).v
+#define instances InstanceArray(sceneArrays.instances).v
+#define positions FloatArray(sceneArrays.positions).v
+#define normals UintArray(sceneArrays.normals).v
+#define clusters ClusterArray(sceneArrays.clusters).v
+#define clusterVertices UintArray(sceneArrays.clusterVertices).v
+#define clusterTriangles UintArray(sceneArrays.clusterTriangles).v
+#define groups GroupArray(sceneArrays.groups).v
+#define nodes BvhNodeArray(sceneArrays.nodes).v
+#define clusterCones ClusterConeArray(sceneArrays.clusterCones).v
+// Leaves as patches (shaderio.h, Patch; patch_eval.h): the cage's control points, its faces, their patches.
+#define controlPoints FloatArray(sceneArrays.controlPoints).v
+#define cageFaces CageFaceArray(sceneArrays.cageFaces).v
+#define cageFaceVertices UintArray(sceneArrays.cageFaceVertices).v
+#define patches PatchArray(sceneArrays.patches).v
+#define patchPoints UintArray(sceneArrays.patchPoints).v
+#define levelClusterRuns Uvec2Array(sceneArrays.levelClusterRuns).v
+#define instanceRoots Uvec2Array(sceneArrays.instanceRoots).v
+#else
 layout(set = 0, binding = VGEO_BINDING_GEOMETRIES, std430) readonly buffer GeometryBuffer { Geometry geometries[]; };
 layout(set = 0, binding = VGEO_BINDING_INSTANCES, std430) readonly buffer InstanceBuffer { Instance instances[]; };
 layout(set = 0, binding = VGEO_BINDING_POSITIONS, std430) readonly buffer PositionBuffer { float positions[]; };
@@ -13,6 +54,16 @@ layout(set = 0, binding = VGEO_BINDING_CLUSTER_VERTICES, std430) readonly buffer
 layout(set = 0, binding = VGEO_BINDING_CLUSTER_TRIANGLES, std430) readonly buffer ClusterTriangleBuffer { uint clusterTriangles[]; };
 layout(set = 0, binding = VGEO_BINDING_GROUPS, std430) readonly buffer GroupBuffer { Group groups[]; };
 layout(set = 0, binding = VGEO_BINDING_NODES, std430) readonly buffer NodeBuffer { BvhNode nodes[]; };
+layout(set = 0, binding = VGEO_BINDING_CLUSTER_CONES, std430) readonly buffer ClusterConeBuffer { ClusterCone clusterCones[]; };
+layout(set = 0, binding = VGEO_BINDING_CONTROL_POINTS, std430) readonly buffer ControlPointBuffer { float controlPoints[]; };
+layout(set = 0, binding = VGEO_BINDING_CAGE_FACES, std430) readonly buffer CageFaceBuffer { CageFace cageFaces[]; };
+layout(set = 0, binding = VGEO_BINDING_CAGE_FACE_VERTICES, std430) readonly buffer CageFaceVertexBuffer { uint cageFaceVertices[]; };
+layout(set = 0, binding = VGEO_BINDING_PATCHES, std430) readonly buffer PatchBuffer { Patch patches[]; };
+layout(set = 0, binding = VGEO_BINDING_PATCH_POINTS, std430) readonly buffer PatchPointBuffer { uint patchPoints[]; };
+layout(set = 0, binding = VGEO_BINDING_LEVEL_CLUSTER_RUNS, std430) readonly buffer LevelRunBuffer { uvec2 levelClusterRuns[]; };
+layout(set = 0, binding = VGEO_BINDING_INSTANCE_ROOTS, std430) readonly buffer InstanceRootBuffer { uvec2 instanceRoots[]; };
+#endif
+
 layout(set = 0, binding = VGEO_BINDING_COUNTERS, std430) coherent buffer CounterBuffer { Counters counters; };
 // Traversal queue: item i is (instance, node or group | VGEO_ITEM_GROUP_BIT) in queue[2i], queue[2i+1];
 // an unwritten slot holds VGEO_INVALID in both words. Consumers reset slots after reading, so the
@@ -20,15 +71,8 @@ layout(set = 0, binding = VGEO_BINDING_COUNTERS, std430) coherent buffer Counter
 layout(set = 0, binding = VGEO_BINDING_QUEUE, std430) coherent buffer QueueBuffer { uint queue[]; };
 // Draw list: entry i is (instance, cluster) in drawList[2i], drawList[2i+1].
 layout(set = 0, binding = VGEO_BINDING_DRAW_LIST, std430) buffer DrawListBuffer { uint drawList[]; };
-layout(set = 0, binding = VGEO_BINDING_CLUSTER_CONES, std430) readonly buffer ClusterConeBuffer { ClusterCone clusterCones[]; };
 // Triangle list (cull_triangles.comp): entry i is (draw-list entry << VGEO_TRIANGLE_BITS | triangle).
 layout(set = 0, binding = VGEO_BINDING_TRIANGLE_LIST, std430) buffer TriangleListBuffer { uint triangleList[]; };
-// Leaves as patches (shaderio.h, Patch; patch_eval.h): the cage's control points, its faces, their patches.
-layout(set = 0, binding = VGEO_BINDING_CONTROL_POINTS, std430) readonly buffer ControlPointBuffer { float controlPoints[]; };
-layout(set = 0, binding = VGEO_BINDING_CAGE_FACES, std430) readonly buffer CageFaceBuffer { CageFace cageFaces[]; };
-layout(set = 0, binding = VGEO_BINDING_CAGE_FACE_VERTICES, std430) readonly buffer CageFaceVertexBuffer { uint cageFaceVertices[]; };
-layout(set = 0, binding = VGEO_BINDING_PATCHES, std430) readonly buffer PatchBuffer { Patch patches[]; };
-layout(set = 0, binding = VGEO_BINDING_PATCH_POINTS, std430) readonly buffer PatchPointBuffer { uint patchPoints[]; };
 // Patch list (cull_patches.comp): entry i is patchList[2i] = (draw-list entry << VGEO_TRIANGLE_BITS | cage
 // face in its cluster) and patchList[2i + 1] its grid, for a compute-rasterized patch (shaderio_frame.h).
 layout(set = 0, binding = VGEO_BINDING_PATCH_LIST, std430) buffer PatchListBuffer { uint patchList[]; };

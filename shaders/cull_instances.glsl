@@ -7,7 +7,7 @@
 // cullInstancesSpread: VGEO_CULL_INSTANCE_LANES lanes an instance (workgroups of VGEO_CULL_WORKGROUP lanes,
 // defined by the includer) test the children side by side and the workgroup queues them with one
 // reservation (one lane testing ~20 children in a row puts a chain of ~20 loads in front of the
-// traversal). The root's children come from instanceRoots (shaderio_frame.h, VGEO_BINDING_INSTANCE_ROOTS),
+// traversal). The root's children come from instanceRoots (shaderio_frame.h, SceneArrays),
 // loaded beside the instance record, not from the geometry's root.
 // Sweeps (persistent traversal): a kept level subtree whose clusters are one run may be queued as runs of
 // up to VGEO_SWEEP_RUN clusters instead, tested in one step rather than down a chain of node steps. The
@@ -38,8 +38,6 @@ shared uint sVisible, sKept, sFirst, sWalked, sWalkedNodes, sSweepTests, sSweep,
 shared uint sKeptInstance[kMaxKept], sKeptCode[kMaxKept], sKeptSlot[kMaxKept];
 shared uint sKeptRunFirst[kMaxKept], sKeptRunCount[kMaxKept];  // the level's cluster run (count 0: none)
 shared uint sSweptList[kMaxKept], sSweptStart[kMaxKept];  // swept items, and their first run in the reservation
-layout(set = 0, binding = VGEO_BINDING_LEVEL_CLUSTER_RUNS, std430) readonly buffer LevelRunBuffer { uvec2 levelClusterRuns[]; };
-layout(set = 0, binding = VGEO_BINDING_INSTANCE_ROOTS, std430) readonly buffer InstanceRootBuffer { uvec2 instanceRoots[]; };
 
 // Instances [firstInstance, firstInstance + kCullInstances), by the whole workgroup (it has barriers).
 // The node items it queues count in counters.nodesPending before they are written, so that a traversal

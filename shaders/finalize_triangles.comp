@@ -14,9 +14,9 @@ void main() {
   counters.trianglesDrawn = hardware + software;
   if (hardware + software > frame.triangleCapacity) counters.triangleOverflow = hardware + software - frame.triangleCapacity;
   uint listed = min(hardware, frame.triangleCapacity);
-  uint groups = (min(software, frame.triangleCapacity) + 63u) / 64u;
-  counters.rasterDispatch[0] = min(groups, 65535u);
-  counters.rasterDispatch[1] = (groups + 65534u) / 65535u;
+  uint workgroups = (min(software, frame.triangleCapacity) + 63u) / 64u;
+  counters.rasterDispatch[0] = min(workgroups, 65535u);
+  counters.rasterDispatch[1] = (workgroups + 65534u) / 65535u;
   counters.rasterDispatch[2] = 1u;
   counters.rasterDispatch[3] = 0u;
   counters.draw[0] = 3u * VGEO_MAX_CLUSTER_TRIANGLES;

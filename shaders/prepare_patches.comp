@@ -6,9 +6,9 @@ layout(local_size_x = 1) in;
 #include "common.glsl"
 
 void main() {
-  uint groups = counters.patchEntries;
-  counters.patchCullDispatch[0] = min(groups, 65535u);
-  counters.patchCullDispatch[1] = (groups + 65534u) / 65535u;
+  uint workgroups = counters.patchEntries;
+  counters.patchCullDispatch[0] = min(workgroups, 65535u);
+  counters.patchCullDispatch[1] = (workgroups + 65534u) / 65535u;
   counters.patchCullDispatch[2] = 1u;
   counters.patchCullDispatch[3] = 0u;
 }

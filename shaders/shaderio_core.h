@@ -19,6 +19,7 @@ namespace shaderio {
 using vec2 = glm::vec2;
 using vec3 = glm::vec3;
 using vec4 = glm::vec4;
+using uvec2 = glm::uvec2;
 using mat4 = glm::mat4;
 using uint = uint32_t;
 using glm::abs;

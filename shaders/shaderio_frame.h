@@ -70,8 +70,10 @@ VGEO_NAMESPACE_BEGIN
 
 // The renderer's one descriptor set, named once for the host (gpu_renderer.cpp fills it) and the
 // shaders (common.glsl and the passes declare their buffers with these). 0 is the frame's uniform
-// buffer; the scene's arrays come from the .vgeo (and the renderer's per-level cluster runs); the rest
-// are the frame's working buffers.
+// buffer; the scene's arrays come from the .vgeo (and the renderer's per-level cluster runs), each at a
+// binding of its own, or, in the shaders' VGEO_SCENE_BY_ADDRESS variant (for scenes with an array past
+// maxStorageBufferRange, 128 MiB on lavapipe), by the device addresses of VGEO_BINDING_SCENE's uniform
+// block (SceneArrays); the rest are the frame's working buffers.
 // VGEO_BINDING_INSTANCE_ROOTS, made by the renderer: an instance's geometry's BVH root as uvec2
 // (childCountAndFlags, childOffset) of its BvhNode. Instance culling tests the root's children from it
 // and the instance record, two loads side by side instead of instance -> geometry -> root in a row.
@@ -106,7 +108,35 @@ VGEO_NAMESPACE_BEGIN
 #define VGEO_BINDING_PATCH_ENTRIES 28  // draw-list entries of patch-drawn clusters (cull_triangles.comp)
 #define VGEO_BINDING_PATCH_GRID 29     // the compute-rasterized patches' grid points (raster_patches.comp)
 #define VGEO_BINDING_PATCH_DRAWS 30    // a VkDrawIndirectCommand a hardware patch slot (patch_grid.vert)
-#define VGEO_BINDING_COUNT 31
+#define VGEO_BINDING_SCENE 31          // SceneArrays (a uniform buffer)
+#define VGEO_BINDING_COUNT 32
+
+// The scene's arrays (VGEO_BINDING_SCENE), each a device address as two words (low, high), in the
+// order of the .vgeo sections, then two the renderer makes (scene.h): levelClusterRuns, a BVH node's
+// run of clusters (first, count) when it is a level's subtree root, what a sweep tests instead of
+// walking it; and instanceRoots, an instance's geometry's BVH root as uvec2 (childCountAndFlags,
+// childOffset) of its BvhNode (instance culling tests the root's children from it and the instance
+// record, two loads side by side instead of instance -> geometry -> root).
+struct SceneArrays {
+  uvec2 geometries;
+  uvec2 instances;
+  uvec2 positions;
+  uvec2 normals;
+  uvec2 clusters;
+  uvec2 clusterVertices;
+  uvec2 clusterTriangles;
+  uvec2 groups;
+  uvec2 nodes;
+  uvec2 clusterCones;
+  uvec2 controlPoints;
+  uvec2 cageFaces;
+  uvec2 cageFaceVertices;
+  uvec2 patches;
+  uvec2 patchPoints;
+  uvec2 levelClusterRuns;
+  uvec2 instanceRoots;
+  uvec2 pad;
+};
 
 // Per-frame constants (a uniform buffer). The cull camera selects the cut and culls; the draw camera
 // makes the picture. They differ only with --freeze-camera.
@@ -129,7 +159,7 @@ struct FrameData {
   uint triangleCapacity;  // entries in the triangle list
   float viewportWidth;    // pixels
   float viewportHeight;
-  uint patches;        // 1: leaf clusters whose chord error projects above tau are drawn as patches
+  uint drawPatches;    // 1: leaf clusters whose chord error projects above tau are drawn as patches
   uint patchCapacity;  // entries in the patch list
   uint queueRoots;     // 1 (flat traversal): instance culling queues (instance, root) for each visible
                        // instance; 0: it tests the root's children and queues those
@@ -252,6 +282,7 @@ struct Counters {
 #ifdef __cplusplus
 static_assert(sizeof(FrameData) == 64 + 96 + 32 + 100, "FrameData layout");
 static_assert(sizeof(Counters) == 5 * 128 + 96, "Counters layout");
+static_assert(sizeof(SceneArrays) == 18 * 8, "SceneArrays layout");
 static_assert(offsetof(Counters, itemsDone) == 4 * 128, "Counters: the hot words on lines of their own");
 #endif
 

@@ -96,7 +96,7 @@ uint cutClusterByError(Instance inst, uint cluster, Cluster c) {
   float parent = projectedErrorWorld(inst, c.parentSphere, c.parentError);
   if (!inCut(self, parent, frame.tau, c.producer == VGEO_NO_GROUP)) return VGEO_INVALID;
   // A leaf too coarse for tau: its patches are drawn (cull_triangles.comp lists them).
-  uint patchBit = frame.patches != 0u && c.producer == VGEO_NO_GROUP && self > frame.tau ? VGEO_DRAW_PATCHES_BIT : 0u;
+  uint patchBit = frame.drawPatches != 0u && c.producer == VGEO_NO_GROUP && self > frame.tau ? VGEO_DRAW_PATCHES_BIT : 0u;
   return cluster | patchBit;
 }
 // Closed, uniformly scaled: a cluster whose every triangle faces away cannot be seen.
