@@ -23,7 +23,7 @@ struct FrameBenchArgs {
   std::string input, output, grids = "32", sizes = "1280x720,1920x1080", cameras = "corner,inside",
                              traversal = "persistent", device, rasters = "auto,hardware";
   uint32_t frames = 5;
-  int32_t packedCullBelow = -1;
+  uint32_t packedCullBelow = kDefaultPackedCullBelow;
   float fov = 60.0f, tau = 1.0f;
 };
 

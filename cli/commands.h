@@ -34,12 +34,12 @@ inline void addInstanceCullingOption(CLI::App* cmd, std::string& name) {
       ->check(CLI::IsMember({"auto", "pass", "traversal"}))
       ->capture_default_str();
 }
-inline void addPackedCullOption(CLI::App* cmd, int32_t& below) {
+inline void addPackedCullOption(CLI::App* cmd, uint32_t& below) {
   cmd->add_option("--packed-cull-below", below,
                   "Triangle culling takes " + std::to_string(VGEO_PACKED_CULL_ENTRIES) +
-                      " listed clusters a workgroup when they average fewer triangles than this (default: the "
-                      "renderer's, 32; 0: never)")
-      ->check(CLI::Range(0, 1 << 20));
+                      " listed clusters a workgroup when they average fewer triangles than this (0: never)")
+      ->check(CLI::Range(0u, 1u << 20))
+      ->capture_default_str();
 }
 inline InstanceCulling instanceCullingNamed(const std::string& name) {
   return name == "pass"        ? InstanceCulling::Pass

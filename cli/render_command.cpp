@@ -37,7 +37,7 @@ struct RenderArgs {
   uint32_t grid = 1, frames = 2, queueCapacity = 0, drawCapacity = 0, triangleCapacity = 0, workgroups = 0,
            cullLanes = 0;
   uint32_t sweepBudget = kDefaultSweepBudget, maxFrameMemoryMiB = kDefaultFrameMemoryMiB;
-  int32_t packedCullBelow = -1;
+  uint32_t packedCullBelow = kDefaultPackedCullBelow;
   std::string instanceCulling = "auto", raster = "auto";
   bool compareCpu = false, validate = false, noTriangleCull = false, noPatches = false;
 };

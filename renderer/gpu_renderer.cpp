@@ -32,12 +32,6 @@ constexpr size_t kFewWorkgroupsInstances = 32768;
 // where one instance of all patches joined unrelated vertices in close-ups. GPUs: one instance holds
 // many (the count has no effect on the picture).
 constexpr uint32_t kLavapipePatchesPerInstance = 15, kPatchesPerInstance = 4096;
-// Triangle culling packs 64 clusters a workgroup when the draw list's clusters average fewer triangles
-// than this: far instances list roots of ~13 triangles, which leave most lanes of a workgroup a cluster
-// idle (lavapipe pays for every lane and every workgroup: 3.8x, the H100 1.9x). Above it, one cluster a
-// workgroup, whose loads are the same for every lane, is the faster (bench/README.md, software
-// rasterizer).
-constexpr uint32_t kPackedCullBelow = 32;
 // Frame start, then the end of each pass of runPasses.
 constexpr uint32_t kTimestamps = 8;
 
@@ -294,7 +288,7 @@ shaderio::FrameData GpuRenderer::frameConstants(const FrameSettings& settings) c
   frame.softwareRaster = softwareRaster(settings);
   frame.softwarePatches = rastersPatchesInCompute(settings) ? 1u : 0u;
   frame.patchGridCapacity = patchGridCapacity_;
-  frame.packedCullBelow = settings.packedCullBelow >= 0 ? uint32_t(settings.packedCullBelow) : kPackedCullBelow;
+  frame.packedCullBelow = settings.packedCullBelow;
   return frame;
 }
 

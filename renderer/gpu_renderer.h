@@ -19,6 +19,12 @@ enum class Traversal { Persistent, Levels, Flat };
 
 // FrameSettings::sweepBudget unless set (bench/README.md, "Sweeps").
 constexpr uint32_t kDefaultSweepBudget = 1u << 18;
+// Triangle culling packs 64 clusters a workgroup (cull_small_clusters.comp) when the draw list's clusters
+// average fewer triangles than this: far instances list roots of ~13 triangles, which leave most lanes of
+// a workgroup a cluster idle (lavapipe pays for every lane and every workgroup: 3.8x, the H100 1.9x).
+// Above it, one cluster a workgroup, whose loads are the same for every lane, is the faster
+// (bench/README.md, triangle culling of small clusters).
+constexpr uint32_t kDefaultPackedCullBelow = 32;
 
 enum class InstanceCulling { Auto, Pass, InTraversal };
 
@@ -56,9 +62,9 @@ struct FrameSettings {
   // dependent steps); claimed level by level in instance culling until spent. 0: never sweep.
   uint32_t sweepBudget = kDefaultSweepBudget;
   Raster raster = Raster::Auto;  // with triangleCull
-  // Triangle culling takes many clusters a workgroup (cull_small_clusters.comp) when the draw list's
-  // average fewer triangles than this: -1 the renderer's choice, 0 never (tests force both ways).
-  int32_t packedCullBelow = -1;
+  // Triangle culling takes many clusters a workgroup when the draw list's clusters average fewer
+  // triangles than this (0: never; tests force both ways).
+  uint32_t packedCullBelow = kDefaultPackedCullBelow;
   bool profileWorkers = false;  // persistent traversal on a device with a shader device clock: record the
                                 // workers' iterations in FrameResult::workerProfile (benchmarks)
 };

@@ -11,6 +11,7 @@
 
 #include "../renderer/gpu_renderer.h"
 #include "../renderer/image.h"
+#include "../renderer/reference_cut.h"
 
 namespace vgeo::test {
 
@@ -55,6 +56,17 @@ inline FrameSettings frameSettings(const RenderScene& scene, const Camera& camer
   s.tau = tau;
   s.readDrawList = true;
   return s;
+}
+
+// Renders `s` until a frame is complete (a few frames at most: an overflow or workers that ran out grow
+// the buffers or the workers for the next) and expects its draw list to equal `reference`.
+inline FrameResult renderEqualToCut(GpuRenderer& renderer, const FrameSettings& s, const SceneCut& reference) {
+  FrameResult result = renderer.renderFrame(s);
+  for (int i = 0; i < 8 && !result.complete; i++) result = renderer.renderFrame(s);
+  EXPECT_TRUE(result.complete);
+  std::string difference;
+  EXPECT_TRUE(compareCuts(reference, result.drawList, difference)) << difference;
+  return result;
 }
 
 // 1 where a frame's pixel is not the clear colour.

@@ -40,17 +40,6 @@ class Render : public test::GpuSuite {
     return s;
   }
 
-  // Renders `s` until a frame is complete (a few frames at most: an overflow or workers that ran out
-  // grow the buffers or the workers for the next) and expects its draw list to equal `reference`.
-  static FrameResult renderEqualToCut(GpuRenderer& renderer, const FrameSettings& s, const SceneCut& reference) {
-    FrameResult result = renderer.renderFrame(s);
-    for (int i = 0; i < 8 && !result.complete; i++) result = renderer.renderFrame(s);
-    EXPECT_TRUE(result.complete);
-    std::string difference;
-    EXPECT_TRUE(compareCuts(reference, result.drawList, difference)) << difference;
-    return result;
-  }
-
   static RenderScene *single, *grid, *armadillo, *openLion;  // openLion: an open surface (CGAL's lion.off)
 };
 RenderScene* Render::single = nullptr;
@@ -118,7 +107,7 @@ TEST_F(Render, SweptLevelsGiveTheSameCutWhateverTheBudget) {
       auto run = [&](uint32_t budget) {
         SCOPED_TRACE("sweep budget " + std::to_string(budget) + " tau " + std::to_string(tau));
         s.sweepBudget = budget;
-        return renderEqualToCut(renderer, s, reference).counters;
+        return test::renderEqualToCut(renderer, s, reference).counters;
       };
       EXPECT_EQ(run(0).sweptTests, 0u);
       const shaderio::Counters all = run(UINT32_MAX);
@@ -175,7 +164,7 @@ TEST_F(Render, CullingInsideTheTraversalGivesTheSameCut) {
                        std::to_string(renderer.persistentWorkgroups()) + " sweep budget " + std::to_string(budget) +
                        " tau " + std::to_string(tau));
           s.sweepBudget = budget;
-          const FrameResult result = renderEqualToCut(renderer, s, reference);
+          const FrameResult result = test::renderEqualToCut(renderer, s, reference);
           EXPECT_TRUE(result.culledInTraversal);
           EXPECT_EQ(result.counters.nodesPending, 0u);
           EXPECT_EQ(result.counters.visibleInstances, pass.counters.visibleInstances);

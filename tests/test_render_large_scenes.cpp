@@ -6,7 +6,6 @@
 
 #include "../common/vgeo_file.h"
 #include "../renderer/gpu_renderer.h"
-#include "../renderer/reference_cut.h"
 #include "render_util.h"
 #include "test_util.h"
 
@@ -21,14 +20,9 @@ class RenderLargeScenes : public test::GpuSuite {
   static void SetUpTestSuite() { openSuite("vgeo_render_large_scene_tests"); }
   static void TearDownTestSuite() { closeSuite(); }
 
-  // Renders until complete; expects the draw list to equal the CPU reference cut.
+  // A complete frame whose draw list equals the CPU reference cut.
   static FrameResult renderAndCompare(GpuRenderer& renderer, const RenderScene& scene, const FrameSettings& s) {
-    FrameResult r = renderer.renderFrame(s);
-    for (int i = 0; i < 4 && !r.complete; i++) r = renderer.renderFrame(s);
-    EXPECT_TRUE(r.complete);
-    std::string difference;
-    EXPECT_TRUE(compareCuts(selectSceneCut(scene, s.cullView, s.tau), r.drawList, difference)) << difference;
-    return r;
+    return test::renderEqualToCut(renderer, s, selectSceneCut(scene, s.cullView, s.tau));
   }
 };
 
@@ -55,7 +49,6 @@ TEST_F(RenderLargeScenes, GeometryPastTheFirst128MiBOfItsArrays) {
       FrameSettings s = test::frameSettings(small, camera, 1.0f, kW, kH);
       s.mode = mode;
       s.patches = false;  // patch records name control points by index: not moved here
-      s.readDrawList = true;
       FrameResult want = renderAndCompare(smallRenderer, small, s);
       FrameResult got = renderAndCompare(largeRenderer, large, s);
       EXPECT_GT(got.trianglesDrawn, 0u);
@@ -97,7 +90,6 @@ TEST_F(RenderLargeScenes, ArmadilloSubdividedThreeTimes) {
   for (float distance : {1.5f, 0.3f}) {
     const float tau = distance < 1.0f ? 0.02f : 1.0f;  // the leaves are within 0.1 px of the surface here
     FrameSettings s = test::frameSettings(scene, test::orbit(scene, 0.5f, 0.2f, distance), tau, kW, kH);
-    s.readDrawList = true;
     FrameResult r = renderAndCompare(renderer, scene, s);
     size_t covered = 0;
     for (uint8_t m : test::coverage(r)) covered += m;
