@@ -55,6 +55,16 @@ std::vector<std::pair<std::string, Camera>> cameraPath(const RenderScene& scene,
   away.eye = glm::vec3(hi.x, c.y + object, hi.z) + glm::vec3(0.1f) * wide;
   away.target = away.eye + glm::vec3(1.0f, 0.0f, 1.0f);
   path.push_back({"away", away});
+  // Ground: at the height of the objects' centres, just outside the rows of the near (-z) edge, looking
+  // along them; above: high over the near edge, looking down across all of it.
+  Camera ground;
+  ground.eye = glm::vec3(c.x + 0.013f * wide, c.y, lo.z - object);
+  ground.target = ground.eye + glm::vec3(0.08f, -0.02f, 1.0f);
+  path.push_back({"ground", ground});
+  Camera above;
+  above.eye = c + glm::vec3(0.0f, 0.6f * wide, -0.45f * wide);
+  above.target = c;
+  path.push_back({"above", above});
   for (auto& [name, cam] : path) cam.fovYDegrees = fov;
   return path;
 }
@@ -84,8 +94,9 @@ void runBenchCut(const BenchArgs& a) {
   nlohmann::ordered_json records = nlohmann::json::array();
   for (const std::string& layout : parseList<std::string>(a.layouts)) {
     if (layout != "grid" && layout != "scatter") throw std::runtime_error("--layouts: grid or scatter");
+    const BenchLayout benchLayout = benchLayoutNamed(layout);
     for (uint32_t count : parseList<uint32_t>(a.sizes)) {
-      RenderScene scene = makeBenchScene(base, count, layout == "scatter", 7);
+      RenderScene scene = makeBenchScene(base, count, benchLayout, 7);
       GpuRenderer renderer(vk, scene, width, height);
       if (a.workgroups) renderer.setPersistentWorkgroups(a.workgroups);
       // The CPU reference last, after the GPU records (its seconds of host work let the GPU clock down).

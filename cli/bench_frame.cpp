@@ -21,30 +21,153 @@ constexpr double kWarmUpSeconds = 0.3;
 
 struct FrameBenchArgs {
   std::string input, output, grids = "32", sizes = "1280x720,1920x1080", cameras = "corner,inside",
-                             traversal = "persistent", device, rasters = "auto,hardware";
-  uint32_t frames = 5;
+                             traversal = "persistent", device, rasters = "auto,hardware", layout = "grid",
+                             occlusion = "on,off";
+  uint32_t frames = 5, pathFrames = 60;
   uint32_t packedCullBelow = kDefaultPackedCullBelow;
   float fov = 60.0f, tau = 1.0f;
 };
 
+// The fly-through: `count` poses from the ground camera to the one above, moving and turning.
+std::vector<Camera> flyThrough(const std::vector<std::pair<std::string, Camera>>& path, uint32_t count) {
+  auto named = [&](const char* name) {
+    return std::find_if(path.begin(), path.end(), [&](const auto& p) { return p.first == name; })->second;
+  };
+  const Camera from = named("ground"), to = named("above");
+  std::vector<Camera> poses;
+  for (uint32_t i = 0; i < count; i++) {
+    const float t = count > 1 ? float(i) / float(count - 1) : 0.0f, ease = t * t * (3.0f - 2.0f * t);
+    Camera c = from;
+    c.eye = glm::mix(from.eye, to.eye, ease);
+    c.target = glm::mix(from.target, to.target, t);
+    poses.push_back(c);
+  }
+  return poses;
+}
+
+struct Variant {
+  bool triangleCull, patches;
+  std::string raster;
+};
+
+// One record: frames of `renderer` from `poses` (one camera: a.frames frames from it; a fly-through: a
+// frame from each pose, the occlusion state carried from one to the next) in `variant`, medians.
+nlohmann::ordered_json measureFrames(const FrameBenchArgs& a, GpuRenderer& renderer, const VulkanContext& vk,
+                                     const RenderScene& scene, const std::vector<Camera>& poses, const Variant& variant,
+                                     bool occlusion) {
+  const uint32_t width = renderer.width(), height = renderer.height();
+  const bool triangleCull = variant.triangleCull, patches = variant.patches;
+  FrameSettings s;
+  s.raster = rasterNamed("--rasters", variant.raster);
+  s.drawView = s.cullView = makeView(poses[0], width, height, scene.bounds);
+  s.tau = a.tau;
+  s.traversal = traversalNamed("--traversal", a.traversal);
+  s.triangleCull = triangleCull;
+  s.patches = patches;
+  s.packedCullBelow = a.packedCullBelow;
+  s.occlusion = occlusion;
+  // Warm-up and growth after an overflow; this frame's image gives the pixels covered, and the patch
+  // view's the pixels the patches cover.
+  FrameResult f = renderer.renderFrame(s);
+  while (!f.complete) f = renderer.renderFrame(s);
+  const uint64_t covered = coveredPixels(f.rgba);
+  uint64_t patchCovered = 0;
+  if (patches) {
+    s.mode = VGEO_MODE_PATCH;
+    patchCovered = patchPixels(renderer.renderFrame(s).rgba);
+    s.mode = VGEO_MODE_LIT;
+  }
+  s.readImage = false;  // measured frames: no image copy
+  // GPUs raise their clocks only under load: frames for a while before the records.
+  const auto warmStart = std::chrono::steady_clock::now();
+  while (std::chrono::duration<double>(std::chrono::steady_clock::now() - warmStart).count() < kWarmUpSeconds)
+    renderer.renderFrame(s);
+  std::vector<double> cull, traverse, triangles, raster, draw, resolve, pyramid, frame, clusters;
+  const uint32_t count = poses.size() > 1 ? uint32_t(poses.size()) : a.frames;
+  for (uint32_t i = 0; i < count; i++) {
+    if (poses.size() > 1) s.drawView = s.cullView = makeView(poses[i], width, height, scene.bounds);
+    f = renderer.renderFrame(s);
+    cull.push_back(f.instanceCullMs);
+    traverse.push_back(f.traversalMs);
+    triangles.push_back(f.triangleCullMs);
+    raster.push_back(f.rasterMs);
+    draw.push_back(f.drawMs);
+    resolve.push_back(f.resolveMs);
+    pyramid.push_back(f.pyramidMs);
+    frame.push_back(f.frameMs);
+    clusters.push_back(std::min(f.counters.drawCount, renderer.drawCapacity()));
+  }
+  nlohmann::ordered_json r;
+  r["input"] = a.input;
+  r["layout"] = a.layout;
+  r["instances"] = scene.data.instances.size();
+  r["virtual_triangles"] = scene.virtualTriangles;
+  r["width"] = width;
+  r["height"] = height;
+  r["tau"] = a.tau;
+  r["traversal"] = a.traversal;
+  r["triangle_cull"] = triangleCull;
+  r["patches"] = patches;
+  r["raster"] = variant.raster;
+  r["instance_cull_ms"] = median(cull);
+  r["traversal_ms"] = median(traverse);
+  r["triangle_cull_ms"] = median(triangles);
+  r["raster_ms"] = median(raster);    // the compute rasterizers: small triangles, then patches
+  r["draw_ms"] = median(draw);        // the render pass: hardware draws
+  r["resolve_ms"] = median(resolve);  // the compute rasterizers' pixels shaded
+  r["pyramid_ms"] = median(pyramid);  // occlusion culling's depth pyramid
+  r["frame_ms"] = median(frame);
+  r["frame_max_ms"] = *std::max_element(frame.begin(), frame.end());
+  r["clusters_median"] = median(clusters);  // drawn (a fly-through's vary; the counters are its last frame's)
+  addFrameCounters(r, f, renderer, vk);
+  r["pixels_covered"] = covered;
+  r["triangles_per_covered_pixel"] = covered ? double(f.trianglesDrawn) / double(covered) : 0.0;
+  // The pixels the patches cover, and the tessellator's triangles a patch pixel.
+  r["patch_pixels"] = patchCovered;
+  r["patch_triangles_per_patch_pixel"] =
+      patchCovered && f.patchTriangles > 0 ? double(f.patchTriangles) / double(patchCovered) : 0.0;
+  r["frames"] = count;
+  r["commit"] = VGEO_COMMIT;
+  std::fprintf(stderr,
+               "%7zu instances %4ux%-4u %-9s tc %-3s patches %-3s %-8s occlusion %-3s: cull %.3f  traversal %.3f  "
+               "triangles %.3f  raster %.3f  draw %.3f  resolve %.3f  pyramid %.3f  frame %.3f ms (%.0f clusters, %u "
+               "early; %u of %u triangles, %u of %u patches in compute)\n",
+               scene.data.instances.size(), width, height, poses.size() > 1 ? "path" : "", triangleCull ? "on" : "off",
+               patches ? "on" : "off", variant.raster.c_str(), occlusion ? "on" : "off", median(cull), median(traverse),
+               median(triangles), median(raster), median(draw), median(resolve), median(pyramid), median(frame),
+               median(clusters), f.counters.drawBase, f.softwareTriangles, f.trianglesDrawn, f.softwarePatches,
+               f.patchesDrawn);
+  return r;
+}
+
 void runBenchFrame(const FrameBenchArgs& a) {
-  Traversal traversal = traversalNamed("--traversal", a.traversal);
+  traversalNamed("--traversal", a.traversal);  // checked before any work
+  const BenchLayout layout = benchLayoutNamed(a.layout);
+  std::vector<bool> occlusions;
+  for (const std::string& o : parseList<std::string>(a.occlusion)) {
+    if (o != "on" && o != "off") throw std::runtime_error("--occlusion: on and/or off");
+    occlusions.push_back(o == "on");
+  }
   VulkanContext vk({a.device, false});
   nlohmann::ordered_json records = nlohmann::json::array();
   for (uint32_t grid : parseList<uint32_t>(a.grids)) {
-    RenderScene scene = loadRenderScene(a.input, grid);
+    // A grid copies the whole scene; the other layouts place grid x grid instances of its first geometry.
+    RenderScene scene = layout == BenchLayout::Grid ? loadRenderScene(a.input, grid)
+                                                    : makeBenchScene(loadRenderScene(a.input), grid * grid, layout, 7);
     for (const std::string& size : parseList<std::string>(a.sizes)) {
       uint32_t width, height;
       if (!parseSize(size, width, height)) throw std::runtime_error("--sizes: expected WxH items");
       GpuRenderer renderer(vk, scene, width, height);
       auto path = cameraPath(scene, a.fov);
       for (const std::string& cameraName : parseList<std::string>(a.cameras)) {
-        auto camera = std::find_if(path.begin(), path.end(), [&](const auto& p) { return p.first == cameraName; });
-        if (camera == path.end()) throw std::runtime_error("--cameras: unknown camera '" + cameraName + "'");
-        struct Variant {
-          bool triangleCull, patches;
-          std::string raster;
-        };
+        std::vector<Camera> poses;
+        if (cameraName == "flythrough") {
+          poses = flyThrough(path, a.pathFrames);
+        } else {
+          auto camera = std::find_if(path.begin(), path.end(), [&](const auto& p) { return p.first == cameraName; });
+          if (camera == path.end()) throw std::runtime_error("--cameras: unknown camera '" + cameraName + "'");
+          poses.push_back(camera->second);
+        }
         std::vector<Variant> variants;
         for (const std::string& raster : parseList<std::string>(a.rasters)) {
           rasterNamed("--rasters", raster);
@@ -52,82 +175,12 @@ void runBenchFrame(const FrameBenchArgs& a) {
           variants.push_back({true, false, raster});
         }
         variants.push_back({false, false, "hardware"});
-        for (const Variant& variant : variants) {
-          const bool triangleCull = variant.triangleCull, patches = variant.patches;
-          FrameSettings s;
-          s.raster = rasterNamed("--rasters", variant.raster);
-          s.drawView = s.cullView = makeView(camera->second, width, height, scene.bounds);
-          s.tau = a.tau;
-          s.traversal = traversal;
-          s.triangleCull = triangleCull;
-          s.patches = patches;
-          s.packedCullBelow = a.packedCullBelow;
-          // Warm-up and growth after an overflow; this frame's image gives the pixels covered, and the
-          // patch view's the pixels the patches cover.
-          FrameResult f = renderer.renderFrame(s);
-          while (!f.complete) f = renderer.renderFrame(s);
-          const uint64_t covered = coveredPixels(f.rgba);
-          uint64_t patchCovered = 0;
-          if (patches) {
-            s.mode = VGEO_MODE_PATCH;
-            patchCovered = patchPixels(renderer.renderFrame(s).rgba);
-            s.mode = VGEO_MODE_LIT;
+        for (const Variant& variant : variants)
+          for (bool occlusion : occlusions) {
+            nlohmann::ordered_json r = measureFrames(a, renderer, vk, scene, poses, variant, occlusion);
+            r["camera"] = cameraName;
+            records.push_back(r);
           }
-          s.readImage = false;  // measured frames: no image copy
-          // GPUs raise their clocks only under load: frames for a while before the records.
-          const auto warmStart = std::chrono::steady_clock::now();
-          while (std::chrono::duration<double>(std::chrono::steady_clock::now() - warmStart).count() < kWarmUpSeconds)
-            renderer.renderFrame(s);
-          std::vector<double> cull, traverse, triangles, raster, draw, resolve, frame;
-          for (uint32_t i = 0; i < a.frames; i++) {
-            f = renderer.renderFrame(s);
-            cull.push_back(f.instanceCullMs);
-            traverse.push_back(f.traversalMs);
-            triangles.push_back(f.triangleCullMs);
-            raster.push_back(f.rasterMs);
-            draw.push_back(f.drawMs);
-            resolve.push_back(f.resolveMs);
-            frame.push_back(f.frameMs);
-          }
-          nlohmann::ordered_json r;
-          r["input"] = a.input;
-          r["instances"] = scene.data.instances.size();
-          r["virtual_triangles"] = scene.virtualTriangles;
-          r["width"] = width;
-          r["height"] = height;
-          r["camera"] = cameraName;
-          r["tau"] = a.tau;
-          r["traversal"] = a.traversal;
-          r["triangle_cull"] = triangleCull;
-          r["patches"] = patches;
-          r["raster"] = variant.raster;
-          r["instance_cull_ms"] = median(cull);
-          r["traversal_ms"] = median(traverse);
-          r["triangle_cull_ms"] = median(triangles);
-          r["raster_ms"] = median(raster);    // the compute rasterizers: small triangles, then patches
-          r["draw_ms"] = median(draw);        // the render pass: hardware draws
-          r["resolve_ms"] = median(resolve);  // the compute rasterizers' pixels shaded
-          r["frame_ms"] = median(frame);
-          addFrameCounters(r, f, renderer, vk);
-          r["pixels_covered"] = covered;
-          r["triangles_per_covered_pixel"] = covered ? double(f.trianglesDrawn) / double(covered) : 0.0;
-          // The pixels the patches cover, and the tessellator's triangles a patch pixel.
-          r["patch_pixels"] = patchCovered;
-          r["patch_triangles_per_patch_pixel"] =
-              patchCovered && f.patchTriangles > 0 ? double(f.patchTriangles) / double(patchCovered) : 0.0;
-          r["frames"] = a.frames;
-          r["commit"] = VGEO_COMMIT;
-          std::fprintf(
-              stderr,
-              "%7zu instances %4ux%-4u %-7s triangle cull %-3s patches %-3s %-8s: cull %.3f  traversal "
-              "%.3f  triangles %.3f  raster %.3f  draw %.3f  resolve %.3f  frame %.3f ms (%u of %u triangles, %u of "
-              "%u patches in compute)\n",
-              scene.data.instances.size(), width, height, cameraName.c_str(), triangleCull ? "on" : "off",
-              patches ? "on" : "off", variant.raster.c_str(), median(cull), median(traverse), median(triangles),
-              median(raster), median(draw), median(resolve), median(frame), f.softwareTriangles, f.trianglesDrawn,
-              f.softwarePatches, f.patchesDrawn);
-          records.push_back(r);
-        }
       }
     }
   }
@@ -145,8 +198,19 @@ void addBenchFrameCommand(CLI::App& bench, int& exitCode) {
   cmd->add_option("--grids", a->grids, "N for N x N copies of the input (the main job's default scene is 32)")
       ->capture_default_str();
   cmd->add_option("--sizes", a->sizes, "Viewports WxH")->capture_default_str();
-  cmd->add_option("--cameras", a->cameras, "far, corner (the default camera), inside, closeup, surface, away")
+  cmd->add_option("--cameras", a->cameras,
+                  "far, corner (the default camera), inside, closeup, surface, away, ground, above, flythrough (from "
+                  "ground to above in --path-frames frames)")
       ->capture_default_str();
+  cmd->add_option("--layout", a->layout,
+                  "grid (N x N copies of the input), forest (N x N instances of its first geometry packed in rows)")
+      ->check(CLI::IsMember({"grid", "forest"}))
+      ->capture_default_str();
+  cmd->add_option("--occlusion", a->occlusion, "Occlusion culling on and/or off (a record each)")
+      ->capture_default_str();
+  cmd->add_option("--path-frames", a->pathFrames, "Frames of the fly-through")
+      ->capture_default_str()
+      ->check(CLI::Range(2u, 100000u));
   addTraversalOption(cmd, a->traversal);
   cmd->add_option("--tau", a->tau, "Allowed projected error, pixels")->capture_default_str();
   cmd->add_option("--frames", a->frames, "Measured frames per record (median)")->capture_default_str();

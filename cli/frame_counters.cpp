@@ -35,6 +35,13 @@ void addFrameCounters(nlohmann::ordered_json& r, const FrameResult& f, const Gpu
   // "depth": the render pass drew with depth (patches for the tessellator, or no compute rasterizer).
   r["render_pass"] = f.bareRenderPass ? "visibility" : "depth";
   r["patch_triangles"] = f.patchTriangles;
+  // Two-pass occlusion culling: the clusters the early pass drew (those of last frame's visible instances)
+  // and what the late pass found hidden behind them.
+  r["occlusion"] = f.occlusion;
+  r["early_clusters"] = c.drawBase;
+  r["occluded_instances"] = c.occludedInstances;
+  r["occluded_nodes"] = c.occludedNodes;
+  r["occluded_clusters"] = c.occludedClusters;
 }
 
 }  // namespace vgeo

@@ -38,8 +38,8 @@ struct RenderArgs {
            cullLanes = 0;
   uint32_t sweepBudget = kDefaultSweepBudget, maxFrameMemoryMiB = kDefaultFrameMemoryMiB;
   uint32_t packedCullBelow = kDefaultPackedCullBelow;
-  std::string instanceCulling = "auto", raster = "auto";
-  bool compareCpu = false, validate = false, noTriangleCull = false, noPatches = false;
+  std::string instanceCulling = "auto", raster = "auto", layout = "grid";
+  bool compareCpu = false, validate = false, noTriangleCull = false, noPatches = false, noOcclusion = false;
 };
 
 // The frame's settings from the command line (views of the draw and cull cameras).
@@ -59,6 +59,7 @@ FrameSettings frameSettings(const RenderArgs& a, const RenderScene& scene, const
   settings.patches = !a.noPatches;
   settings.raster = rasterNamed("--raster", a.raster);
   settings.packedCullBelow = a.packedCullBelow;
+  settings.occlusion = !a.noOcclusion;
   return settings;
 }
 
@@ -129,13 +130,15 @@ nlohmann::ordered_json frameStats(const RenderArgs& a, const RenderScene& scene,
   j["raster_ms"] = result.rasterMs;
   j["draw_ms"] = result.drawMs;
   j["resolve_ms"] = result.resolveMs;
+  j["pyramid_ms"] = result.pyramidMs;
   j["frame_ms"] = result.frameMs;
   j["frames"] = run.frames;
   if (a.compareCpu) {
+    // With occlusion culling the GPU lists what the depth pyramid did not hide: a subset of the cut.
     SceneCut reference = selectSceneCut(scene, settings.cullView, a.tau);
     std::string difference;
-    bool equal = compareCuts(reference, result.drawList, difference);
-    j["cpu_cut_equal"] = equal;
+    bool equal = compareCuts(reference, result.drawList, difference, result.occlusion);
+    j["cpu_cut_equal"] = equal;  // with occlusion culling: a subset
     j["cpu_clusters"] = reference.entries.size();
     j["borderline_clusters"] = reference.borderline.size();
     if (!equal) j["cpu_cut_difference"] = difference;
@@ -156,10 +159,17 @@ void printSummary(const RenderArgs& a, const RenderScene& scene, const RenderRun
       (unsigned long long)scene.virtualTriangles, result.trianglesDrawn, j["triangles_per_covered_pixel"].get<double>(),
       result.softwareTriangles, result.instanceCullMs, result.traversalMs, result.triangleCullMs, result.rasterMs,
       result.drawMs, result.resolveMs, result.frameMs, result.timing.c_str());
+  if (result.occlusion)
+    std::printf(
+        "occlusion culling: %u clusters drawn early; hidden: %u instances, %u nodes, %u clusters; depth "
+        "pyramid %.2f ms\n",
+        c.drawBase, c.occludedInstances, c.occludedNodes, c.occludedClusters, result.pyramidMs);
   if (a.compareCpu)
     std::printf("cpu cut: %s (%zu clusters, %zu borderline)%s\n",
-                j["cpu_cut_equal"].get<bool>() ? "equal" : "DIFFERENT", size_t(j["cpu_clusters"]),
-                size_t(j["borderline_clusters"]),
+                !j["cpu_cut_equal"].get<bool>() ? "DIFFERENT"
+                : result.occlusion              ? "a subset (occlusion culling)"
+                                                : "equal",
+                size_t(j["cpu_clusters"]), size_t(j["borderline_clusters"]),
                 j.contains("cpu_cut_difference") ? (": " + j["cpu_cut_difference"].get<std::string>()).c_str() : "");
 }
 
@@ -177,7 +187,10 @@ int runRender(const RenderArgs& a) {
   if (!a.camera.empty()) camera = parseCameraOption("--camera", a.camera, a.fov);
   if (!a.freezeCamera.empty()) cullCamera = parseCameraOption("--freeze-camera", a.freezeCamera, a.fov);
 
-  RenderScene scene = loadRenderScene(a.input, a.grid);
+  // A grid copies the whole scene; a forest packs N x N instances of its first geometry in rows.
+  RenderScene scene = a.layout == "forest"
+                          ? makeBenchScene(loadRenderScene(a.input), a.grid * a.grid, BenchLayout::Forest, 7)
+                          : loadRenderScene(a.input, a.grid);
   if (!camera) camera = defaultCamera(scene.bounds, scene.boxMin, scene.boxMax, a.fov);
   camera->fovYDegrees = a.fov;
   if (!cullCamera) cullCamera = camera;
@@ -238,6 +251,11 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("--grid", a->grid, "N x N instances of the input")
       ->capture_default_str()
       ->check(CLI::Range(1u, 4096u));
+  cmd->add_option("--layout", a->layout,
+                  "grid: --grid copies of the input side by side; forest: N x N instances of its first geometry "
+                  "packed in rows, jittered, turned and scaled (a dense scene for occlusion culling)")
+      ->check(CLI::IsMember({"grid", "forest"}))
+      ->capture_default_str();
   addTraversalOption(cmd, a->traversal);
   cmd->add_option("--freeze-camera", a->freezeCamera,
                   "Select and cull with this camera (six numbers), draw from --camera");
@@ -262,6 +280,9 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_flag("--no-triangle-cull", a->noTriangleCull,
                 "Draw every triangle of the listed clusters (default: drop those that cannot make a fragment first); "
                 "implies --no-patches");
+  cmd->add_flag("--no-occlusion", a->noOcclusion,
+                "One pass, culled by frustum, cone and triangle only (default: two passes, the second culled against "
+                "the depth of what the first drew)");
   cmd->add_flag("--no-patches", a->noPatches,
                 "Draw leaf clusters as their triangles even where their chord error projects above tau (default: "
                 "tessellated limit-surface patches)");

@@ -28,6 +28,8 @@ View makeView(const Camera& camera, uint32_t width, uint32_t height, glm::vec4 b
   proj[2][3] = -1.0f;
   proj[3][2] = v.znear;
   v.viewProjection = proj * view;
+  v.view = view;
+  v.projection = glm::vec2(proj[0][0], proj[1][1]);
   v.projScale = float(height) / (2.0f * std::tan(0.5f * fov));
   glm::mat4 m = glm::transpose(v.viewProjection);  // rows of the matrix
   // Left, right, bottom, top, near; the far plane is at infinity and culls nothing.

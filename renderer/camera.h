@@ -13,6 +13,8 @@ struct Camera {
 
 struct View {
   glm::mat4 viewProjection{1.0f};  // Vulkan clip space: y down, depth 0..1
+  glm::mat4 view{1.0f};            // world to view space, looking down -z
+  glm::vec2 projection{1.0f};      // clip x and y = this * view x and y (the occlusion tests' projection)
   glm::vec4 planes[6];             // world-space frustum planes, normalised, pointing inwards
   glm::vec3 eye{0.0f};
   float projScale = 1.0f;  // height / (2 tan(fovY / 2))

@@ -18,6 +18,7 @@ void GpuRenderer::createQueueAndDrawList() {
   // A visibility-buffer id holds the patch-list slot in 20 bits.
   patchCapacity_ = uint32_t(std::min<VkDeviceSize>({patchCapacity_, range / 8, VGEO_MAX_PATCH_ENTRIES}));
   queue_ = vk_.createBuffer(VkDeviceSize(queueCapacity_) * 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  deferredItems_ = vk_.createBuffer(VkDeviceSize(queueCapacity_) * 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   drawList_ = vk_.createBuffer(VkDeviceSize(drawCapacity_) * 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   triangleList_ = vk_.createBuffer(VkDeviceSize(triangleCapacity_) * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   patchList_ = vk_.createBuffer(VkDeviceSize(patchCapacity_) * 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
@@ -33,6 +34,7 @@ void GpuRenderer::createQueueAndDrawList() {
 void GpuRenderer::setCapacities(uint32_t queueItems, uint32_t drawEntries, uint32_t triangles, uint32_t patches) {
   vkDeviceWaitIdle(vk_.device());
   vk_.destroyBuffer(queue_);
+  vk_.destroyBuffer(deferredItems_);
   vk_.destroyBuffer(drawList_);
   vk_.destroyBuffer(triangleList_);
   vk_.destroyBuffer(patchList_);
@@ -56,12 +58,13 @@ void GpuRenderer::growOverflowedLists(const shaderio::Counters& c, float tau) {
     bool overflowed;
     uint32_t capacity;
     uint64_t needed, bytesEach, most;
-  } lists[4] = {{"queue items", c.queueOverflow != 0, queueCapacity_, c.queueHighWater, 8, range / 8},
-                {"draw-list entries", c.drawOverflow != 0, drawCapacity_, c.drawCount, 8,
-                 std::min<uint64_t>(range / 8, VGEO_MAX_DRAW_ENTRIES)},
-                {"triangles", c.triangleOverflow != 0, triangleCapacity_, c.trianglesDrawn, 4, range / 4},
-                {"patches", c.patchOverflow != 0, patchCapacity_, c.patchesDrawn, 8,
-                 std::min<uint64_t>(range / 8, VGEO_MAX_PATCH_ENTRIES)}};
+  } lists[4] = {
+      {"queue items", c.queueOverflow != 0, queueCapacity_, std::max(c.queueHighWater, c.deferredItems), 8, range / 8},
+      {"draw-list entries", c.drawOverflow != 0, drawCapacity_, c.drawCount, 8,
+       std::min<uint64_t>(range / 8, VGEO_MAX_DRAW_ENTRIES)},
+      {"triangles", c.triangleOverflow != 0, triangleCapacity_, c.trianglesDrawn, 4, range / 4},
+      {"patches", c.patchOverflow != 0, patchCapacity_, c.patchesDrawn, 8,
+       std::min<uint64_t>(range / 8, VGEO_MAX_PATCH_ENTRIES)}};
   char tauText[32];
   std::snprintf(tauText, sizeof tauText, "%g", double(tau));
   uint64_t neededBytes = 0, wantedBytes = 0, want[4];

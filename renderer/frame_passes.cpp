@@ -24,20 +24,17 @@
 //                                with the patch grids left to the hardware (patch_grid.vert, a draw
 //                                each); or shaded with depth (draw.frag) and then one draw of the
 //                                tessellator's patches, one vertex a patch (patch.vert, .tesc, .tese)
+//   With occlusion culling 2. to 7. are the early pass (no patches), and then
+//      build_depth_pyramid.comp  the depth pyramid of what it drew
+//      begin_late_pass.comp,     the late pass's counters, its first queue items the early pass's
+//      queue_deferred.comp       deferred ones; then 2. to 7. again, tested against the pyramid
 //   8. resolve.comp              the compute rasterizers' pixels shaded into the colour target
-//   9. copies back               counters (and the image / draw list when asked)
+//   9. copies back               counters (and the image / draw list when asked; frame_readback.cpp)
 #include "gpu_renderer.h"
 
 namespace vgeo {
 namespace {
 
-void globalBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags srcAccess, VkPipelineStageFlags dst,
-                   VkAccessFlags dstAccess) {
-  VkMemoryBarrier b{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-  b.srcAccessMask = srcAccess;
-  b.dstAccessMask = dstAccess;
-  vkCmdPipelineBarrier(cmd, src, dst, 0, 1, &b, 0, nullptr, 0, nullptr);
-}
 void computeToCompute(VkCommandBuffer cmd) {
   globalBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT,
                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
@@ -67,14 +64,28 @@ void GpuRenderer::recordCounterReset(VkCommandBuffer cmd, uint32_t nodesPending)
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
 }
 
-void GpuRenderer::recordInstanceCull(VkCommandBuffer cmd, const FrameSettings& settings) {
-  // 1. Reset the counters. 2. Instance culling, unless the persistent traversal's workers do it: then each
-  // instance counts as pending until its culling has queued its items (traverse_persistent.comp).
-  if (cullsInTraversal(settings)) {
-    recordCounterReset(cmd, uint32_t(scene_.data.instances.size()));
-    return;
+void GpuRenderer::pushPass(VkCommandBuffer cmd, uint32_t pass, uint32_t level) {
+  const shaderio::PassConstants constants{pass, level};
+  vkCmdPushConstants(cmd, layout_, rendererStages(), 0, sizeof(constants), &constants);
+}
+
+void GpuRenderer::recordInstanceCull(VkCommandBuffer cmd, const FrameSettings& settings, uint32_t pass) {
+  // 1. Reset the counters; the late pass carries on from the early one's (begin_late_pass.comp).
+  // 2. Instance culling, unless the persistent traversal's workers do it: then each instance counts as
+  // pending until its culling has queued its items (traverse_persistent.comp).
+  const bool inTraversal = cullsInTraversal(settings);
+  if (pass == VGEO_PASS_LATE) {  // the late pass's counters, then the early pass's deferred items queued
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, beginLatePass_);
+    vkCmdDispatch(cmd, 1, 1, 1);
+    computeToCompute(cmd);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, queueDeferred_);
+    vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, dispatch));
+    computeToCompute(cmd);
+  } else {
+    recordCounterReset(cmd, inTraversal ? uint32_t(scene_.data.instances.size()) : 0u);
   }
-  recordCounterReset(cmd);
+  if (inTraversal) return;
   const uint32_t lanes = cullInstanceLanes(settings),
                  instancesPerWorkgroup = lanes == 1 ? 64 : VGEO_CULL_SPREAD_WORKGROUP / lanes;
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, lanes == 1 ? cullSerial_ : cull_);
@@ -151,11 +162,13 @@ void GpuRenderer::recordTriangleCull(VkCommandBuffer cmd, bool patches) {
 // 6. The compute rasterizers: the visibility buffer (or the overdraw counts) cleared, then the triangles
 // binned to compute drawn into it, then the patches binned to compute; read by the resolve after the
 // render pass.
-void GpuRenderer::recordSoftwareRaster(VkCommandBuffer cmd, bool patches) {
-  vkCmdFillBuffer(cmd, visibility_.buffer, 0, VK_WHOLE_SIZE, 0);
-  vkCmdFillBuffer(cmd, overdraw_.buffer, 0, VK_WHOLE_SIZE, 0);
-  globalBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+void GpuRenderer::recordSoftwareRaster(VkCommandBuffer cmd, bool patches, bool clear) {
+  if (clear) {  // the first pass of the frame; the late pass draws over the early one's
+    vkCmdFillBuffer(cmd, visibility_.buffer, 0, VK_WHOLE_SIZE, 0);
+    vkCmdFillBuffer(cmd, overdraw_.buffer, 0, VK_WHOLE_SIZE, 0);
+    globalBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+  }
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, rasterSoftware_);
   vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, rasterDispatch));
@@ -183,31 +196,9 @@ void GpuRenderer::recordResolve(VkCommandBuffer cmd, uint32_t mode, bool patches
   vkCmdDispatch(cmd, (width_ + 7) / 8, (height_ + 7) / 8, 1);
 }
 
-// 9. Copies back: counters, image, draw list.
-void GpuRenderer::recordReadback(VkCommandBuffer cmd, const FrameSettings& settings) {
-  VkBufferCopy all{0, 0, sizeof(shaderio::Counters)};
-  vkCmdCopyBuffer(cmd, counters_.buffer, countersReadback_.buffer, 1, &all);
-  if (settings.readImage && settings.draw) {
-    // The colour from the render pass's GENERAL (and the resolve's writes) to the copy's layout.
-    layoutBarrier(cmd, color_, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                  VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                  VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                  VK_ACCESS_TRANSFER_READ_BIT);
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {width_, height_, 1};
-    vkCmdCopyImageToBuffer(cmd, color_, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, imageReadback_.buffer, 1, &region);
-  }
-  if (settings.readDrawList) {
-    VkBufferCopy list{0, 0, drawList_.size};
-    vkCmdCopyBuffer(cmd, drawList_.buffer, drawListReadback_.buffer, 1, &list);
-  }
-  globalBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
-                VK_ACCESS_HOST_READ_BIT);
-}
-
-// 7. The render pass: one indirect draw of the listed hardware triangles, one of the patches.
-void GpuRenderer::recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings, bool bare) {
+// 7. The render pass: one indirect draw of the listed hardware triangles, one of the patches (not in the
+// early pass). The late pass's keeps what the early one drew.
+void GpuRenderer::recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings, bool bare, uint32_t pass) {
   if (bare) {  // the hardware's triangles into the visibility buffer, no attachments (draw_visibility.frag)
     VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
     begin.renderPass = renderPassVisibility_;
@@ -217,7 +208,7 @@ void GpuRenderer::recordRenderPass(VkCommandBuffer cmd, const FrameSettings& set
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawVisibility_);
     vkCmdDrawIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, draw), 1, sizeof(VkDrawIndirectCommand));
-    if (rastersPatchesInCompute(settings)) {  // the patches left to the hardware, from their grids
+    if (rastersPatchesInCompute(settings) && pass != VGEO_PASS_EARLY) {  // the hardware's patches, from their grids
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, drawGridVisibility_);
       vkCmdDrawIndirectCount(cmd, patchDraws_.buffer, 0, counters_.buffer,
                              offsetof(shaderio::Counters, hardwarePatches), patchCapacity_,
@@ -232,12 +223,12 @@ void GpuRenderer::recordRenderPass(VkCommandBuffer cmd, const FrameSettings& set
   VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
   // The resolve writes the background where nothing was drawn, except in the overdraw view (it adds).
   const bool resolved = softwareRaster(settings) != VGEO_RASTER_NONE && settings.mode != VGEO_MODE_OVERDRAW;
-  begin.renderPass = resolved ? renderPassResolved_ : renderPass_;
+  begin.renderPass = pass == VGEO_PASS_LATE ? renderPassLoad_ : resolved ? renderPassResolved_ : renderPass_;
   begin.framebuffer = framebuffer_;
   begin.renderArea = {{0, 0}, {width_, height_}};
   begin.clearValueCount = 2;
   begin.pClearValues = clears;
-  const bool patches = drawsPatches(settings);
+  const bool patches = drawsPatches(settings) && pass != VGEO_PASS_EARLY;
   if (patches && statistics_) vkCmdResetQueryPool(cmd, statistics_, 0, 1);
   vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
@@ -252,6 +243,28 @@ void GpuRenderer::recordRenderPass(VkCommandBuffer cmd, const FrameSettings& set
     if (statistics_) vkCmdEndQuery(cmd, statistics_, 0);
   }
   vkCmdEndRenderPass(cmd);
+}
+
+// Between the passes of a frame with occlusion culling: the depth pyramid of what the early pass drew
+// (build_depth_pyramid.comp, a dispatch a level), read by the late pass's culling.
+void GpuRenderer::recordDepthPyramid(VkCommandBuffer cmd) {
+  // The early pass's depth: its compute rasterizers', its render pass's (the visibility buffer or the
+  // depth target). The late pass's rasterizers then write them again (an execution dependency back).
+  globalBarrier(cmd,
+                VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
+                    VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT,
+                VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, buildDepthPyramid_);
+  pushPass(cmd, VGEO_PASS_EARLY, 0);  // levels 1 to pyramidTileLevels(), a workgroup a 32 x 32 pixel tile
+  vkCmdDispatch(cmd, (width_ + 31) / 32, (height_ + 31) / 32, 1);
+  computeToCompute(cmd);
+  if (pyramidLevels_ > pyramidTileLevels() + 1) {  // the rest, one workgroup
+    pushPass(cmd, VGEO_PASS_EARLY, 1);
+    vkCmdDispatch(cmd, 1, 1, 1);
+    computeToCompute(cmd);
+  }
 }
 
 }  // namespace vgeo

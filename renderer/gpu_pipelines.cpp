@@ -3,7 +3,13 @@
 // the draw, plus the overdraw variant that adds every fragment). The frame itself is gpu_renderer.cpp.
 #include "gpu_renderer.h"
 
+#include "shaders/begin_late_pass_comp.h"
+#include "shaders/begin_late_pass_comp_by_address.h"
+#include "shaders/build_depth_pyramid_comp.h"
+#include "shaders/build_depth_pyramid_comp_by_address.h"
 #include "shaders/cull_instances_comp.h"
+#include "shaders/queue_deferred_comp.h"
+#include "shaders/queue_deferred_comp_by_address.h"
 #include "shaders/cull_instances_comp_by_address.h"
 #include "shaders/cull_instances_comp_cull_serial.h"
 #include "shaders/cull_instances_comp_cull_serial_by_address.h"
@@ -131,16 +137,20 @@ void GpuRenderer::createTargets() {
   subpass.pColorAttachments = &colorRef;
   subpass.pDepthStencilAttachment = &depthRef;
   // Earlier frames' copy of the colour image and depth use finish before this pass writes them again
-  // (their resolve too, by the barrier that opens every frame). Not this frame's compute passes: the
-  // compute rasterizers may run beside the draws; the resolve waits for both.
+  // (their resolve too, by the barrier that opens every frame); with occlusion culling, the early pass's
+  // draws and the depth pyramid's reads of its depth (compute) before the late pass's (the three render
+  // passes must be alike but for their load operations and layouts, dependencies included). Not this
+  // frame's compute rasterizers: they may run beside the draws; the resolve waits for both.
   VkSubpassDependency deps[2] = {};
   deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
   deps[0].dstSubpass = 0;
-  deps[0].srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
-  deps[0].srcAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+  deps[0].srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT |
+                         VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+  deps[0].srcAccessMask =
+      VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
   deps[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT;
-  deps[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
-                          VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT;
+  deps[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT |
+                          VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT;
   deps[1].srcSubpass = 0;
   deps[1].dstSubpass = VK_SUBPASS_EXTERNAL;
   deps[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
@@ -159,6 +169,12 @@ void GpuRenderer::createTargets() {
   // draws leave (the clear of a 1920x1080 target is not free on every GPU).
   attachments[0].loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
   vkCheck(vkCreateRenderPass(dev, &rp, nullptr, &renderPassResolved_), "vkCreateRenderPass");
+  // The late pass of a frame with occlusion culling draws over the early pass's colour and depth, after
+  // the early pass's draws and the depth pyramid's reads of the depth (compute).
+  attachments[0].loadOp = attachments[1].loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+  attachments[0].initialLayout = VK_IMAGE_LAYOUT_GENERAL;
+  attachments[1].initialLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+  vkCheck(vkCreateRenderPass(dev, &rp, nullptr, &renderPassLoad_), "vkCreateRenderPass (late pass)");
   VkImageView views[2] = {colorView_, depthView_};
   VkFramebufferCreateInfo fb{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
   fb.renderPass = renderPass_;
@@ -214,12 +230,7 @@ void GpuRenderer::createDescriptorSet() {
   VkDevice dev = vk_.device();
   VkDescriptorSetLayoutBinding bindings[kRendererBindings];
   for (uint32_t i = 0; i < kRendererBindings; i++) {
-    bindings[i] = {
-        i, descriptorType(i), 1,
-        VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT |
-            (vk_.tessellation() ? VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT | VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT
-                                : 0u),
-        nullptr};
+    bindings[i] = {i, descriptorType(i), 1, rendererStages(), nullptr};
   }
   VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   setInfo.bindingCount = kRendererBindings;
@@ -242,6 +253,9 @@ void GpuRenderer::createDescriptorSet() {
   VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   layoutInfo.setLayoutCount = 1;
   layoutInfo.pSetLayouts = &setLayout_;
+  const VkPushConstantRange passConstants{rendererStages(), 0, sizeof(shaderio::PassConstants)};
+  layoutInfo.pushConstantRangeCount = 1;
+  layoutInfo.pPushConstantRanges = &passConstants;
   vkCheck(vkCreatePipelineLayout(dev, &layoutInfo, nullptr, &layout_), "vkCreatePipelineLayout");
 }
 
@@ -299,6 +313,9 @@ void GpuRenderer::createComputePipelines(bool softwareRaster) {
   preparePatches_ = computePipeline(VGEO_SPIRV(prepare_patches_comp));
   cullPatches_ = computePipeline(VGEO_SPIRV(cull_patches_comp));
   finalizeTriangles_ = computePipeline(VGEO_SPIRV(finalize_triangles_comp));
+  buildDepthPyramid_ = computePipeline(VGEO_SPIRV(build_depth_pyramid_comp));
+  beginLatePass_ = computePipeline(VGEO_SPIRV(begin_late_pass_comp));
+  queueDeferred_ = computePipeline(VGEO_SPIRV(queue_deferred_comp));
   if (softwareRaster) {
     rasterSoftware_ = computePipeline(VGEO_SPIRV(raster_software_comp));
     rasterPatches_ = computePipeline(VGEO_SPIRV(raster_patches_comp));

@@ -32,8 +32,9 @@ constexpr size_t kFewWorkgroupsInstances = 32768;
 // where one instance of all patches joined unrelated vertices in close-ups. GPUs: one instance holds
 // many (the count has no effect on the picture).
 constexpr uint32_t kLavapipePatchesPerInstance = 15, kPatchesPerInstance = 4096;
-// Frame start, then the end of each pass of runPasses.
-constexpr uint32_t kTimestamps = 8;
+// Frame start, then the end of each pass of runPasses (at most 13: two selections of five, the depth
+// pyramid, the resolve and the copies back).
+constexpr uint32_t kMaxTimestamps = 16;
 
 double msSince(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
@@ -120,6 +121,18 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
   // past it go to the tessellator.
   patchGridCapacity_ = software && vk_.tessellation() && !d.patches.empty() ? 1u << VGEO_PATCH_GRID_OFFSET_BITS : 1u;
   patchGrid_ = vk_.createBuffer(VkDeviceSize(patchGridCapacity_) * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  // Occlusion culling: the depth pyramid's levels up to one texel (level 0, the pixels, is not stored:
+  // build_depth_pyramid.comp), and the instances' deferral flags.
+  uint32_t pyramidFloats = 0;
+  for (uint32_t w = width_, h = height_;; w = (w + 1) / 2, h = (h + 1) / 2) {
+    if (pyramidLevels_ == VGEO_PYRAMID_MAX_LEVELS) throw std::runtime_error("picture too large for the depth pyramid");
+    pyramidOffsets_[pyramidLevels_] = pyramidFloats;
+    if (pyramidLevels_++ > 0) pyramidFloats += w * h;
+    if (pyramidLevels_ > 1 && w == 1 && h == 1) break;
+  }
+  depthPyramid_ = vk_.createBuffer(VkDeviceSize(pyramidFloats) * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  instanceDeferred_ = vk_.createBuffer(std::max<VkDeviceSize>(VkDeviceSize(d.instances.size()) * 4, 16),
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 
   if (vk_.isLavapipe()) {
     claimMode_ = 1;
@@ -158,13 +171,14 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
     std::memcpy(frameData_.mapped, &frame, sizeof(frame));
     VkCommandBuffer cmd = vk_.beginCommands();
     recordCounterReset(cmd);
+    pushPass(cmd, VGEO_PASS_ONLY);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, persistent_);
     vkCmdDispatch(cmd, persistentWorkgroups_, 1, 1);
     vk_.submitAndWait(cmd);
   }
   VkQueryPoolCreateInfo q{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
   q.queryType = VK_QUERY_TYPE_TIMESTAMP;
-  q.queryCount = kTimestamps;
+  q.queryCount = kMaxTimestamps;
   vkCheck(vkCreateQueryPool(vk_.device(), &q, nullptr, &queries_), "vkCreateQueryPool");
   if (vk_.pipelineStatistics()) {
     VkQueryPoolCreateInfo stats{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
@@ -179,9 +193,10 @@ GpuRenderer::~GpuRenderer() {
   VkDevice dev = vk_.device();
   vkDeviceWaitIdle(dev);
   const VkPipeline computePipelines[] = {
-      cull_,           cullSerial_,  persistent_,        persistentProfile_, level_,         prepareLevel_,
-      flat_,           prepareFlat_, resetFlat_,         finalize_,          cullTriangles_, cullSmallClusters_,
-      preparePatches_, cullPatches_, finalizeTriangles_, rasterSoftware_,    rasterPatches_};
+      cull_,           cullSerial_,   persistent_,        persistentProfile_, level_,         prepareLevel_,
+      flat_,           prepareFlat_,  resetFlat_,         finalize_,          cullTriangles_, cullSmallClusters_,
+      preparePatches_, cullPatches_,  finalizeTriangles_, rasterSoftware_,    rasterPatches_, buildDepthPyramid_,
+      beginLatePass_,  queueDeferred_};
   const VkPipeline drawPipelines[] = {draw_,           drawOverdraw_,      drawPatches_, drawPatchesOverdraw_,
                                       drawVisibility_, drawGridVisibility_};
   for (VkPipeline p : computePipelines) vkDestroyPipeline(dev, p, nullptr);
@@ -200,15 +215,18 @@ GpuRenderer::~GpuRenderer() {
   vkDestroyRenderPass(dev, renderPassVisibility_, nullptr);
   vkDestroyRenderPass(dev, renderPass_, nullptr);
   vkDestroyRenderPass(dev, renderPassResolved_, nullptr);
+  vkDestroyRenderPass(dev, renderPassLoad_, nullptr);
   vkDestroyImageView(dev, colorView_, nullptr);
   vkDestroyImageView(dev, depthView_, nullptr);
   vkDestroyImage(dev, color_, nullptr);
   vkDestroyImage(dev, depth_, nullptr);
   vkFreeMemory(dev, colorMemory_, nullptr);
   vkFreeMemory(dev, depthMemory_, nullptr);
-  for (Buffer* b : {&frameData_, &counters_, &countersReadback_, &queue_, &drawList_, &drawListReadback_,
-                    &imageReadback_, &triangleList_, &patchList_, &patchDraws_, &patchEntries_, &workerProfile_,
-                    &visibility_, &overdraw_, &patchGrid_})
+  for (Buffer* b : {&frameData_,        &counters_,         &countersReadback_,   &queue_,
+                    &drawList_,         &drawListReadback_, &imageReadback_,      &triangleList_,
+                    &patchList_,        &patchDraws_,       &patchEntries_,       &workerProfile_,
+                    &visibility_,       &overdraw_,         &patchGrid_,          &depthPyramid_,
+                    &instanceDeferred_, &deferredItems_,    &visibilityReadback_, &patchListReadback_})
     vk_.destroyBuffer(*b);
   for (auto& [binding, b] : sceneBuffers_) vk_.destroyBuffer(b);
   vk_.destroyBuffer(sceneArrays_);
@@ -230,6 +248,9 @@ void GpuRenderer::writeDescriptors() {
   buffers[VGEO_BINDING_VISIBILITY] = &visibility_;
   buffers[VGEO_BINDING_OVERDRAW] = &overdraw_;
   buffers[VGEO_BINDING_PATCH_GRID] = &patchGrid_;
+  buffers[VGEO_BINDING_DEPTH_PYRAMID] = &depthPyramid_;
+  buffers[VGEO_BINDING_INSTANCE_DEFERRED] = &instanceDeferred_;
+  buffers[VGEO_BINDING_DEFERRED_ITEMS] = &deferredItems_;
   for (const auto& [binding, b] : sceneBuffers_) buffers[binding] = &b;
   const VkDescriptorImageInfo colorImage{VK_NULL_HANDLE, colorView_, VK_IMAGE_LAYOUT_GENERAL},
       depthImage{depthSampler_, depthView_, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL};
@@ -289,51 +310,71 @@ shaderio::FrameData GpuRenderer::frameConstants(const FrameSettings& settings) c
   frame.softwarePatches = rastersPatchesInCompute(settings) ? 1u : 0u;
   frame.patchGridCapacity = patchGridCapacity_;
   frame.packedCullBelow = settings.packedCullBelow;
+  // Occlusion culling: the early pass tests against the pyramid the last frame left (none: it tests
+  // nothing), from the camera it was drawn from; the late pass against the one built in between, from this
+  // frame's camera. A frozen cut keeps the pyramid of the camera it froze at, for both.
+  if (occludes(settings)) {
+    const bool frozen = settings.cullView.viewProjection != settings.drawView.viewProjection;
+    frame.occlusion = frozen ? VGEO_OCCLUSION_FROZEN : VGEO_OCCLUSION_ON;
+    frame.earlyOcclusion = pyramidMade_ ? 1u : 0u;
+    const View& late = frozen ? pyramidView_ : settings.cullView;
+    frame.pyramidViews[0] = pyramidView_.view;
+    frame.pyramidViews[1] = late.view;
+    frame.pyramidProjections = glm::vec4(pyramidView_.projection, late.projection);
+    frame.pyramidZnear = glm::vec2(pyramidView_.znear, late.znear);
+  }
+  frame.pyramidLevels = pyramidLevels_;
+  frame.pyramidTileLevels = pyramidTileLevels();
+  for (uint32_t i = 0; i < pyramidLevels_; i++) frame.pyramidOffsets[i / 4][i % 4] = pyramidOffsets_[i];
   return frame;
 }
 
-// Host-visible buffers the frame writes back: the worker profile when profiled, the draw-list copy.
-void GpuRenderer::prepareReadbacks(const FrameSettings& settings, bool profile) {
-  if (profile) {
-    const VkDeviceSize bytes = VkDeviceSize(persistentWorkgroups_) * VGEO_PROFILE_WORKER_WORDS * 4;
-    if (workerProfile_.size < bytes) {
-      vkDeviceWaitIdle(vk_.device());
-      vk_.destroyBuffer(workerProfile_);
-      workerProfile_ = vk_.createBuffer(bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-      writeDescriptors();
-    }
-    std::memset(workerProfile_.mapped, 0, bytes);
-  }
-  if (settings.readDrawList && drawListReadback_.size != drawList_.size) {
-    vk_.destroyBuffer(drawListReadback_);
-    drawListReadback_ = vk_.createBuffer(drawList_.size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
-  }
-}
-
-// Records and submits the passes in frame order
-// and times each: GPU timestamps in one submission, or on lavapipe one submission a pass timed on the
-// host.
+// Records and submits the passes in frame order and times each: GPU timestamps in one submission, or on
+// lavapipe one submission a pass timed on the host. With occlusion culling the selection and drawing run
+// twice (docs/design.md, "Occlusion culling"), the depth pyramid between.
 void GpuRenderer::runPasses(const FrameSettings& settings, const shaderio::FrameData& frame, bool bare,
                             FrameResult& result) {
-  // The frame's passes in order, each with where its time goes (nullptr: the frame's only).
+  // The frame's passes in order, each with where its time goes (nullptr: the frame's only) and the
+  // selection pass it belongs to (VGEO_PASS_*).
   const bool software = frame.softwareRaster != VGEO_RASTER_NONE;
   struct Pass {
     double* ms;
-    bool runs;
+    uint32_t pass;
     std::function<void(VkCommandBuffer)> record;
-  } passes[] = {
-      {&result.instanceCullMs, true, [&](VkCommandBuffer cmd) { recordInstanceCull(cmd, settings); }},
-      {&result.traversalMs, true, [&](VkCommandBuffer cmd) { recordTraversal(cmd, settings); }},
-      {&result.triangleCullMs, frame.triangleCull != 0u,
-       [&](VkCommandBuffer cmd) { recordTriangleCull(cmd, frame.drawPatches != 0u); }},
-      {&result.rasterMs, software,
-       [&](VkCommandBuffer cmd) { recordSoftwareRaster(cmd, frame.softwarePatches != 0u); }},
-      {&result.drawMs, settings.draw, [&](VkCommandBuffer cmd) { recordRenderPass(cmd, settings, bare); }},
-      {&result.resolveMs, settings.draw && software,
-       [&](VkCommandBuffer cmd) { recordResolve(cmd, settings.mode, frame.softwarePatches != 0u, bare); }},
-      {nullptr, true, [&](VkCommandBuffer cmd) { recordReadback(cmd, settings); }},
   };
-  static_assert(std::size(passes) + 1 == kTimestamps, "a timestamp before each pass and one after the last");
+  std::vector<Pass> passes;
+  // Patches are culled and drawn once, in the last pass (the early one lists their entries).
+  auto addSelection = [&](uint32_t pass) {
+    const bool patches = frame.drawPatches != 0u && pass != VGEO_PASS_EARLY,
+               softwarePatches = frame.softwarePatches != 0u && pass != VGEO_PASS_EARLY;
+    passes.push_back(
+        {&result.instanceCullMs, pass, [&, pass](VkCommandBuffer cmd) { recordInstanceCull(cmd, settings, pass); }});
+    passes.push_back({&result.traversalMs, pass, [&](VkCommandBuffer cmd) { recordTraversal(cmd, settings); }});
+    if (frame.triangleCull != 0u)
+      passes.push_back(
+          {&result.triangleCullMs, pass, [this, patches](VkCommandBuffer cmd) { recordTriangleCull(cmd, patches); }});
+    if (software)
+      passes.push_back({&result.rasterMs, pass, [this, softwarePatches, pass](VkCommandBuffer cmd) {
+                          recordSoftwareRaster(cmd, softwarePatches, pass != VGEO_PASS_LATE);
+                        }});
+    if (settings.draw)
+      passes.push_back({&result.drawMs, pass,
+                        [&, bare, pass](VkCommandBuffer cmd) { recordRenderPass(cmd, settings, bare, pass); }});
+  };
+  if (frame.occlusion == VGEO_OCCLUSION_OFF) {
+    addSelection(VGEO_PASS_ONLY);
+  } else {
+    addSelection(VGEO_PASS_EARLY);
+    if (frame.occlusion == VGEO_OCCLUSION_ON)  // a frozen cut keeps the pyramid it froze with
+      passes.push_back({&result.pyramidMs, VGEO_PASS_EARLY, [this](VkCommandBuffer cmd) { recordDepthPyramid(cmd); }});
+    addSelection(VGEO_PASS_LATE);
+  }
+  if (settings.draw && software)
+    passes.push_back({&result.resolveMs, VGEO_PASS_LATE, [&](VkCommandBuffer cmd) {
+                        recordResolve(cmd, settings.mode, frame.softwarePatches != 0u, bare);
+                      }});
+  passes.push_back({nullptr, VGEO_PASS_LATE, [&](VkCommandBuffer cmd) { recordReadback(cmd, settings); }});
+  if (passes.size() + 1 > kMaxTimestamps) throw std::logic_error("more passes than timestamps");
   const double period = vk_.timestampPeriod();
   const auto start = std::chrono::steady_clock::now();
   if (vk_.isLavapipe() || period == 0.0) {
@@ -341,69 +382,34 @@ void GpuRenderer::runPasses(const FrameSettings& settings, const shaderio::Frame
     // a pass, timed on the host.
     result.timing = "host-per-submission";
     for (const Pass& pass : passes) {
-      if (!pass.runs) continue;
       const auto passStart = std::chrono::steady_clock::now();
       VkCommandBuffer cmd = vk_.beginCommands();
+      pushPass(cmd, pass.pass);
       pass.record(cmd);
       vk_.submitAndWait(cmd);
-      if (pass.ms) *pass.ms = msSince(passStart);
+      if (pass.ms) *pass.ms += msSince(passStart);
     }
     result.frameMs = msSince(start);
   } else {
     result.timing = "gpu-timestamps";
     VkCommandBuffer cmd = vk_.beginCommands();
-    vkCmdResetQueryPool(cmd, queries_, 0, kTimestamps);
+    const uint32_t stamps = uint32_t(passes.size()) + 1;
+    vkCmdResetQueryPool(cmd, queries_, 0, stamps);
     vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, 0);
-    for (uint32_t i = 0; i < std::size(passes); i++) {
-      if (passes[i].runs) passes[i].record(cmd);
+    for (uint32_t i = 0; i < passes.size(); i++) {
+      pushPass(cmd, passes[i].pass);
+      passes[i].record(cmd);
       vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, i + 1);
     }
     vk_.submitAndWait(cmd);
-    uint64_t t[kTimestamps];
-    vkCheck(vkGetQueryPoolResults(vk_.device(), queries_, 0, kTimestamps, sizeof(t), t, sizeof(uint64_t),
+    uint64_t t[kMaxTimestamps];
+    vkCheck(vkGetQueryPoolResults(vk_.device(), queries_, 0, stamps, stamps * sizeof(uint64_t), t, sizeof(uint64_t),
                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
             "vkGetQueryPoolResults");
     auto ms = [&](uint32_t from, uint32_t to) { return double(t[to] - t[from]) * period * 1e-6; };
-    for (uint32_t i = 0; i < std::size(passes); i++)
-      if (passes[i].ms) *passes[i].ms = ms(i, i + 1);
-    result.frameMs = ms(0, kTimestamps - 1);
-  }
-}
-
-// Copies what the frame left in host-visible memory into the result: counters, tessellator statistics,
-// image, draw list, worker profile.
-void GpuRenderer::readResults(const FrameSettings& settings, const shaderio::FrameData& frame, bool profile, bool bare,
-                              FrameResult& result) {
-  std::memcpy(&result.counters, countersReadback_.mapped, sizeof(result.counters));
-  const auto& c = result.counters;
-  const bool patches = frame.drawPatches != 0u, cullTriangles = frame.triangleCull != 0u;
-  lastCullItems_ = settings.traversal == Traversal::Persistent ? c.cullItems : 0u;
-  result.softwareTriangles = std::min(c.softwareTriangles, triangleCapacity_);
-  result.trianglesDrawn = cullTriangles ? std::min(c.trianglesDrawn, triangleCapacity_) : c.triangles;
-  result.patchesDrawn = std::min(c.patchesDrawn, patchCapacity_);
-  result.softwarePatches = std::min(c.softwarePatches, patchCapacity_);
-  if (patches && statistics_ && !bare) {  // the query runs around the tessellated draw, in the depth pass
-    uint64_t primitives = 0;
-    vkCheck(vkGetQueryPoolResults(vk_.device(), statistics_, 0, 1, sizeof(primitives), &primitives, sizeof(primitives),
-                                  VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
-            "vkGetQueryPoolResults (statistics)");
-    result.patchTriangles = int64_t(primitives) + c.softwarePatchTriangles;
-  } else if (!patches || bare) {
-    result.patchTriangles = c.softwarePatchTriangles;
-  }
-  if (settings.readImage && settings.draw) {
-    result.rgba.resize(size_t(width_) * height_ * 4);
-    std::memcpy(result.rgba.data(), imageReadback_.mapped, result.rgba.size());
-  }
-  if (settings.readDrawList) {
-    uint32_t n = std::min(c.drawCount, drawCapacity_);
-    const uint32_t* p = static_cast<const uint32_t*>(drawListReadback_.mapped);
-    result.drawList.resize(n);
-    for (uint32_t i = 0; i < n; i++) result.drawList[i] = {p[2 * i], p[2 * i + 1] & ~VGEO_DRAW_PATCHES_BIT};
-  }
-  if (profile) {
-    const uint32_t* p = static_cast<const uint32_t*>(workerProfile_.mapped);
-    result.workerProfile.assign(p, p + size_t(persistentWorkgroups_) * VGEO_PROFILE_WORKER_WORDS);
+    for (uint32_t i = 0; i < passes.size(); i++)
+      if (passes[i].ms) *passes[i].ms += ms(i, i + 1);
+    result.frameMs = ms(0, stamps - 1);
   }
 }
 
@@ -417,8 +423,9 @@ bool GpuRenderer::checkDrained(FrameResult& result) {
       c.queueOverflow == 0 && c.drawOverflow == 0 && c.triangleOverflow == 0 && c.patchOverflow == 0 && drained;
   // Every worker left on its iteration budget (lavapipe) before the queue drained: twice as many for the
   // next frame, and a fresh queue (this one still holds items).
-  result.workersRanOut = !drained && c.queueOverflow == 0 && c.budgetExits == persistentWorkgroups_ &&
-                         persistentWorkgroups_ < kMaxPersistentWorkgroups;
+  const bool ranOut = c.budgetExits - c.earlyBudgetExits == persistentWorkgroups_ ||
+                      c.earlyBudgetExits == persistentWorkgroups_;  // in either pass
+  result.workersRanOut = !drained && c.queueOverflow == 0 && ranOut && persistentWorkgroups_ < kMaxPersistentWorkgroups;
   if (result.workersRanOut) {
     persistentWorkgroups_ = std::min(2 * persistentWorkgroups_, kMaxPersistentWorkgroups);
     setCapacities(queueCapacity_, drawCapacity_, triangleCapacity_, patchCapacity_);
@@ -434,16 +441,33 @@ bool GpuRenderer::checkDrained(FrameResult& result) {
 }
 
 FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
-  const shaderio::FrameData frame = frameConstants(settings);
-  std::memcpy(frameData_.mapped, &frame, sizeof(frame));
+  shaderio::FrameData frame = frameConstants(settings);
+  if (frame.occlusion == VGEO_OCCLUSION_FROZEN && !pyramidDrawnFrom(settings.cullView)) {
+    // A cut frozen at a camera this renderer has not drawn from: a frame from it first, as a viewer would
+    // have drawn before freezing, leaves its pyramid.
+    FrameSettings from = settings;
+    from.drawView = settings.cullView;
+    from.readImage = from.readDrawList = from.profileWorkers = false;
+    renderFrame(from);
+    frame = frameConstants(settings);
+  }
   const bool profile = settings.profileWorkers && persistentProfile_ && settings.traversal == Traversal::Persistent;
   prepareReadbacks(settings, profile);
   FrameResult result;
   result.culledInTraversal = frame.cullInTraversal != 0u;
+  result.occlusion = frame.occlusion != VGEO_OCCLUSION_OFF;
   const bool bare = drawsIntoVisibility(settings, frame);
+  frame.pyramidSources = bare ? VGEO_PYRAMID_FROM_VISIBILITY
+                              : VGEO_PYRAMID_FROM_DEPTH_IMAGE |
+                                    (frame.softwareRaster != VGEO_RASTER_NONE ? VGEO_PYRAMID_FROM_VISIBILITY : 0u);
+  std::memcpy(frameData_.mapped, &frame, sizeof(frame));
   runPasses(settings, frame, bare, result);
   readResults(settings, frame, profile, bare, result);
   result.bareRenderPass = bare;
+  if (frame.occlusion == VGEO_OCCLUSION_ON) {  // the next frame's early pass tests against this pyramid
+    pyramidMade_ = true;
+    pyramidView_ = settings.cullView;
+  }
   if (checkDrained(result)) growOverflowedLists(result.counters, settings.tau);
   return result;
 }

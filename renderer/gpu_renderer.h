@@ -48,6 +48,9 @@ struct FrameSettings {
   uint32_t mode = VGEO_MODE_LIT;
   Traversal traversal = Traversal::Persistent;
   bool readDrawList = false;  // copy the draw list back (tests, --compare-cpu)
+  // Tests: FrameResult::pixelClusters, from the visibility buffer; the frame must draw every pixel into it
+  // (FrameResult::bareRenderPass: Raster::Software, or auto on a GPU).
+  bool readPixelClusters = false;
   bool readImage = true;
   bool draw = true;          // false: selection only (cut benchmarks); no image
   bool triangleCull = true;  // cull_triangles.comp before the draw (no change to the picture)
@@ -65,25 +68,34 @@ struct FrameSettings {
   // Triangle culling takes many clusters a workgroup when the draw list's clusters average fewer
   // triangles than this (0: never; tests force both ways).
   uint32_t packedCullBelow = kDefaultPackedCullBelow;
+  // Two-pass occlusion culling (docs/design.md): what the last frame's depth does not hide first, then the
+  // rest tested against the depth that drew. Frames that draw nothing, show overdraw or traverse by levels
+  // or flat run one pass. A frozen cut (cullView != drawView) keeps the depth of the camera it froze at.
+  bool occlusion = true;
   bool profileWorkers = false;  // persistent traversal on a device with a shader device clock: record the
                                 // workers' iterations in FrameResult::workerProfile (benchmarks)
 };
 
 struct FrameResult {
   shaderio::Counters counters{};
-  uint32_t trianglesDrawn = 0;     // sent to the rasterizers: after triangle culling, else the cut's triangles
-  uint32_t softwareTriangles = 0;  // of those, drawn by the software rasterizer
-  uint32_t patchesDrawn = 0;       // patches tessellated: by the hardware draw or the compute rasterizer
-  uint32_t softwarePatches = 0;    // of those, drawn by the compute rasterizer
-  int64_t patchTriangles = -1;     // triangles made of them (-1: no pipeline statistics for the hardware's)
-  std::vector<CutEntry> drawList;  // when readDrawList
-  std::vector<uint8_t> rgba;       // when readImage: width x height x 4
-  bool culledInTraversal = false;  // the persistent traversal culled the instances (instanceCullMs: the reset)
-  bool bareRenderPass = false;     // the render pass had no attachments: every pixel from the visibility buffer
+  uint32_t trianglesDrawn = 0;          // sent to the rasterizers: after triangle culling, else the cut's triangles
+  uint32_t softwareTriangles = 0;       // of those, drawn by the software rasterizer
+  uint32_t patchesDrawn = 0;            // patches tessellated: by the hardware draw or the compute rasterizer
+  uint32_t softwarePatches = 0;         // of those, drawn by the compute rasterizer
+  int64_t patchTriangles = -1;          // triangles made of them (-1: no pipeline statistics for the hardware's)
+  std::vector<CutEntry> drawList;       // when readDrawList
+  std::vector<CutEntry> pixelClusters;  // when readPixelClusters in a bare render pass: the distinct (instance,
+                                        // cluster) of the surfaces the picture shows
+  std::vector<uint8_t> rgba;            // when readImage: width x height x 4
+  bool culledInTraversal = false;       // the persistent traversal culled the instances (instanceCullMs: the reset)
+  bool occlusion = false;               // two passes ran (counters: the frame's totals; drawBase the early pass's
+                                        // clusters, occluded* what the late pass hid)
+  bool bareRenderPass = false;          // the render pass had no attachments: every pixel from the visibility buffer
   // The passes' times: rasterMs the software rasterizer, drawMs the render pass (hardware draws), resolveMs
   // the shading of the software rasterizer's pixels; frameMs all of them and the read-back copies.
+  // With occlusion culling each is the sum of both passes', and pyramidMs the depth pyramid's build.
   double instanceCullMs = 0.0, traversalMs = 0.0, triangleCullMs = 0.0, rasterMs = 0.0, drawMs = 0.0, resolveMs = 0.0,
-         frameMs = 0.0;
+         pyramidMs = 0.0, frameMs = 0.0;
   std::string timing;                   // "gpu-timestamps" or "host-per-submission"
   std::vector<uint32_t> workerProfile;  // when profiled: VGEO_PROFILE_WORKER_WORDS words a workgroup (shaderio.h)
   bool complete = true;                 // no overflow and the traversal drained its queue
@@ -105,6 +117,8 @@ class GpuRenderer {
   // buffers for the next frame.
   FrameResult renderFrame(const FrameSettings& settings);
 
+  uint32_t width() const { return width_; }
+  uint32_t height() const { return height_; }
   uint32_t queueCapacity() const { return queueCapacity_; }
   uint32_t drawCapacity() const { return drawCapacity_; }
   uint32_t triangleCapacity() const { return triangleCapacity_; }
@@ -158,7 +172,16 @@ class GpuRenderer {
   bool checkDrained(FrameResult& result);
   void growOverflowedLists(const shaderio::Counters& counters, float tau);
   void recordCounterReset(VkCommandBuffer cmd, uint32_t nodesPending = 0);
-  void recordInstanceCull(VkCommandBuffer cmd, const FrameSettings& settings);
+  // The stages that see the descriptor set and the push constants.
+  VkShaderStageFlags rendererStages() const {
+    return VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT |
+           (vk_.tessellation() ? VK_SHADER_STAGE_TESSELLATION_CONTROL_BIT | VK_SHADER_STAGE_TESSELLATION_EVALUATION_BIT
+                               : 0u);
+  }
+  // Sets the push constants (shaderio_frame.h, PassConstants) that every pass's shaders read.
+  void pushPass(VkCommandBuffer cmd, uint32_t pass, uint32_t level = 0);
+  // 1.-2. The counters reset (the late pass: begin_late_pass.comp instead), then instance culling.
+  void recordInstanceCull(VkCommandBuffer cmd, const FrameSettings& settings, uint32_t pass);
   // Lanes that cull one instance: VGEO_CULL_INSTANCE_LANES test a root's children side by side (a shorter
   // chain in front of the traversal of a small scene); in large scenes one, as the reservations of many
   // more workgroups on one counter cost more than that; on lavapipe one (a CPU's SIMD lanes gain nothing
@@ -170,8 +193,22 @@ class GpuRenderer {
   }
   void recordTraversal(VkCommandBuffer cmd, const FrameSettings& settings);
   void recordTriangleCull(VkCommandBuffer cmd, bool patches);
-  void recordSoftwareRaster(VkCommandBuffer cmd, bool patches);
-  void recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings, bool bare);
+  void recordSoftwareRaster(VkCommandBuffer cmd, bool patches, bool clear);
+  void recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings, bool bare, uint32_t pass);
+  void recordDepthPyramid(VkCommandBuffer cmd);
+  // The pyramid levels a workgroup's tile reduces to in shared memory (build_depth_pyramid.comp): 1 on
+  // lavapipe, where each of the tile's barriers costs more than the one workgroup's work above it.
+  uint32_t pyramidTileLevels() const { return vk_.isLavapipe() ? 1u : 5u; }
+  // Whether a frame with these settings culls by occlusion (two passes): it must draw, the overdraw view
+  // shows every layer (its compute rasterizers count instead of keeping depth), and the late pass's first
+  // items may be clusters (runs of one), which only the persistent traversal takes.
+  bool occludes(const FrameSettings& s) const {
+    return s.occlusion && s.draw && s.mode != VGEO_MODE_OVERDRAW && s.traversal == Traversal::Persistent;
+  }
+  // Whether the depth pyramid was drawn from this camera: a frozen cut needs it from the camera it froze at.
+  bool pyramidDrawnFrom(const View& view) const {
+    return pyramidMade_ && pyramidView_.viewProjection == view.viewProjection;
+  }
   void recordResolve(VkCommandBuffer cmd, uint32_t mode, bool patches, bool bare);
   VkPipeline computePipeline(const uint32_t* code, size_t bytes, const VkSpecializationInfo* specialization = nullptr);
   VkPipeline resolvePipeline(uint32_t mode, bool patches, bool everyPixel);
@@ -213,17 +250,26 @@ class GpuRenderer {
       uint64_t(kDefaultFrameMemoryMiB)
       << 20;  // the last frame's counters.cullItems: sizes the persistent traversal's first claim
 
+  Buffer visibilityReadback_, patchListReadback_;  // host-visible, made when first asked for
   Buffer frameData_, counters_, countersReadback_, queue_, drawList_, drawListReadback_, imageReadback_, triangleList_,
       patchList_, patchDraws_, patchEntries_, visibility_, overdraw_, patchGrid_,
-      workerProfile_;                                      // host-visible; a placeholder until a frame is profiled
+      depthPyramid_,      // built from what the early pass drew (build_depth_pyramid.comp)
+      instanceDeferred_,  // a word an instance: the early pass left it to the late one
+      deferredItems_,     // queue items the early pass left to the late one (the queue's capacity)
+      workerProfile_;     // host-visible; a placeholder until a frame is profiled
   std::vector<std::pair<uint32_t, Buffer>> sceneBuffers_;  // the scene's arrays, uploaded once, by binding
   Buffer sceneArrays_;                                     // their addresses (VGEO_BINDING_SCENE)
   bool sceneByAddress_ = false;  // an array passes maxStorageBufferRange: the shaders' by-address variant
+  uint32_t pyramidLevels_ = 0;
+  uint32_t pyramidOffsets_[VGEO_PYRAMID_MAX_LEVELS] = {};
+  bool pyramidMade_ = false;  // depthPyramid_ holds a picture, drawn from pyramidView_
+  View pyramidView_;
   VkImage color_ = VK_NULL_HANDLE, depth_ = VK_NULL_HANDLE;
   VkDeviceMemory colorMemory_ = VK_NULL_HANDLE, depthMemory_ = VK_NULL_HANDLE;
   VkImageView colorView_ = VK_NULL_HANDLE, depthView_ = VK_NULL_HANDLE;
   VkRenderPass renderPass_ = VK_NULL_HANDLE, renderPassResolved_ = VK_NULL_HANDLE,
-               renderPassVisibility_ = VK_NULL_HANDLE;  // no attachments: draw_visibility.frag
+               renderPassLoad_ = VK_NULL_HANDLE,  // the late pass's: keeps what the early pass drew
+      renderPassVisibility_ = VK_NULL_HANDLE;     // no attachments: draw_visibility.frag
   VkFramebuffer framebuffer_ = VK_NULL_HANDLE, framebufferVisibility_ = VK_NULL_HANDLE;
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
   VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
@@ -236,7 +282,8 @@ class GpuRenderer {
              cullSmallClusters_ = VK_NULL_HANDLE, preparePatches_ = VK_NULL_HANDLE, cullPatches_ = VK_NULL_HANDLE,
              finalizeTriangles_ = VK_NULL_HANDLE, drawOverdraw_ = VK_NULL_HANDLE, drawPatches_ = VK_NULL_HANDLE,
              drawPatchesOverdraw_ = VK_NULL_HANDLE, rasterSoftware_ = VK_NULL_HANDLE, rasterPatches_ = VK_NULL_HANDLE,
-             drawVisibility_ = VK_NULL_HANDLE, drawGridVisibility_ = VK_NULL_HANDLE;
+             drawVisibility_ = VK_NULL_HANDLE, drawGridVisibility_ = VK_NULL_HANDLE,
+             buildDepthPyramid_ = VK_NULL_HANDLE, beginLatePass_ = VK_NULL_HANDLE, queueDeferred_ = VK_NULL_HANDLE;
   // resolve.comp, one pipeline a view, made when first used (a shader with only its view's code: lavapipe
   // runs every line of a shader whatever branch its lanes take, docs/gpu-notes.md 17).
   // [view][whether patches are in the visibility buffer][whether every pixel is (no render-pass attachments)]

@@ -12,6 +12,7 @@ namespace vgeo {
 
 struct CutEntry {
   uint32_t instance, cluster;
+  bool operator==(const CutEntry& o) const { return instance == o.instance && cluster == o.cluster; }
 };
 struct SceneCut {
   std::vector<CutEntry> entries;     // drawn, with every test clear of its boundary
@@ -19,7 +20,9 @@ struct SceneCut {
 };
 // The cut the GPU must produce for the cull view `cull` and `tau` (pixels); `epsilon` is relative.
 SceneCut selectSceneCut(const RenderScene& scene, const View& cull, float tau, float epsilon = 1e-5f);
-// True when the GPU list equals the reference as a set, borderline entries either way; else says why.
-bool compareCuts(const SceneCut& reference, std::vector<CutEntry> gpu, std::string& firstDifference);
+// True when the GPU list equals the reference as a set, borderline entries either way (with `subset`, when
+// it is a subset of it: occlusion culling lists only what it found not hidden); else says why.
+bool compareCuts(const SceneCut& reference, std::vector<CutEntry> gpu, std::string& firstDifference,
+                 bool subset = false);
 
 }  // namespace vgeo

@@ -340,13 +340,21 @@ void finishScene(RenderScene& scene) {
   scene.boxMax = hi;
 }
 
-RenderScene makeBenchScene(const RenderScene& base, uint32_t count, bool scatter, uint64_t seed) {
+BenchLayout benchLayoutNamed(const std::string& name) {
+  if (name == "grid") return BenchLayout::Grid;
+  if (name == "scatter") return BenchLayout::Scatter;
+  if (name == "forest") return BenchLayout::Forest;
+  throw std::runtime_error("unknown layout '" + name + "' (grid, scatter or forest)");
+}
+
+RenderScene makeBenchScene(const RenderScene& base, uint32_t count, BenchLayout layout, uint64_t seed) {
   RenderScene scene;
   scene.data = base.data;
   scene.data.instances.clear();
   const auto& g = base.data.geometries[0];
   const bool closed = g.flags & VGEO_GEOMETRY_CLOSED;
-  const float spacing = 2.5f * g.boundsSphere.w;
+  const bool scatter = layout == BenchLayout::Scatter, forest = layout == BenchLayout::Forest;
+  const float spacing = (forest ? 1.1f : 2.5f) * g.boundsSphere.w;
   const uint32_t side = uint32_t(std::ceil(std::sqrt(double(std::max(count, 1u)))));
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
@@ -357,6 +365,12 @@ RenderScene makeBenchScene(const RenderScene& base, uint32_t count, bool scatter
     if (scatter) {
       at = glm::vec3((unit(rng) - 0.5f) * float(side) * spacing, 0.0f, (unit(rng) - 0.5f) * float(side) * spacing);
       float scale = 0.7f + 0.6f * unit(rng);
+      m = glm::translate(glm::mat4(1.0f), at) *
+          glm::rotate(glm::mat4(1.0f), 6.2831853f * unit(rng), glm::vec3(0, 1, 0)) *
+          glm::scale(glm::mat4(1.0f), glm::vec3(scale)) * glm::translate(glm::mat4(1.0f), -glm::vec3(g.boundsSphere));
+    } else if (forest) {
+      at += glm::vec3(unit(rng) - 0.5f, 0.0f, unit(rng) - 0.5f) * (0.3f * spacing);
+      float scale = 0.85f + 0.3f * unit(rng);
       m = glm::translate(glm::mat4(1.0f), at) *
           glm::rotate(glm::mat4(1.0f), 6.2831853f * unit(rng), glm::vec3(0, 1, 0)) *
           glm::scale(glm::mat4(1.0f), glm::vec3(scale)) * glm::translate(glm::mat4(1.0f), -glm::vec3(g.boundsSphere));

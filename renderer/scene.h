@@ -31,8 +31,12 @@ RenderScene loadRenderScene(const std::string& path, uint32_t grid = 1);
 uint32_t appendVgeo(VgeoData& dst, const VgeoData& src);
 // Recomputes the derived fields (depths, bounds, counts) after instances changed.
 void finishScene(RenderScene& scene);
-// `count` instances of the first geometry of `base` (benchmarks): a square grid, or a random scatter
-// (seeded; random yaw and uniform scale 0.7..1.3) over the same area, on the x-z plane.
-RenderScene makeBenchScene(const RenderScene& base, uint32_t count, bool scatter, uint64_t seed);
+// Benchmark layouts: a square grid, a random scatter over the same area (random yaw and uniform scale
+// 0.7..1.3), or a forest: the grid's rows packed at one bounding diameter, each instance jittered, turned
+// and scaled 0.85..1.15, so that from the ground most of it hides behind its first rows.
+enum class BenchLayout { Grid, Scatter, Forest };
+BenchLayout benchLayoutNamed(const std::string& name);  // "grid", "scatter", "forest"; else throws
+// `count` instances of the first geometry of `base` on the x-z plane (benchmarks), seeded.
+RenderScene makeBenchScene(const RenderScene& base, uint32_t count, BenchLayout layout, uint64_t seed);
 
 }  // namespace vgeo

@@ -101,5 +101,8 @@ void vkCheck(VkResult result, const char* what);
 void layoutBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,
                    VkPipelineStageFlags srcStage, VkAccessFlags srcAccess, VkPipelineStageFlags dstStage,
                    VkAccessFlags dstAccess);
+// Records a memory barrier: `srcAccess` in `srcStage` before `dstAccess` in `dstStage`.
+void globalBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessFlags srcAccess,
+                   VkPipelineStageFlags dstStage, VkAccessFlags dstAccess);
 
 }  // namespace vgeo

@@ -9,7 +9,7 @@ bash scripts/setup.sh
 CC=clang CXX=clang++ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVGEO_SANITIZE=ON -DVGEO_FUZZ=ON >/dev/null
 cmake --build build-asan -j "$(nproc)" >/dev/null
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-gpu='^(Render|Rasters/RenderPatches|RenderInstances|RenderLargeScenes|BenchCut|BenchFrame|CommandLine)\.|^Normals\.GltfFaceNormals'
+gpu='^(Render|Rasters/RenderPatches|RenderInstances|RenderLargeScenes|RenderOcclusion|BenchCut|BenchFrame|CommandLine)\.|^Normals\.GltfFaceNormals'
 ctest --test-dir build-asan -j "$(nproc)" --output-on-failure -E "$gpu"
 # lavapipe's LLVM JIT keeps memory to the end of the process; none of it is the project's, so leak
 # checks are off for the tests that draw.

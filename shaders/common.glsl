@@ -8,6 +8,8 @@
 #include "shaderio.h"
 
 layout(set = 0, binding = VGEO_BINDING_FRAME) uniform FrameBlock { FrameData frame; };
+// Which pass of the frame this is (VGEO_PASS_*: two with occlusion culling, shaderio_frame.h).
+layout(push_constant) uniform PassBlock { PassConstants passConstants; };
 
 // The scene's arrays: each at a binding of its own, or in the VGEO_SCENE_BY_ADDRESS variant (scenes with
 // an array past maxStorageBufferRange) by device address (shaderio_frame.h, SceneArrays), each name then

@@ -16,12 +16,13 @@ layout(local_size_x = VGEO_CULL_WORKGROUP) in;
 #include "cull_instances.glsl"
 
 #ifdef VGEO_CULL_SERIAL
-shared uint sVisible, sPending, sQueueEnd;
+shared uint sVisible, sOccluded, sPending, sQueueEnd;
 
 void main() {
   beginStats();
   if (gl_LocalInvocationIndex == 0u) {
     sVisible = 0u;
+    sOccluded = 0u;
     sPending = 0u;
     sQueueEnd = 0u;
   }
@@ -29,7 +30,8 @@ void main() {
   uint instance = gl_GlobalInvocationID.x;
   Instance inst;
   Geometry g;
-  if (instanceVisible(instance, inst, g)) {
+  bool occluded;
+  if (instanceVisible(instance, inst, g, occluded)) {
     atomicAdd(sVisible, 1u);
     if (frame.queueRoots != 0u) {
       writeQueue(reserveQueue(1u), instance, g.nodeOffset);
@@ -39,9 +41,12 @@ void main() {
       if (gQueueEnd != 0u) atomicMax(sQueueEnd, gQueueEnd);
     }
   }
+  if (occluded) atomicAdd(sOccluded, 1u);
   barrier();
   if (gl_LocalInvocationIndex == 0u) {
     if (sVisible != 0u) atomicAdd(counters.visibleInstances, sVisible);
+    if (sOccluded != 0u && passConstants.pass == VGEO_PASS_EARLY) atomicAdd(counters.deferredInstances, sOccluded);
+    if (sOccluded != 0u && passConstants.pass == VGEO_PASS_LATE) atomicAdd(counters.occludedInstances, sOccluded);
     if (sPending != 0u) atomicAdd(counters.nodesPending, sPending);
     if (sQueueEnd != 0u) atomicMax(counters.cullItems, sQueueEnd);  // not waited on
   }

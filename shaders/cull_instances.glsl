@@ -15,14 +15,28 @@
 // budget cannot cover them, they are walked (and the slots reserved for their runs but the first are
 // VGEO_ITEM_SKIP).
 
-// Instance `instance`, when its bounds meet the cull frustum.
-bool instanceVisible(uint instance, out Instance inst, out Geometry g) {
+// The limit surface of a leaf drawn as patches lies off its vertices by up to its chord error, a small
+// fraction of the mesh: occlusion tests instance bounds grown by this much.
+const float kInstancePatchSlack = 1.01;
+
+// Instance `instance`, when its bounds meet the cull frustum and the depth pyramid does not hide them: the
+// early pass flags those it hides (instanceDeferred, every instance written), the late pass takes only
+// those and tests them again. `occluded`: hidden (counted).
+bool instanceVisible(uint instance, out Instance inst, out Geometry g, out bool occluded) {
+  occluded = false;
   if (instance >= frame.instanceCount) return false;
+  if (passConstants.pass == VGEO_PASS_LATE && instanceDeferred[instance] == 0u) return false;
   inst = instances[instance];
   g = geometries[inst.geometry];
   vec4 s = worldSphere(inst, g.boundsSphere);
   s.w *= kPruneSlack;
-  return sphereInFrustum(s);
+  if (!sphereInFrustum(s)) {
+    if (passConstants.pass == VGEO_PASS_EARLY) instanceDeferred[instance] = 0u;
+    return false;
+  }
+  occluded = occlusionTests() && sphereOccluded(vec4(s.xyz, s.w * (frame.drawPatches != 0u ? kInstancePatchSlack : 1.0)));
+  if (passConstants.pass == VGEO_PASS_EARLY) instanceDeferred[instance] = occluded ? 1u : 0u;
+  return !occluded;
 }
 
 #ifndef VGEO_CULL_SERIAL
@@ -34,7 +48,7 @@ const uint kRunBits = 20u;  // sSwept: swept items << kRunBits | their runs
 // Levels of more clusters are walked, so that a workgroup's runs stay under 2^kRunBits (kMaxKept levels of
 // 65,536 clusters: 2^19 runs) and its tests under 2^32.
 const uint kMaxSweptLevel = 65536u;
-shared uint sVisible, sKept, sFirst, sWalked, sWalkedNodes, sSweepTests, sSweep, sSwept, sDropped;
+shared uint sVisible, sOccluded, sKept, sFirst, sWalked, sWalkedNodes, sSweepTests, sSweep, sSwept, sDropped;
 shared uint sKeptInstance[kMaxKept], sKeptCode[kMaxKept], sKeptSlot[kMaxKept];
 shared uint sKeptRunFirst[kMaxKept], sKeptRunCount[kMaxKept];  // the level's cluster run (count 0: none)
 shared uint sSweptList[kMaxKept], sSweptStart[kMaxKept];  // swept items, and their first run in the reservation
@@ -48,6 +62,7 @@ void cullInstancesSpread(uint firstInstance, bool inTraversal) {
   const uint lane = gl_LocalInvocationIndex, lanes = VGEO_CULL_INSTANCE_LANES, part = lane % lanes;
   if (lane == 0u) {
     sVisible = 0u;
+    sOccluded = 0u;
     sKept = 0u;
     sWalked = 0u;
     sWalkedNodes = 0u;
@@ -62,7 +77,8 @@ void cullInstancesSpread(uint firstInstance, bool inTraversal) {
   Geometry g;
   // The root beside the instance record, not after the geometry's (a load less in a row).
   const uvec2 root = instance < frame.instanceCount ? instanceRoots[instance] : uvec2(0u);
-  const bool visible = instanceVisible(instance, inst, g);
+  bool occluded;
+  const bool visible = instanceVisible(instance, inst, g, occluded);
   if (frame.queueRoots == 0u && visible) {
     const uint count = root.x & ~VGEO_NODE_LEAF_BIT;
     const bool leaf = (root.x & VGEO_NODE_LEAF_BIT) != 0u;
@@ -70,7 +86,7 @@ void cullInstancesSpread(uint firstInstance, bool inTraversal) {
       uint child = root.y + i;
       uvec2 run = frame.sweepBudget != 0u && !leaf ? levelClusterRuns[child] : uvec2(0u);
       if (run.y > kMaxSweptLevel) run = uvec2(0u);
-      if (childMayHoldDrawn(inst, child, leaf)) {
+      if (childMayHoldDrawn(instance, inst, child, leaf)) {
         uint k = atomicAdd(sKept, 1u);
         sKeptInstance[k] = instance;
         sKeptCode[k] = childItem(child, leaf);
@@ -88,6 +104,7 @@ void cullInstancesSpread(uint firstInstance, bool inTraversal) {
       }
     }
   }
+  if (occluded && part == 0u) atomicAdd(sOccluded, 1u);
   if (visible && part == 0u) {
     atomicAdd(sVisible, 1u);
     if (frame.queueRoots != 0u) writeQueue(reserveQueue(1u), instance, g.nodeOffset);
@@ -100,6 +117,8 @@ void cullInstancesSpread(uint firstInstance, bool inTraversal) {
   const uint sweptItems = sSwept >> kRunBits, runs = sSwept & ((1u << kRunBits) - 1u);
   if (lane == 0u) {
     if (sVisible != 0u) atomicAdd(counters.visibleInstances, sVisible);
+    if (sOccluded != 0u && passConstants.pass == VGEO_PASS_EARLY) atomicAdd(counters.deferredInstances, sOccluded);
+    if (sOccluded != 0u && passConstants.pass == VGEO_PASS_LATE) atomicAdd(counters.occludedInstances, sOccluded);
     uint claimed = 0u;
     if (sSweepTests != 0u) claimed = atomicAdd(counters.sweepTests, sSweepTests);
     if (runs + sWalked != 0u) {

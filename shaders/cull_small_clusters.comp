@@ -40,7 +40,7 @@ void loadEntry(uint firstEntry, uint k) {
 
 void main() {
   uint listed = min(counters.drawCount, frame.drawCapacity);
-  uint firstEntry = (gl_WorkGroupID.y * 65535u + gl_WorkGroupID.x) * VGEO_PACKED_CULL_ENTRIES;
+  uint firstEntry = counters.drawBase + (gl_WorkGroupID.y * 65535u + gl_WorkGroupID.x) * VGEO_PACKED_CULL_ENTRIES;
   if (firstEntry >= listed) return;  // the whole workgroup
   uint lane = gl_LocalInvocationIndex;
   uint entries = min(VGEO_PACKED_CULL_ENTRIES, listed - firstEntry);

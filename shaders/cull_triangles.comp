@@ -22,7 +22,7 @@ layout(local_size_x = VGEO_MAX_CLUSTER_TRIANGLES) in;
 #include "cull_triangles.glsl"
 
 void main() {
-  uint entry = gl_WorkGroupID.y * 65535u + gl_WorkGroupID.x;
+  uint entry = counters.drawBase + gl_WorkGroupID.y * 65535u + gl_WorkGroupID.x;  // this pass's entries
   if (entry >= min(counters.drawCount, frame.drawCapacity)) return;  // the whole workgroup
   if (gl_LocalInvocationIndex == 0u) {
     sKeptTriangles = 0u;

@@ -4,10 +4,11 @@
 // maxComputeWorkGroupCount a device may have), or, without triangle culling, the indirect draw of 384
 // vertices an entry. One invocation calls it: finalize.comp (levels), the flat traversal's reset pass,
 // or the persistent traversal's last worker to leave, so the last two need no dispatch of its own.
+// With occlusion culling the late pass's entries follow the early pass's (counters.drawBase on).
 void writeDrawArguments() {
-  uint listed = min(atomicOr(counters.drawCount, 0u), frame.drawCapacity);
+  uint total = min(atomicOr(counters.drawCount, 0u), frame.drawCapacity), listed = total - counters.drawBase;
   // Clusters of few triangles on average (far instances' roots) share workgroups where that pays.
-  bool packed = listed > 0u && atomicOr(counters.triangles, 0u) / listed < frame.packedCullBelow;
+  bool packed = listed > 0u && atomicOr(counters.triangles, 0u) / total < frame.packedCullBelow;
   uint packedWorkgroups = packed ? (listed + VGEO_PACKED_CULL_ENTRIES - 1u) / VGEO_PACKED_CULL_ENTRIES : 0u;
   uint workgroups = packed ? 0u : listed;
   counters.dispatch[0] = min(workgroups, 65535u);
@@ -19,6 +20,6 @@ void writeDrawArguments() {
   counters.draw[0] = 3u * VGEO_MAX_CLUSTER_TRIANGLES;
   counters.draw[1] = frame.triangleCull != 0u ? 0u : listed;
   counters.draw[2] = 0u;
-  counters.draw[3] = 0u;
+  counters.draw[3] = counters.drawBase;  // first instance: draw.vert's instance i is entry i
   counters.queueHighWater = atomicOr(counters.queueWrite, 0u);  // the queue is never reused within a frame
 }

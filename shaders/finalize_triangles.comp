@@ -11,8 +11,9 @@ layout(local_size_x = 1) in;
 
 void main() {
   uint hardware = counters.hardwareTriangles, software = counters.softwareTriangles;
-  counters.trianglesDrawn = hardware + software;
-  if (hardware + software > frame.triangleCapacity) counters.triangleOverflow = hardware + software - frame.triangleCapacity;
+  // Summed over the passes of a frame with occlusion culling (the late one lists its own from the start).
+  counters.trianglesDrawn += hardware + software;
+  if (hardware + software > frame.triangleCapacity) counters.triangleOverflow += hardware + software - frame.triangleCapacity;
   uint listed = min(hardware, frame.triangleCapacity);
   uint workgroups = (min(software, frame.triangleCapacity) + 63u) / 64u;
   counters.rasterDispatch[0] = min(workgroups, 65535u);

@@ -8,9 +8,9 @@ layout(local_size_x = 64) in;
 #include "draw_arguments.glsl"
 
 void main() {
-  uint slot = gl_GlobalInvocationID.x;
-  if (slot == 0u) writeDrawArguments();
-  if (slot >= counters.visibleInstances || slot >= frame.queueCapacity) return;
+  uint slot = counters.queueBase + gl_GlobalInvocationID.x;
+  if (gl_GlobalInvocationID.x == 0u) writeDrawArguments();
+  if (gl_GlobalInvocationID.x >= counters.visibleInstances || slot >= frame.queueCapacity) return;
   queue[2 * slot] = VGEO_INVALID;
   queue[2 * slot + 1] = VGEO_INVALID;
   atomicAdd(counters.itemsDone, 1u);

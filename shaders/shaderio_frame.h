@@ -103,13 +103,45 @@ VGEO_NAMESPACE_BEGIN
 #define VGEO_BINDING_INSTANCE_ROOTS 23
 #define VGEO_BINDING_VISIBILITY 24
 #define VGEO_BINDING_OVERDRAW 25
-#define VGEO_BINDING_COLOR_IMAGE 26    // the frame's colour target as a storage image (resolve.comp writes it)
-#define VGEO_BINDING_DEPTH_IMAGE 27    // the hardware draws' depth, sampled (resolve.comp compares with it)
-#define VGEO_BINDING_PATCH_ENTRIES 28  // draw-list entries of patch-drawn clusters (cull_triangles.comp)
-#define VGEO_BINDING_PATCH_GRID 29     // the compute-rasterized patches' grid points (raster_patches.comp)
-#define VGEO_BINDING_PATCH_DRAWS 30    // a VkDrawIndirectCommand a hardware patch slot (patch_grid.vert)
-#define VGEO_BINDING_SCENE 31          // SceneArrays (a uniform buffer)
-#define VGEO_BINDING_COUNT 32
+#define VGEO_BINDING_COLOR_IMAGE 26        // the frame's colour target as a storage image (resolve.comp writes it)
+#define VGEO_BINDING_DEPTH_IMAGE 27        // the hardware draws' depth, sampled (resolve.comp compares with it)
+#define VGEO_BINDING_PATCH_ENTRIES 28      // draw-list entries of patch-drawn clusters (cull_triangles.comp)
+#define VGEO_BINDING_PATCH_GRID 29         // the compute-rasterized patches' grid points (raster_patches.comp)
+#define VGEO_BINDING_PATCH_DRAWS 30        // a VkDrawIndirectCommand a hardware patch slot (patch_grid.vert)
+#define VGEO_BINDING_SCENE 31              // SceneArrays (a uniform buffer)
+#define VGEO_BINDING_DEPTH_PYRAMID 32      // the depth pyramid (build_depth_pyramid.comp)
+#define VGEO_BINDING_INSTANCE_DEFERRED 33  // a word an instance: 1 when the early pass left it to the late one
+#define VGEO_BINDING_DEFERRED_ITEMS 34     // queue items the early pass left to the late one
+#define VGEO_BINDING_COUNT 35
+
+// Two-pass occlusion culling (docs/design.md, "Occlusion culling"). Every pass of a frame knows which of
+// the two it belongs to from its push constants (PassConstants): VGEO_PASS_ONLY in a frame without
+// occlusion culling. VGEO_PASS_EARLY selects as usual but tests instances, nodes, groups and clusters
+// against the depth pyramid of the last frame (with that frame's camera): what it hides is not drawn but
+// deferred (instances flagged, the rest listed as queue items); the early pass draws the rest. Then the
+// pyramid is built from what it drew, and VGEO_PASS_LATE takes up the deferred instances and items, tests
+// them and everything below them against it (now with this frame's camera), and draws what it does not
+// hide. Patches are culled and drawn in the late pass only (the early pass lists their entries).
+#define VGEO_PASS_ONLY 0u
+#define VGEO_PASS_EARLY 1u
+#define VGEO_PASS_LATE 2u
+// The depth pyramid: level 0 is the picture's nearest depth a pixel (reversed depth: larger is nearer;
+// 0 where nothing was drawn), level k holds for each texel the farthest of its 2x2 texels below, over a
+// (width >> k) x (height >> k) grid rounded up; levels one after another in one float buffer
+// (FrameData.pyramidOffsets).
+#define VGEO_PYRAMID_MAX_LEVELS 16
+// FrameData.pyramidSources: where the early pass left its depth.
+#define VGEO_PYRAMID_FROM_VISIBILITY 1u   // the visibility buffer (compute rasterizers, bare render pass)
+#define VGEO_PYRAMID_FROM_DEPTH_IMAGE 2u  // the render pass's depth target
+// FrameData.occlusion
+#define VGEO_OCCLUSION_OFF 0u
+#define VGEO_OCCLUSION_ON 1u      // two passes, the pyramid built between them
+#define VGEO_OCCLUSION_FROZEN 2u  // two passes, both against the pyramid of the camera the cut froze at
+
+struct PassConstants {
+  uint pass;   // VGEO_PASS_*
+  uint level;  // build_depth_pyramid.comp: the level it writes
+};
 
 // The scene's arrays (VGEO_BINDING_SCENE), each a device address as two words (low, high), in the
 // order of the .vgeo sections, then two the renderer makes (scene.h): levelClusterRuns, a BVH node's
@@ -176,6 +208,18 @@ struct FrameData {
   uint patchGridCapacity;   // points in the patch grid (VGEO_BINDING_PATCH_GRID)
   uint packedCullBelow;     // draw lists whose clusters average fewer triangles are culled by
                             // cull_small_clusters.comp (0: never)
+  uint occlusion;           // VGEO_OCCLUSION_*
+  uint pyramidSources;      // VGEO_PYRAMID_FROM_*
+  uint earlyOcclusion;      // 1: the early pass has a pyramid to test against (not the first frame)
+  // The camera the depth pyramid was drawn from, as each pass sees it ([0] early: the last frame's, [1]
+  // late: this frame's cull camera, or both the frozen one's): world to view space (looking down -z), the
+  // projection's scale along x and y (clip xy = scale * view xy) and its near plane.
+  mat4 pyramidViews[2];
+  uvec4 pyramidOffsets[VGEO_PYRAMID_MAX_LEVELS / 4];  // first float of each level of the depth pyramid
+  vec4 pyramidProjections;                            // early x, y, late x, y
+  vec2 pyramidZnear;                                  // early, late
+  uint pyramidLevels;
+  uint pyramidTileLevels;  // build_depth_pyramid.comp: the levels a workgroup's tile reduces to (1 to 5)
 };
 
 // The software rasterizer (raster_software.comp) takes the triangles triangle culling bins to it:
@@ -264,7 +308,19 @@ struct Counters {
   uint patchRasterDispatch[4];  // indirect dispatch of raster_patches.comp, a workgroup a patch
   uint softwarePatchTriangles;  // triangles of the grids raster_patches.comp drew
   uint patchGridPoints;         // grid points patch culling asked for (past patchGridCapacity: tessellator)
-  uint counterPad[1];
+  // Two passes (begin_late_pass.comp): the late pass lists its clusters after the early pass's and its
+  // queue items after them too; what the host reads as the frame's totals is summed from these.
+  uint drawBase;                // the late pass's first draw-list entry (the early pass's listed clusters)
+  uint queueBase;               // the pass's first queue slot (the flat traversal's visible instances)
+  uint earlyVisibleInstances;   // visibleInstances of the early pass
+  uint earlySoftwareTriangles;  // softwareTriangles of the early pass
+  uint earlyBudgetExits;        // budgetExits of the early pass
+  uint deferredItems;           // early pass: queue items left to the late pass (past the queue's capacity:
+                                // overflow, counted in queueOverflow)
+  uint deferredInstances;       // early pass: instances left to the late pass
+  uint occludedInstances;       // late pass: instances hidden by the pyramid
+  uint occludedNodes;           // late pass: BVH nodes and groups hidden by it
+  uint occludedClusters;        // late pass: clusters of the cut hidden by it
 };
 
 // Triangle list entry: draw-list entry << 7 | triangle within its cluster. Patch list entry: two words,
@@ -280,8 +336,10 @@ struct Counters {
 #define VGEO_MAX_DRAW_ENTRIES (1u << 25)
 
 #ifdef __cplusplus
-static_assert(sizeof(FrameData) == 64 + 96 + 32 + 100, "FrameData layout");
-static_assert(sizeof(Counters) == 5 * 128 + 96, "Counters layout");
+static_assert(sizeof(FrameData) == 528, "FrameData layout (std140)");
+static_assert(offsetof(FrameData, pyramidViews) % 16 == 0 && offsetof(FrameData, pyramidProjections) % 16 == 0,
+              "FrameData: std140 alignment");
+static_assert(sizeof(Counters) == 5 * 128 + 96 + 36, "Counters layout");
 static_assert(sizeof(SceneArrays) == 18 * 8, "SceneArrays layout");
 static_assert(offsetof(Counters, itemsDone) == 4 * 128, "Counters: the hot words on lines of their own");
 #endif

@@ -3,6 +3,8 @@
 //   node item:  test the node's children (nodes or groups) and queue those that may hold drawn clusters
 //   group item: test each member cluster with the cut rule and append the drawn ones to the draw list
 
+#include "occlusion.glsl"
+
 // Loop iterations this invocation has run: the persistent traversal leaves before lavapipe's limit.
 uint gLoops = 0u;
 
@@ -10,12 +12,14 @@ uint gLoops = 0u;
 // atomic per workgroup, not per cluster: per-cluster atomics on one address cost the flat traversal
 // 14 ms for 200M clusters on an H200).
 uint gNodes = 0u, gTested = 0u, gTriangles = 0u;
-shared uint sNodes, sTested, sTriangles;
+shared uint sNodes, sTested, sTriangles, sOccludedNodes, sOccludedClusters;
 void beginStats() {
   if (gl_LocalInvocationIndex == 0u) {
     sNodes = 0u;
     sTested = 0u;
     sTriangles = 0u;
+    sOccludedNodes = 0u;
+    sOccludedClusters = 0u;
   }
   barrier();
 }
@@ -24,11 +28,15 @@ void flushStats() {
   if (gNodes != 0u) atomicAdd(sNodes, gNodes);
   if (gTested != 0u) atomicAdd(sTested, gTested);
   if (gTriangles != 0u) atomicAdd(sTriangles, gTriangles);
+  if (gOccludedNodes != 0u) atomicAdd(sOccludedNodes, gOccludedNodes);
+  if (gOccludedClusters != 0u) atomicAdd(sOccludedClusters, gOccludedClusters);
   barrier();
   if (gl_LocalInvocationIndex == 0u) {
     if (sNodes != 0u) atomicAdd(counters.nodesVisited, sNodes);
     if (sTested != 0u) atomicAdd(counters.clustersTested, sTested);
     if (sTriangles != 0u) atomicAdd(counters.triangles, sTriangles);
+    if (sOccludedNodes != 0u) atomicAdd(counters.occludedNodes, sOccludedNodes);
+    if (sOccludedClusters != 0u) atomicAdd(counters.occludedClusters, sOccludedClusters);
   }
 }
 
@@ -99,16 +107,20 @@ uint cutClusterByError(Instance inst, uint cluster, Cluster c) {
   uint patchBit = frame.drawPatches != 0u && c.producer == VGEO_NO_GROUP && self > frame.tau ? VGEO_DRAW_PATCHES_BIT : 0u;
   return cluster | patchBit;
 }
-// Closed, uniformly scaled: a cluster whose every triangle faces away cannot be seen.
-bool coneCulled(Instance inst, ClusterCone cc) {
-  if ((inst.flags & VGEO_INSTANCE_CONE_CULL) == 0u) return false;
-  vec3 axis = normalize(vec3(dot(inst.row0.xyz, cc.cone.xyz), dot(inst.row1.xyz, cc.cone.xyz), dot(inst.row2.xyz, cc.cone.xyz)));
-  return clusterFacesAway(vec4(axis, cc.cone.w), worldSphere(inst, cc.sphere), frame.cullEye.xyz);
+// A cluster of the cut that is not drawn now: closed and uniformly scaled with every triangle facing
+// away, or hidden by the depth pyramid (deferred by the early pass), tested with its own sphere.
+bool clusterHidden(uint instance, uint cluster, Instance inst, Cluster c, ClusterCone cc) {
+  if ((inst.flags & VGEO_INSTANCE_CONE_CULL) != 0u) {
+    vec3 axis = normalize(vec3(dot(inst.row0.xyz, cc.cone.xyz), dot(inst.row1.xyz, cc.cone.xyz), dot(inst.row2.xyz, cc.cone.xyz)));
+    if (clusterFacesAway(vec4(axis, cc.cone.w), worldSphere(inst, cc.sphere), frame.cullEye.xyz)) return true;
+  }
+  return itemHidden(instance, VGEO_ITEM_RUN_BIT | cluster, inst, cc.sphere, c.selfError);
 }
 uint cutCluster(uint instance, uint cluster) {
   Instance inst = instances[instance];
-  uint draw = cutClusterByError(inst, cluster, clusters[cluster]);
-  if (draw == VGEO_INVALID || coneCulled(inst, clusterCones[cluster])) return VGEO_INVALID;
+  Cluster c = clusters[cluster];
+  uint draw = cutClusterByError(inst, cluster, c);
+  if (draw == VGEO_INVALID || clusterHidden(instance, cluster, inst, c, clusterCones[cluster])) return VGEO_INVALID;
   return draw;
 }
 
@@ -117,22 +129,23 @@ void testCluster(uint instance, uint cluster) {
   if (draw != VGEO_INVALID) writeDraw(atomicAdd(counters.drawCount, 1u), instance, draw);
 }
 
-// May anything below this (sphere, error) be drawn? Pruned only when clearly outside the frustum, or when
-// even the largest parent error below projects clearly under tau.
-bool mayHoldDrawn(Instance inst, vec4 sphere, float maxError) {
+// May anything below this (sphere, error) be drawn now? Pruned only when clearly outside the frustum, or
+// when even the largest parent error below projects clearly under tau; not now when hidden by the depth
+// pyramid (queue item `code` of `instance`: deferred by the early pass).
+bool mayHoldDrawn(uint instance, uint code, Instance inst, vec4 sphere, float maxError) {
   vec4 s = worldSphere(inst, sphere);
   s.w *= kPruneSlack;
   if (!sphereInFrustum(s)) return false;
-  return projectedErrorWorld(inst, sphere, maxError) * kPruneSlack > frame.tau;
+  if (!(projectedErrorWorld(inst, sphere, maxError) * kPruneSlack > frame.tau)) return false;
+  return !itemHidden(instance, code, inst, sphere, maxError);
 }
 
 // Child `child` of a node, a group when the node is a leaf: may it hold drawn clusters, and its queue item.
-bool childMayHoldDrawn(Instance inst, uint child, bool leaf) {
-  return leaf ? mayHoldDrawn(inst, groups[child].sphere, groups[child].error)
-              : mayHoldDrawn(inst, nodes[child].sphere, nodes[child].maxError);
-}
 uint childItem(uint child, bool leaf) { return leaf ? (child | VGEO_ITEM_GROUP_BIT) : child; }
-
+bool childMayHoldDrawn(uint instance, Instance inst, uint child, bool leaf) {
+  return leaf ? mayHoldDrawn(instance, childItem(child, leaf), inst, groups[child].sphere, groups[child].error)
+              : mayHoldDrawn(instance, childItem(child, leaf), inst, nodes[child].sphere, nodes[child].maxError);
+}
 // Returns the node items it queued (for counters.nodesPending: instance culling adds them up once a
 // workgroup; the levels traversal does not need them).
 uint processItem(uint instance, uint code) {
@@ -154,7 +167,7 @@ uint processItem(uint instance, uint code) {
   uvec2 keep = uvec2(0u);
   for (uint i = 0u; i < count; i++) {
     gLoops++;
-    if (childMayHoldDrawn(inst, node.childOffset + i, leaf)) keep[i >> 5] |= 1u << (i & 31u);
+    if (childMayHoldDrawn(instance, inst, node.childOffset + i, leaf)) keep[i >> 5] |= 1u << (i & 31u);
   }
   uint kept = bitCount(keep.x) + bitCount(keep.y);
   if (kept == 0u) return 0u;

@@ -160,11 +160,11 @@ uint testChild(uint instance, uint child, uint kind) {
     return cutCluster(instance, child);
   } else if (kind == kGroupChildren) {
     Group g = groups[child];
-    if (mayHoldDrawn(instances[instance], g.sphere, g.error)) {
+    if (mayHoldDrawn(instance, child | VGEO_ITEM_GROUP_BIT, instances[instance], g.sphere, g.error)) {
       gNodes++;
       addEntry(1u, instance, g.clusterOffset, g.clusterCount, kClusters);
     }
-  } else if (childMayHoldDrawn(instances[instance], child, false)) {
+  } else if (childMayHoldDrawn(instance, instances[instance], child, false)) {
     keepItem(instance, child);
   }
   return VGEO_INVALID;
@@ -265,7 +265,7 @@ void runClusterRound(uint round, uint lane) {
       draw[t] = VGEO_INVALID;
       if (child[t] == VGEO_INVALID) continue;
       draw[t] = cutClusterByError(inst[t], child[t], cluster[t]);
-      if (draw[t] != VGEO_INVALID && coneCulled(inst[t], cone[t])) draw[t] = VGEO_INVALID;
+      if (draw[t] != VGEO_INVALID && clusterHidden(drawInstance[t], child[t], inst[t], cluster[t], cone[t])) draw[t] = VGEO_INVALID;
       if (draw[t] != VGEO_INVALID) drawn++;
     }
     uint index;
@@ -356,7 +356,7 @@ void cullInstancesFirst() {
 void claimSlots(uint lane, bool firstClaim) {
   // Beside the first claim: when instance culling queued nothing, nothing will ever be queued (only node
   // items produce items), and the workers leave without reading their slots.
-  if (lane == kWatchLane && firstClaim && frame.claimMode == 0u && frame.cullInTraversal == 0u) sNoItems = counters.queueWrite == 0u ? 1u : 0u;
+  if (lane == kWatchLane && firstClaim && frame.claimMode == 0u && frame.cullInTraversal == 0u) sNoItems = counters.queueWrite == counters.queueBase ? 1u : 0u;
   if (lane == 0u) {
     sExit = kWorkerStays;
     sCount = 0u;

@@ -48,13 +48,15 @@ inline Camera orbit(const RenderScene& scene, float azimuth, float elevation, fl
 }
 
 // A frame of `scene` from `camera` at `width` x `height` (culling from the same view), tau `tau`, with its
-// draw list read back.
+// draw list read back; without occlusion culling, so that the list is the whole cut (the occlusion tests
+// turn it on).
 inline FrameSettings frameSettings(const RenderScene& scene, const Camera& camera, float tau, uint32_t width,
                                    uint32_t height) {
   FrameSettings s;
   s.drawView = s.cullView = makeView(camera, width, height, scene.bounds);
   s.tau = tau;
   s.readDrawList = true;
+  s.occlusion = false;
   return s;
 }
 

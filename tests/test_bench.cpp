@@ -23,7 +23,7 @@ TEST(BenchCut, WritesRecordsOnWhichAllModesAgree) {
   writeVgeo(test::build(test::asset("horned_cube.obj"), 2), dir + "/h.vgeo");
   nlohmann::json records =
       benchRecords("cut " + dir + "/h.vgeo --sizes 1,9 --taus 1,4 --frames 1 --size 160x120", dir + "/cut.json");
-  EXPECT_EQ(records.size(), 2u * 2u * 6u * 2u * 4u);  // layouts x sizes x cameras x taus x modes
+  EXPECT_EQ(records.size(), 2u * 2u * 8u * 2u * 4u);  // layouts x sizes x cameras x taus x modes
   std::map<std::string, std::vector<uint64_t>> drawn;
   for (const auto& rec : records) {
     for (const char* key :
@@ -48,7 +48,8 @@ TEST(BenchFrame, SplitsTheFrameWithAndWithoutTriangleCullingAndPatches) {
   std::string dir = test::tempDir();
   writeVgeo(test::build(test::asset("horned_cube.obj"), 2), dir + "/h.vgeo");
   nlohmann::json records = benchRecords(
-      "frame " + dir + "/h.vgeo --grids 1,3 --sizes 160x120 --cameras corner,surface --frames 1", dir + "/frame.json");
+      "frame " + dir + "/h.vgeo --grids 1,3 --sizes 160x120 --cameras corner,surface --frames 1 --occlusion off",
+      dir + "/frame.json");
   // grids x cameras x (each of --rasters auto,hardware: patches, triangle culling only; then neither)
   constexpr size_t kVariants = 5;
   ASSERT_EQ(records.size(), 2u * 2u * kVariants);
@@ -86,6 +87,30 @@ TEST(BenchFrame, SplitsTheFrameWithAndWithoutTriangleCullingAndPatches) {
   }
   EXPECT_GT(softwareTriangles, 0u);
   EXPECT_EQ(records[2 * kVariants]["instances"].get<int>(), 9);
+}
+
+TEST(BenchFrame, ForestWithAndWithoutOcclusionCulling) {
+  std::string dir = test::tempDir();
+  writeVgeo(test::build(test::asset("horned_cube.obj"), 2), dir + "/h.vgeo");
+  nlohmann::json records = benchRecords("frame " + dir +
+                                            "/h.vgeo --layout forest --grids 8 --sizes 160x120 --cameras "
+                                            "ground,flythrough --path-frames 4 --rasters auto --frames 2",
+                                        dir + "/forest.json");
+  // cameras x (patches, triangle culling only, neither) x occlusion on, off
+  ASSERT_EQ(records.size(), 2u * 3u * 2u);
+  for (size_t i = 0; i < records.size(); i += 2) {
+    const auto &on = records[i], &off = records[i + 1];
+    EXPECT_EQ(on["instances"].get<int>(), 64);
+    EXPECT_TRUE(on["occlusion"].get<bool>());
+    EXPECT_FALSE(off["occlusion"].get<bool>());
+    for (const char* key : {"pyramid_ms", "frame_max_ms", "clusters_median", "early_clusters", "occluded_instances",
+                            "occluded_nodes", "occluded_clusters"})
+      EXPECT_TRUE(on.contains(key)) << key;
+    EXPECT_EQ(on["pixels_covered"], off["pixels_covered"]);  // the same picture
+    EXPECT_LE(on["visible_clusters"].get<uint64_t>(), off["visible_clusters"].get<uint64_t>());
+    EXPECT_EQ(on["frames"].get<int>(), on["camera"] == "flythrough" ? 4 : 2);
+    EXPECT_EQ(off["pyramid_ms"].get<double>(), 0.0);
+  }
 }
 
 TEST(BenchBuild, OneRecordPerMeshSubdivAndThreads) {
