@@ -58,7 +58,7 @@ std::vector<std::pair<std::string, Camera>> cameraPath(const RenderScene& scene,
   // Ground: at the height of the objects' centres, just outside the rows of the near (-z) edge, looking
   // along them; above: high over the near edge, looking down across all of it.
   Camera ground;
-  ground.eye = glm::vec3(c.x + 0.013f * wide, c.y, lo.z - object);
+  ground.eye = glm::vec3(c.x + 0.013f * wide, c.y, lo.z - 4.0f * object);
   ground.target = ground.eye + glm::vec3(0.08f, -0.02f, 1.0f);
   path.push_back({"ground", ground});
   Camera above;

@@ -86,11 +86,13 @@ void GpuRenderer::recordInstanceCull(VkCommandBuffer cmd, const FrameSettings& s
     recordCounterReset(cmd, inTraversal ? uint32_t(scene_.data.instances.size()) : 0u);
   }
   if (inTraversal) return;
-  const uint32_t lanes = cullInstanceLanes(settings),
-                 instancesPerWorkgroup = lanes == 1 ? 64 : VGEO_CULL_SPREAD_WORKGROUP / lanes;
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, lanes == 1 ? cullSerial_ : cull_);
-  vkCmdDispatch(cmd, (uint32_t(scene_.data.instances.size()) + instancesPerWorkgroup - 1) / instancesPerWorkgroup, 1,
-                1);
+  const uint32_t instancesPerWorkgroup = cullInstancesPerWorkgroup(settings);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, instancesPerWorkgroup == 64 ? cullSerial_ : cull_);
+  if (pass == VGEO_PASS_LATE)  // only the instances the early pass deferred
+    vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, lateCullDispatch));
+  else
+    vkCmdDispatch(cmd, (uint32_t(scene_.data.instances.size()) + instancesPerWorkgroup - 1) / instancesPerWorkgroup, 1,
+                  1);
   computeToCompute(cmd);
 }
 

@@ -122,7 +122,7 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
   patchGridCapacity_ = software && vk_.tessellation() && !d.patches.empty() ? 1u << VGEO_PATCH_GRID_OFFSET_BITS : 1u;
   patchGrid_ = vk_.createBuffer(VkDeviceSize(patchGridCapacity_) * 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   // Occlusion culling: the depth pyramid's levels up to one texel (level 0, the pixels, is not stored:
-  // build_depth_pyramid.comp), and the instances' deferral flags.
+  // build_depth_pyramid.comp), and the list of deferred instances.
   uint32_t pyramidFloats = 0;
   for (uint32_t w = width_, h = height_;; w = (w + 1) / 2, h = (h + 1) / 2) {
     if (pyramidLevels_ == VGEO_PYRAMID_MAX_LEVELS) throw std::runtime_error("picture too large for the depth pyramid");
@@ -131,8 +131,8 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
     if (pyramidLevels_ > 1 && w == 1 && h == 1) break;
   }
   depthPyramid_ = vk_.createBuffer(VkDeviceSize(pyramidFloats) * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  instanceDeferred_ = vk_.createBuffer(std::max<VkDeviceSize>(VkDeviceSize(d.instances.size()) * 4, 16),
-                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  deferredInstances_ = vk_.createBuffer(std::max<VkDeviceSize>(VkDeviceSize(d.instances.size()) * 4, 16),
+                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 
   if (vk_.isLavapipe()) {
     claimMode_ = 1;
@@ -222,11 +222,11 @@ GpuRenderer::~GpuRenderer() {
   vkDestroyImage(dev, depth_, nullptr);
   vkFreeMemory(dev, colorMemory_, nullptr);
   vkFreeMemory(dev, depthMemory_, nullptr);
-  for (Buffer* b : {&frameData_,        &counters_,         &countersReadback_,   &queue_,
-                    &drawList_,         &drawListReadback_, &imageReadback_,      &triangleList_,
-                    &patchList_,        &patchDraws_,       &patchEntries_,       &workerProfile_,
-                    &visibility_,       &overdraw_,         &patchGrid_,          &depthPyramid_,
-                    &instanceDeferred_, &deferredItems_,    &visibilityReadback_, &patchListReadback_})
+  for (Buffer* b : {&frameData_,         &counters_,         &countersReadback_,   &queue_,
+                    &drawList_,          &drawListReadback_, &imageReadback_,      &triangleList_,
+                    &patchList_,         &patchDraws_,       &patchEntries_,       &workerProfile_,
+                    &visibility_,        &overdraw_,         &patchGrid_,          &depthPyramid_,
+                    &deferredInstances_, &deferredItems_,    &visibilityReadback_, &patchListReadback_})
     vk_.destroyBuffer(*b);
   for (auto& [binding, b] : sceneBuffers_) vk_.destroyBuffer(b);
   vk_.destroyBuffer(sceneArrays_);
@@ -249,7 +249,7 @@ void GpuRenderer::writeDescriptors() {
   buffers[VGEO_BINDING_OVERDRAW] = &overdraw_;
   buffers[VGEO_BINDING_PATCH_GRID] = &patchGrid_;
   buffers[VGEO_BINDING_DEPTH_PYRAMID] = &depthPyramid_;
-  buffers[VGEO_BINDING_INSTANCE_DEFERRED] = &instanceDeferred_;
+  buffers[VGEO_BINDING_DEFERRED_INSTANCES] = &deferredInstances_;
   buffers[VGEO_BINDING_DEFERRED_ITEMS] = &deferredItems_;
   for (const auto& [binding, b] : sceneBuffers_) buffers[binding] = &b;
   const VkDescriptorImageInfo colorImage{VK_NULL_HANDLE, colorView_, VK_IMAGE_LAYOUT_GENERAL},
@@ -325,6 +325,7 @@ shaderio::FrameData GpuRenderer::frameConstants(const FrameSettings& settings) c
   }
   frame.pyramidLevels = pyramidLevels_;
   frame.pyramidTileLevels = pyramidTileLevels();
+  frame.cullInstancesPerWorkgroup = cullInstancesPerWorkgroup(settings);
   for (uint32_t i = 0; i < pyramidLevels_; i++) frame.pyramidOffsets[i / 4][i % 4] = pyramidOffsets_[i];
   return frame;
 }

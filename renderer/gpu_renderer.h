@@ -191,6 +191,11 @@ class GpuRenderer {
     return !vk_.isLavapipe() && scene_.data.instances.size() <= VGEO_CULL_SPREAD_INSTANCES ? VGEO_CULL_INSTANCE_LANES
                                                                                            : 1;
   }
+  // Instances a workgroup of cull_instances.comp culls: 64 in its serial variant (one lane each), else
+  // VGEO_CULL_SPREAD_WORKGROUP / VGEO_CULL_INSTANCE_LANES.
+  uint32_t cullInstancesPerWorkgroup(const FrameSettings& settings) const {
+    return cullInstanceLanes(settings) == 1 ? 64u : VGEO_CULL_SPREAD_WORKGROUP / VGEO_CULL_INSTANCE_LANES;
+  }
   void recordTraversal(VkCommandBuffer cmd, const FrameSettings& settings);
   void recordTriangleCull(VkCommandBuffer cmd, bool patches);
   void recordSoftwareRaster(VkCommandBuffer cmd, bool patches, bool clear);
@@ -253,10 +258,10 @@ class GpuRenderer {
   Buffer visibilityReadback_, patchListReadback_;  // host-visible, made when first asked for
   Buffer frameData_, counters_, countersReadback_, queue_, drawList_, drawListReadback_, imageReadback_, triangleList_,
       patchList_, patchDraws_, patchEntries_, visibility_, overdraw_, patchGrid_,
-      depthPyramid_,      // built from what the early pass drew (build_depth_pyramid.comp)
-      instanceDeferred_,  // a word an instance: the early pass left it to the late one
-      deferredItems_,     // queue items the early pass left to the late one (the queue's capacity)
-      workerProfile_;     // host-visible; a placeholder until a frame is profiled
+      depthPyramid_,       // built from what the early pass drew (build_depth_pyramid.comp)
+      deferredInstances_,  // the instances the early pass left to the late one (a word each)
+      deferredItems_,      // queue items the early pass left to the late one (the queue's capacity)
+      workerProfile_;      // host-visible; a placeholder until a frame is profiled
   std::vector<std::pair<uint32_t, Buffer>> sceneBuffers_;  // the scene's arrays, uploaded once, by binding
   Buffer sceneArrays_;                                     // their addresses (VGEO_BINDING_SCENE)
   bool sceneByAddress_ = false;  // an array passes maxStorageBufferRange: the shaders' by-address variant

@@ -354,7 +354,7 @@ RenderScene makeBenchScene(const RenderScene& base, uint32_t count, BenchLayout 
   const auto& g = base.data.geometries[0];
   const bool closed = g.flags & VGEO_GEOMETRY_CLOSED;
   const bool scatter = layout == BenchLayout::Scatter, forest = layout == BenchLayout::Forest;
-  const float spacing = (forest ? 1.1f : 2.5f) * g.boundsSphere.w;
+  const float spacing = (forest ? 1.0f : 2.5f) * g.boundsSphere.w;
   const uint32_t side = uint32_t(std::ceil(std::sqrt(double(std::max(count, 1u)))));
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);

@@ -19,7 +19,13 @@ void main() {
   counters.queueBase = base;
   counters.levelStart = base;
   counters.levelEnd = base;
-  counters.nodesPending = frame.cullInTraversal != 0u ? frame.instanceCount : 0u;
+  // The deferred instances: culled by the traversal's workers (each pending until culled), or by
+  // cull_instances.comp over just them.
+  counters.nodesPending = frame.cullInTraversal != 0u ? counters.deferredInstances : 0u;
+  const uint cullWorkgroups = (counters.deferredInstances + frame.cullInstancesPerWorkgroup - 1u) / frame.cullInstancesPerWorkgroup;
+  counters.lateCullDispatch[0] = cullWorkgroups;  // along x, as the early pass's
+  counters.lateCullDispatch[1] = 1u;
+  counters.lateCullDispatch[2] = 1u;
   counters.earlyVisibleInstances = counters.visibleInstances;
   counters.visibleInstances = 0u;
   counters.earlySoftwareTriangles = counters.softwareTriangles;

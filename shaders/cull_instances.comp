@@ -16,18 +16,18 @@ layout(local_size_x = VGEO_CULL_WORKGROUP) in;
 #include "cull_instances.glsl"
 
 #ifdef VGEO_CULL_SERIAL
-shared uint sVisible, sOccluded, sPending, sQueueEnd;
+shared uint sVisible, sPending, sQueueEnd;
 
 void main() {
   beginStats();
   if (gl_LocalInvocationIndex == 0u) {
     sVisible = 0u;
-    sOccluded = 0u;
+    sHidden = 0u;
     sPending = 0u;
     sQueueEnd = 0u;
   }
   barrier();
-  uint instance = gl_GlobalInvocationID.x;
+  uint instance = passInstance(gl_GlobalInvocationID.x);
   Instance inst;
   Geometry g;
   bool occluded;
@@ -41,12 +41,10 @@ void main() {
       if (gQueueEnd != 0u) atomicMax(sQueueEnd, gQueueEnd);
     }
   }
-  if (occluded) atomicAdd(sOccluded, 1u);
-  barrier();
+  const uint hiddenIndex = occluded ? atomicAdd(sHidden, 1u) : 0u;
+  deferHiddenInstances(occluded, hiddenIndex, instance);
   if (gl_LocalInvocationIndex == 0u) {
     if (sVisible != 0u) atomicAdd(counters.visibleInstances, sVisible);
-    if (sOccluded != 0u && passConstants.pass == VGEO_PASS_EARLY) atomicAdd(counters.deferredInstances, sOccluded);
-    if (sOccluded != 0u && passConstants.pass == VGEO_PASS_LATE) atomicAdd(counters.occludedInstances, sOccluded);
     if (sPending != 0u) atomicAdd(counters.nodesPending, sPending);
     if (sQueueEnd != 0u) atomicMax(counters.cullItems, sQueueEnd);  // not waited on
   }

@@ -19,24 +19,32 @@
 // fraction of the mesh: occlusion tests instance bounds grown by this much.
 const float kInstancePatchSlack = 1.01;
 
-// Instance `instance`, when its bounds meet the cull frustum and the depth pyramid does not hide them: the
-// early pass flags those it hides (instanceDeferred, every instance written), the late pass takes only
-// those and tests them again. `occluded`: hidden (counted).
+// Instance `instance`, when its bounds meet the cull frustum and the depth pyramid does not hide them.
+// `occluded`: hidden (the caller defers it in the early pass, counts it in the late one).
 bool instanceVisible(uint instance, out Instance inst, out Geometry g, out bool occluded) {
   occluded = false;
   if (instance >= frame.instanceCount) return false;
-  if (passConstants.pass == VGEO_PASS_LATE && instanceDeferred[instance] == 0u) return false;
   inst = instances[instance];
   g = geometries[inst.geometry];
   vec4 s = worldSphere(inst, g.boundsSphere);
   s.w *= kPruneSlack;
-  if (!sphereInFrustum(s)) {
-    if (passConstants.pass == VGEO_PASS_EARLY) instanceDeferred[instance] = 0u;
-    return false;
-  }
+  if (!sphereInFrustum(s)) return false;
   occluded = occlusionTests() && sphereOccluded(vec4(s.xyz, s.w * (frame.drawPatches != 0u ? kInstancePatchSlack : 1.0)));
-  if (passConstants.pass == VGEO_PASS_EARLY) instanceDeferred[instance] = occluded ? 1u : 0u;
   return !occluded;
+}
+
+// The workgroup's hidden instances: each counts itself in sHidden (reset by the workgroup's first lane
+// before its first barrier), its number there `k`; then every lane calls deferHiddenInstances (barriers):
+// the early pass lists them for the late pass (one reservation), the late pass counts them.
+shared uint sHidden, sDeferredBase;
+void deferHiddenInstances(bool occluded, uint k, uint instance) {
+  barrier();  // every lane's count is in
+  if (gl_LocalInvocationIndex == 0u && sHidden != 0u) {
+    if (passConstants.pass == VGEO_PASS_EARLY) sDeferredBase = atomicAdd(counters.deferredInstances, sHidden);
+    else atomicAdd(counters.occludedInstances, sHidden);
+  }
+  barrier();
+  if (occluded && passConstants.pass == VGEO_PASS_EARLY) deferredInstances[sDeferredBase + k] = instance;
 }
 
 #ifndef VGEO_CULL_SERIAL
@@ -48,7 +56,7 @@ const uint kRunBits = 20u;  // sSwept: swept items << kRunBits | their runs
 // Levels of more clusters are walked, so that a workgroup's runs stay under 2^kRunBits (kMaxKept levels of
 // 65,536 clusters: 2^19 runs) and its tests under 2^32.
 const uint kMaxSweptLevel = 65536u;
-shared uint sVisible, sOccluded, sKept, sFirst, sWalked, sWalkedNodes, sSweepTests, sSweep, sSwept, sDropped;
+shared uint sVisible, sKept, sFirst, sWalked, sWalkedNodes, sSweepTests, sSweep, sSwept, sDropped;
 shared uint sKeptInstance[kMaxKept], sKeptCode[kMaxKept], sKeptSlot[kMaxKept];
 shared uint sKeptRunFirst[kMaxKept], sKeptRunCount[kMaxKept];  // the level's cluster run (count 0: none)
 shared uint sSweptList[kMaxKept], sSweptStart[kMaxKept];  // swept items, and their first run in the reservation
@@ -62,7 +70,7 @@ void cullInstancesSpread(uint firstInstance, bool inTraversal) {
   const uint lane = gl_LocalInvocationIndex, lanes = VGEO_CULL_INSTANCE_LANES, part = lane % lanes;
   if (lane == 0u) {
     sVisible = 0u;
-    sOccluded = 0u;
+    sHidden = 0u;
     sKept = 0u;
     sWalked = 0u;
     sWalkedNodes = 0u;
@@ -72,7 +80,7 @@ void cullInstancesSpread(uint firstInstance, bool inTraversal) {
     sDropped = 0u;
   }
   barrier();
-  uint instance = firstInstance + lane / lanes;
+  uint instance = passInstance(firstInstance + lane / lanes);
   Instance inst;
   Geometry g;
   // The root beside the instance record, not after the geometry's (a load less in a row).
@@ -104,7 +112,8 @@ void cullInstancesSpread(uint firstInstance, bool inTraversal) {
       }
     }
   }
-  if (occluded && part == 0u) atomicAdd(sOccluded, 1u);
+  const bool deferred = occluded && part == 0u;  // one lane an instance
+  const uint hiddenIndex = deferred ? atomicAdd(sHidden, 1u) : 0u;
   if (visible && part == 0u) {
     atomicAdd(sVisible, 1u);
     if (frame.queueRoots != 0u) writeQueue(reserveQueue(1u), instance, g.nodeOffset);
@@ -117,8 +126,6 @@ void cullInstancesSpread(uint firstInstance, bool inTraversal) {
   const uint sweptItems = sSwept >> kRunBits, runs = sSwept & ((1u << kRunBits) - 1u);
   if (lane == 0u) {
     if (sVisible != 0u) atomicAdd(counters.visibleInstances, sVisible);
-    if (sOccluded != 0u && passConstants.pass == VGEO_PASS_EARLY) atomicAdd(counters.deferredInstances, sOccluded);
-    if (sOccluded != 0u && passConstants.pass == VGEO_PASS_LATE) atomicAdd(counters.occludedInstances, sOccluded);
     uint claimed = 0u;
     if (sSweepTests != 0u) claimed = atomicAdd(counters.sweepTests, sSweepTests);
     if (runs + sWalked != 0u) {
@@ -167,6 +174,7 @@ void cullInstancesSpread(uint firstInstance, bool inTraversal) {
   // In the traversal the runs must be seen before the count that lets the workers stop waiting for them.
   if (inTraversal) memoryBarrierBuffer();
   barrier();
+  deferHiddenInstances(deferred, hiddenIndex, instance);
   const uint off = sDropped + (inTraversal ? 1u : 0u);
   if (lane == 0u && off != 0u) atomicAdd(counters.nodesPending, 0u - off);
 }

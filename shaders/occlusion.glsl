@@ -8,7 +8,7 @@
 // so what it hides is hidden in the final picture, and the picture is the same as without the tests.
 
 layout(set = 0, binding = VGEO_BINDING_DEPTH_PYRAMID, std430) readonly buffer DepthPyramidBuffer { float depthPyramid[]; };
-layout(set = 0, binding = VGEO_BINDING_INSTANCE_DEFERRED, std430) buffer InstanceDeferredBuffer { uint instanceDeferred[]; };
+layout(set = 0, binding = VGEO_BINDING_DEFERRED_INSTANCES, std430) buffer DeferredInstanceBuffer { uint deferredInstances[]; };
 // Deferred item i: (instance, code) in deferredItems[2i], [2i + 1], codes as the queue's; a cluster is
 // a sweep run of one (VGEO_ITEM_RUN_BIT).
 layout(set = 0, binding = VGEO_BINDING_DEFERRED_ITEMS, std430) buffer DeferredItemBuffer { uint deferredItems[]; };
@@ -17,6 +17,15 @@ layout(set = 0, binding = VGEO_BINDING_DEFERRED_ITEMS, std430) buffer DeferredIt
 // sphere look farther than what it holds.
 const float kOcclusionSlack = 1.0001;
 
+// The instances a pass culls: every one, or in the late pass those the early pass deferred (their count,
+// counters.deferredInstances, is final before the late pass starts). Index i of the pass to an instance
+// (VGEO_INVALID past the end).
+uint passInstanceCount() { return passConstants.pass == VGEO_PASS_LATE ? counters.deferredInstances : frame.instanceCount; }
+uint passInstance(uint i) {
+  if (passConstants.pass != VGEO_PASS_LATE) return i;
+  return i < counters.deferredInstances ? deferredInstances[i] : VGEO_INVALID;
+}
+
 bool occlusionTests() {
   return passConstants.pass == VGEO_PASS_LATE || (passConstants.pass == VGEO_PASS_EARLY && frame.earlyOcclusion != 0u);
 }
@@ -24,6 +33,11 @@ bool occlusionTests() {
 float pyramidTexel(uint level, uint x, uint y) {
   uint width = (uint(frame.viewportWidth) + (1u << level) - 1u) >> level;
   return depthPyramid[frame.pyramidOffsets[level >> 2u][level & 3u] + y * width + x];
+}
+
+// The farthest of texels x0, x1, x2 of row y of `level`.
+float pyramidRow(uint level, uint x0, uint x1, uint x2, uint y) {
+  return min(min(pyramidTexel(level, x0, y), pyramidTexel(level, x1, y)), pyramidTexel(level, x2, y));
 }
 
 // A sphere's bounds along one screen axis, as (min, max) of clip / w: in the plane of that axis and the
@@ -51,14 +65,16 @@ bool sphereOccluded(vec4 s) {
   vec2 first = floor((lo * 0.5 + 0.5) * size), last = floor((hi * 0.5 + 0.5) * size);
   if (any(greaterThan(first, size - 1.0)) || any(lessThan(last, vec2(0.0)))) return false;  // off screen
   uvec2 p0 = uvec2(max(first, vec2(0.0))), p1 = uvec2(min(last, size - 1.0));
-  // The level where the bounds span at most two texels each way: 2^level >= the span in pixels (at least
-  // level 1, the finest stored).
+  // The level where the bounds span at most three texels each way: 2^(level + 1) >= the span in pixels
+  // (at least level 1, the finest stored): 3 x 3 texels cover at most 1.5 times the bounds each way,
+  // where 2 x 2 at the next level up cover up to twice.
   uint span = max(p1.x - p0.x, p1.y - p0.y);
-  uint level = clamp(span == 0u ? 0u : uint(findMSB(span - 1u) + 1), 1u, frame.pyramidLevels - 1u);  // 0 not stored
+  uint level = clamp(span <= 1u ? 0u : uint(findMSB(span - 1u)), 1u, frame.pyramidLevels - 1u);  // 0 not stored
   p0 >>= level;
   p1 >>= level;
-  float farthest = min(min(pyramidTexel(level, p0.x, p0.y), pyramidTexel(level, p1.x, p0.y)),
-                       min(pyramidTexel(level, p0.x, p1.y), pyramidTexel(level, p1.x, p1.y)));
+  const uvec2 mid = min(p0 + 1u, p1);
+  float farthest = min(min(pyramidRow(level, p0.x, mid.x, p1.x, p0.y), pyramidRow(level, p0.x, mid.x, p1.x, mid.y)),
+                       pyramidRow(level, p0.x, mid.x, p1.x, p1.y));
   // Reversed depth: znear / distance, larger is nearer.
   return znear / (depth - r) * kOcclusionSlack < farthest;
 }

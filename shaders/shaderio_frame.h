@@ -103,22 +103,22 @@ VGEO_NAMESPACE_BEGIN
 #define VGEO_BINDING_INSTANCE_ROOTS 23
 #define VGEO_BINDING_VISIBILITY 24
 #define VGEO_BINDING_OVERDRAW 25
-#define VGEO_BINDING_COLOR_IMAGE 26        // the frame's colour target as a storage image (resolve.comp writes it)
-#define VGEO_BINDING_DEPTH_IMAGE 27        // the hardware draws' depth, sampled (resolve.comp compares with it)
-#define VGEO_BINDING_PATCH_ENTRIES 28      // draw-list entries of patch-drawn clusters (cull_triangles.comp)
-#define VGEO_BINDING_PATCH_GRID 29         // the compute-rasterized patches' grid points (raster_patches.comp)
-#define VGEO_BINDING_PATCH_DRAWS 30        // a VkDrawIndirectCommand a hardware patch slot (patch_grid.vert)
-#define VGEO_BINDING_SCENE 31              // SceneArrays (a uniform buffer)
-#define VGEO_BINDING_DEPTH_PYRAMID 32      // the depth pyramid (build_depth_pyramid.comp)
-#define VGEO_BINDING_INSTANCE_DEFERRED 33  // a word an instance: 1 when the early pass left it to the late one
-#define VGEO_BINDING_DEFERRED_ITEMS 34     // queue items the early pass left to the late one
+#define VGEO_BINDING_COLOR_IMAGE 26         // the frame's colour target as a storage image (resolve.comp writes it)
+#define VGEO_BINDING_DEPTH_IMAGE 27         // the hardware draws' depth, sampled (resolve.comp compares with it)
+#define VGEO_BINDING_PATCH_ENTRIES 28       // draw-list entries of patch-drawn clusters (cull_triangles.comp)
+#define VGEO_BINDING_PATCH_GRID 29          // the compute-rasterized patches' grid points (raster_patches.comp)
+#define VGEO_BINDING_PATCH_DRAWS 30         // a VkDrawIndirectCommand a hardware patch slot (patch_grid.vert)
+#define VGEO_BINDING_SCENE 31               // SceneArrays (a uniform buffer)
+#define VGEO_BINDING_DEPTH_PYRAMID 32       // the depth pyramid (build_depth_pyramid.comp)
+#define VGEO_BINDING_DEFERRED_INSTANCES 33  // the instances the early pass left to the late one
+#define VGEO_BINDING_DEFERRED_ITEMS 34      // queue items the early pass left to the late one
 #define VGEO_BINDING_COUNT 35
 
 // Two-pass occlusion culling (docs/design.md, "Occlusion culling"). Every pass of a frame knows which of
 // the two it belongs to from its push constants (PassConstants): VGEO_PASS_ONLY in a frame without
 // occlusion culling. VGEO_PASS_EARLY selects as usual but tests instances, nodes, groups and clusters
 // against the depth pyramid of the last frame (with that frame's camera): what it hides is not drawn but
-// deferred (instances flagged, the rest listed as queue items); the early pass draws the rest. Then the
+// deferred (instances listed, the rest listed as queue items); the early pass draws the rest. Then the
 // pyramid is built from what it drew, and VGEO_PASS_LATE takes up the deferred instances and items, tests
 // them and everything below them against it (now with this frame's camera), and draws what it does not
 // hide. Patches are culled and drawn in the late pass only (the early pass lists their entries).
@@ -219,7 +219,10 @@ struct FrameData {
   vec4 pyramidProjections;                            // early x, y, late x, y
   vec2 pyramidZnear;                                  // early, late
   uint pyramidLevels;
-  uint pyramidTileLevels;  // build_depth_pyramid.comp: the levels a workgroup's tile reduces to (1 to 5)
+  uint pyramidTileLevels;          // build_depth_pyramid.comp: the levels a workgroup's tile reduces to (1 to 5)
+  uint cullInstancesPerWorkgroup;  // cull_instances.comp's variant this frame (begin_late_pass.comp sizes
+                                   // the late pass's dispatch over the deferred instances by it)
+  uint framePad[3];
 };
 
 // The software rasterizer (raster_software.comp) takes the triangles triangle culling bins to it:
@@ -317,7 +320,8 @@ struct Counters {
   uint earlyBudgetExits;        // budgetExits of the early pass
   uint deferredItems;           // early pass: queue items left to the late pass (past the queue's capacity:
                                 // overflow, counted in queueOverflow)
-  uint deferredInstances;       // early pass: instances left to the late pass
+  uint deferredInstances;       // early pass: instances left to the late pass (listed)
+  uint lateCullDispatch[4];     // the late pass's instance culling over them (begin_late_pass.comp)
   uint occludedInstances;       // late pass: instances hidden by the pyramid
   uint occludedNodes;           // late pass: BVH nodes and groups hidden by it
   uint occludedClusters;        // late pass: clusters of the cut hidden by it
@@ -336,10 +340,10 @@ struct Counters {
 #define VGEO_MAX_DRAW_ENTRIES (1u << 25)
 
 #ifdef __cplusplus
-static_assert(sizeof(FrameData) == 528, "FrameData layout (std140)");
+static_assert(sizeof(FrameData) == 544, "FrameData layout (std140)");
 static_assert(offsetof(FrameData, pyramidViews) % 16 == 0 && offsetof(FrameData, pyramidProjections) % 16 == 0,
               "FrameData: std140 alignment");
-static_assert(sizeof(Counters) == 5 * 128 + 96 + 36, "Counters layout");
+static_assert(sizeof(Counters) == 5 * 128 + 96 + 52, "Counters layout");
 static_assert(sizeof(SceneArrays) == 18 * 8, "SceneArrays layout");
 static_assert(offsetof(Counters, itemsDone) == 4 * 128, "Counters: the hot words on lines of their own");
 #endif

@@ -348,7 +348,7 @@ void startWorker() {
 // past the frontier). The host counted every instance in nodesPending and each culling takes its own off,
 // so no worker sees 0 before all are queued.
 void cullInstancesFirst() {
-  for (uint i = gl_WorkGroupID.x; i < frame.instanceCount; i += gl_NumWorkGroups.x) cullInstancesSpread(i, true);
+  for (uint i = gl_WorkGroupID.x; i < passInstanceCount(); i += gl_NumWorkGroups.x) cullInstancesSpread(i, true);
 }
 
 // Claims this iteration's slots for the workgroup (sBase, sCount), or decides that it leaves (sExit,

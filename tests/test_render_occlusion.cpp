@@ -54,26 +54,57 @@ class RenderOcclusion : public test::GpuSuite {
     return r;
   }
 
+  // Whether every cluster the picture without occlusion culling shows (read pixel by pixel from its
+  // visibility buffer) is among those drawn with it.
+  static void expectShownAreDrawn(const FrameResult& with, const FrameResult& without, size_t pose) {
+    auto key = [](const CutEntry& e) { return uint64_t(e.instance) << 32 | e.cluster; };
+    std::vector<uint64_t> drawn;
+    for (const CutEntry& e : with.drawList) drawn.push_back(key(e));
+    std::sort(drawn.begin(), drawn.end());
+    for (const CutEntry& e : without.pixelClusters)
+      EXPECT_TRUE(std::binary_search(drawn.begin(), drawn.end(), key(e)))
+          << "pose " << pose << ": instance " << e.instance << " cluster " << e.cluster << " shows but was not drawn";
+  }
+
   static inline RenderScene* forest = nullptr;
 };
 
 TEST_F(RenderOcclusion, PictureEqualsThePictureWithoutAlongAPath) {
   // Moving in and turning, a jump cut to above and back, a close pose (patches) and the first frame.
-  const std::vector<Camera> path = {ground(0.0f, 0.0f),  ground(0.03f, 0.1f), ground(0.06f, 0.25f),
-                                    ground(0.09f, 0.4f), above(),             ground(0.1f, -0.3f),
-                                    ground(0.12f, 0.0f), ground(0.0f, 0.05f)};
-  for (Raster raster : {Raster::Auto, Raster::Software}) {
+  const std::vector<Camera> path = {
+      ground(0.0f, 0.0f),  ground(0.03f, 0.1f), ground(0.06f, 0.25f), ground(0.09f, 0.4f), above(),
+      ground(0.1f, -0.3f), ground(0.12f, 0.0f), ground(0.0f, 0.05f)};
+  // Both rasterizers; instance culling one lane an instance, spread over lanes, and in the traversal.
+  struct Config {
+    Raster raster;
+    uint32_t cullLanes;
+    InstanceCulling culling;
+  };
+  for (const Config& config :
+       {Config{Raster::Auto, 0, InstanceCulling::Auto}, Config{Raster::Software, 1, InstanceCulling::Pass},
+        Config{Raster::Auto, VGEO_CULL_INSTANCE_LANES, InstanceCulling::Pass},
+        Config{Raster::Auto, VGEO_CULL_INSTANCE_LANES, InstanceCulling::InTraversal}}) {
     GpuRenderer occluding(*vk, *forest, kW, kH), plain(*vk, *forest, kW, kH);
     uint64_t hidden = 0;
     uint32_t drawnWith = 0, drawnWithout = 0;
     for (size_t i = 0; i < path.size(); i++) {
       for (uint32_t mode : {VGEO_MODE_LIT, VGEO_MODE_CLUSTER}) {
+        if (mode != VGEO_MODE_LIT && config.culling != InstanceCulling::Auto) continue;
         FrameSettings with = settings(path[i], true), without = settings(path[i], false);
-        with.raster = without.raster = raster;
+        with.raster = without.raster = config.raster;
+        with.cullLanes = without.cullLanes = config.cullLanes;
+        with.instanceCulling = without.instanceCulling = config.culling;
         with.mode = without.mode = mode;
+        without.readPixelClusters = config.raster == Raster::Software;  // every pixel in the visibility buffer
         const FrameResult a = complete(occluding, with), b = complete(plain, without);
+        if (without.readPixelClusters) {
+          EXPECT_TRUE(b.bareRenderPass);
+          expectShownAreDrawn(a, b, i);
+        }
         ASSERT_TRUE(a.occlusion);
-        EXPECT_TRUE(a.rgba == b.rgba) << "pose " << i << " mode " << mode << " raster " << int(raster);
+        EXPECT_EQ(a.culledInTraversal, config.culling == InstanceCulling::InTraversal);
+        EXPECT_TRUE(a.rgba == b.rgba) << "pose " << i << " mode " << mode << " raster " << int(config.raster)
+                                      << " culling " << int(config.culling);
         std::string difference;
         EXPECT_TRUE(compareCuts(selectSceneCut(*forest, with.cullView, 1.0f), a.drawList, difference, true))
             << "pose " << i << ": " << difference;
@@ -102,13 +133,7 @@ TEST_F(RenderOcclusion, EveryClusterThePictureShowsIsDrawn) {
     const FrameResult a = complete(occluding, with), b = complete(plain, without);
     ASSERT_TRUE(b.bareRenderPass);
     ASSERT_GT(b.pixelClusters.size(), 10u);
-    std::vector<CutEntry> drawn = a.drawList;
-    auto key = [](const CutEntry& e) { return uint64_t(e.instance) << 32 | e.cluster; };
-    std::sort(drawn.begin(), drawn.end(), [&](const CutEntry& x, const CutEntry& y) { return key(x) < key(y); });
-    for (const CutEntry& e : b.pixelClusters)
-      EXPECT_TRUE(std::binary_search(drawn.begin(), drawn.end(), e,
-                                     [&](const CutEntry& x, const CutEntry& y) { return key(x) < key(y); }))
-          << "instance " << e.instance << " cluster " << e.cluster << " shows but was not drawn";
+    expectShownAreDrawn(a, b, 0);
     EXPECT_LT(a.drawList.size(), b.drawList.size());
   }
 }
