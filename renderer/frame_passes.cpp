@@ -96,7 +96,7 @@ void GpuRenderer::recordInstanceCull(VkCommandBuffer cmd, const FrameSettings& s
   computeToCompute(cmd);
 }
 
-void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& settings) {
+void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& settings, uint32_t pass) {
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
   // 3. Traversal. Every pass is followed by a barrier before the next reads what it wrote; the last one
   // writes the draw arguments (4., draw_arguments.glsl: the persistent traversal's last worker, the flat
@@ -115,7 +115,13 @@ void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& sett
     computeToCompute(cmd);
   };
   if (settings.traversal == Traversal::Persistent) {
-    lastPass(settings.profileWorkers && persistentProfile_ ? persistentProfile_ : persistent_, persistentWorkgroups_);
+    const VkPipeline pipeline = settings.profileWorkers && persistentProfile_ ? persistentProfile_ : persistent_;
+    if (pass == VGEO_PASS_LATE) {  // no workers when the early pass deferred nothing (begin_late_pass.comp)
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+      vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, lateTraversalDispatch));
+    } else {
+      lastPass(pipeline, persistentWorkgroups_);
+    }
   } else if (settings.traversal == Traversal::Levels) {
     // The roots' children (queued by instance culling), one level of nodes per dispatch, then the groups:
     // depth windows.

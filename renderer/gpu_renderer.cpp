@@ -326,6 +326,7 @@ shaderio::FrameData GpuRenderer::frameConstants(const FrameSettings& settings) c
   frame.pyramidLevels = pyramidLevels_;
   frame.pyramidTileLevels = pyramidTileLevels();
   frame.cullInstancesPerWorkgroup = cullInstancesPerWorkgroup(settings);
+  frame.persistentWorkgroups = persistentWorkgroups_;
   for (uint32_t i = 0; i < pyramidLevels_; i++) frame.pyramidOffsets[i / 4][i % 4] = pyramidOffsets_[i];
   return frame;
 }
@@ -350,7 +351,8 @@ void GpuRenderer::runPasses(const FrameSettings& settings, const shaderio::Frame
                softwarePatches = frame.softwarePatches != 0u && pass != VGEO_PASS_EARLY;
     passes.push_back(
         {&result.instanceCullMs, pass, [&, pass](VkCommandBuffer cmd) { recordInstanceCull(cmd, settings, pass); }});
-    passes.push_back({&result.traversalMs, pass, [&](VkCommandBuffer cmd) { recordTraversal(cmd, settings); }});
+    passes.push_back(
+        {&result.traversalMs, pass, [&, pass](VkCommandBuffer cmd) { recordTraversal(cmd, settings, pass); }});
     if (frame.triangleCull != 0u)
       passes.push_back(
           {&result.triangleCullMs, pass, [this, patches](VkCommandBuffer cmd) { recordTriangleCull(cmd, patches); }});

@@ -196,7 +196,7 @@ class GpuRenderer {
   uint32_t cullInstancesPerWorkgroup(const FrameSettings& settings) const {
     return cullInstanceLanes(settings) == 1 ? 64u : VGEO_CULL_SPREAD_WORKGROUP / VGEO_CULL_INSTANCE_LANES;
   }
-  void recordTraversal(VkCommandBuffer cmd, const FrameSettings& settings);
+  void recordTraversal(VkCommandBuffer cmd, const FrameSettings& settings, uint32_t pass);
   void recordTriangleCull(VkCommandBuffer cmd, bool patches);
   void recordSoftwareRaster(VkCommandBuffer cmd, bool patches, bool clear);
   void recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings, bool bare, uint32_t pass);

@@ -26,6 +26,14 @@ void main() {
   counters.lateCullDispatch[0] = cullWorkgroups;  // along x, as the early pass's
   counters.lateCullDispatch[1] = 1u;
   counters.lateCullDispatch[2] = 1u;
+  // With nothing deferred the persistent traversal does not run, and its last worker does not size the
+  // late triangle culling: nothing to cull (the draw arguments follow from it, finalize_triangles.comp).
+  const bool work = counters.deferredInstances + counters.deferredItems != 0u;
+  counters.lateTraversalDispatch[0] = work ? frame.persistentWorkgroups : 0u;
+  counters.lateTraversalDispatch[1] = 1u;
+  counters.lateTraversalDispatch[2] = 1u;
+  counters.packedCullDispatch[0] = 0u;
+  counters.draw[1] = 0u;
   counters.earlyVisibleInstances = counters.visibleInstances;
   counters.visibleInstances = 0u;
   counters.earlySoftwareTriangles = counters.softwareTriangles;
@@ -35,7 +43,7 @@ void main() {
   counters.budgetExits = 0u;
   counters.workgroupsExited = 0u;
   const uint deferred = min(counters.deferredItems, frame.queueCapacity);
-  counters.dispatch[0] = (deferred + 63u) / 64u;
+  counters.dispatch[0] = (deferred + 63u) / 64u;  // 0 when nothing was deferred: triangle culling's too
   counters.dispatch[1] = 1u;
   counters.dispatch[2] = 1u;
 }

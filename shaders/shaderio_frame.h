@@ -222,7 +222,8 @@ struct FrameData {
   uint pyramidTileLevels;          // build_depth_pyramid.comp: the levels a workgroup's tile reduces to (1 to 5)
   uint cullInstancesPerWorkgroup;  // cull_instances.comp's variant this frame (begin_late_pass.comp sizes
                                    // the late pass's dispatch over the deferred instances by it)
-  uint framePad[3];
+  uint persistentWorkgroups;       // the persistent traversal's dispatch (begin_late_pass.comp repeats it)
+  uint framePad[2];
 };
 
 // The software rasterizer (raster_software.comp) takes the triangles triangle culling bins to it:
@@ -313,18 +314,19 @@ struct Counters {
   uint patchGridPoints;         // grid points patch culling asked for (past patchGridCapacity: tessellator)
   // Two passes (begin_late_pass.comp): the late pass lists its clusters after the early pass's and its
   // queue items after them too; what the host reads as the frame's totals is summed from these.
-  uint drawBase;                // the late pass's first draw-list entry (the early pass's listed clusters)
-  uint queueBase;               // the pass's first queue slot (the flat traversal's visible instances)
-  uint earlyVisibleInstances;   // visibleInstances of the early pass
-  uint earlySoftwareTriangles;  // softwareTriangles of the early pass
-  uint earlyBudgetExits;        // budgetExits of the early pass
-  uint deferredItems;           // early pass: queue items left to the late pass (past the queue's capacity:
-                                // overflow, counted in queueOverflow)
-  uint deferredInstances;       // early pass: instances left to the late pass (listed)
-  uint lateCullDispatch[4];     // the late pass's instance culling over them (begin_late_pass.comp)
-  uint occludedInstances;       // late pass: instances hidden by the pyramid
-  uint occludedNodes;           // late pass: BVH nodes and groups hidden by it
-  uint occludedClusters;        // late pass: clusters of the cut hidden by it
+  uint drawBase;                  // the late pass's first draw-list entry (the early pass's listed clusters)
+  uint queueBase;                 // the pass's first queue slot (the flat traversal's visible instances)
+  uint earlyVisibleInstances;     // visibleInstances of the early pass
+  uint earlySoftwareTriangles;    // softwareTriangles of the early pass
+  uint earlyBudgetExits;          // budgetExits of the early pass
+  uint deferredItems;             // early pass: queue items left to the late pass (past the queue's capacity:
+                                  // overflow, counted in queueOverflow)
+  uint deferredInstances;         // early pass: instances left to the late pass (listed)
+  uint lateCullDispatch[4];       // the late pass's instance culling over them (begin_late_pass.comp)
+  uint lateTraversalDispatch[4];  // the late pass's persistent traversal: no workers when nothing was deferred
+  uint occludedInstances;         // late pass: instances hidden by the pyramid
+  uint occludedNodes;             // late pass: BVH nodes and groups hidden by it
+  uint occludedClusters;          // late pass: clusters of the cut hidden by it
 };
 
 // Triangle list entry: draw-list entry << 7 | triangle within its cluster. Patch list entry: two words,
@@ -343,7 +345,7 @@ struct Counters {
 static_assert(sizeof(FrameData) == 544, "FrameData layout (std140)");
 static_assert(offsetof(FrameData, pyramidViews) % 16 == 0 && offsetof(FrameData, pyramidProjections) % 16 == 0,
               "FrameData: std140 alignment");
-static_assert(sizeof(Counters) == 5 * 128 + 96 + 52, "Counters layout");
+static_assert(sizeof(Counters) == 5 * 128 + 96 + 68, "Counters layout");
 static_assert(sizeof(SceneArrays) == 18 * 8, "SceneArrays layout");
 static_assert(offsetof(Counters, itemsDone) == 4 * 128, "Counters: the hot words on lines of their own");
 #endif
