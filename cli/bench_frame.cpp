@@ -4,6 +4,7 @@
 // culling with patches (the default) and with leaves as triangles; then neither (hardware). Medians over frames after
 // warm-up; one JSON record each.
 #include <chrono>
+#include <cstdio>
 
 #include <nlohmann/json.hpp>
 
@@ -127,6 +128,11 @@ nlohmann::ordered_json measureFrames(const FrameBenchArgs& a, GpuRenderer& rende
   r["patch_triangles_per_patch_pixel"] =
       patchCovered && f.patchTriangles > 0 ? double(f.patchTriangles) / double(patchCovered) : 0.0;
   r["frames"] = count;
+  // The first pose as `vgeo render --camera` takes it, to look at what was measured.
+  char pose[256];
+  std::snprintf(pose, sizeof pose, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", poses[0].eye.x, poses[0].eye.y, poses[0].eye.z,
+                poses[0].target.x, poses[0].target.y, poses[0].target.z);
+  r["camera_option"] = pose;
   r["commit"] = VGEO_COMMIT;
   std::fprintf(stderr,
                "%7zu instances %4ux%-4u %-9s tc %-3s patches %-3s %-8s occlusion %-3s: cull %.3f  traversal %.3f  "

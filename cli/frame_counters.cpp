@@ -25,7 +25,7 @@ void addFrameCounters(nlohmann::ordered_json& r, const FrameResult& f, const Gpu
   r["triangles_drawn"] = f.trianglesDrawn;
   r["software_triangles"] = f.softwareTriangles;  // of those, drawn by the software rasterizer
   // Triangle culling took many listed clusters a workgroup (cull_small_clusters.comp).
-  r["packed_triangle_cull"] = c.packedCullDispatch[0] != 0u;
+  r["packed_triangle_cull"] = c.packedCullDispatch[0] != 0u || c.earlyPackedCull != 0u;  // either pass
   // Leaves too coarse for tau drawn as tessellated patches: clusters, faces (patches) and the triangles
   // the tessellator made (pipeline statistics; -1 where the device has none).
   r["patch_clusters"] = c.patchClusters;

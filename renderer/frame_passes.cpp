@@ -25,9 +25,11 @@
 //                                each); or shaded with depth (draw.frag) and then one draw of the
 //                                tessellator's patches, one vertex a patch (patch.vert, .tesc, .tese)
 //   With occlusion culling 2. to 7. are the early pass (no patches), and then
-//      build_depth_pyramid.comp  the depth pyramid of what it drew
-//      begin_late_pass.comp,     the late pass's counters, its first queue items the early pass's
-//      queue_deferred.comp       deferred ones; then 2. to 7. again, tested against the pyramid
+//      build_depth_pyramid.comp  the depth pyramid of what it drew, its last workgroup beginning the late
+//                                pass (begin_late_pass.glsl: the late pass's counters; a frozen cut, which
+//                                keeps its pyramid, runs begin_late_pass.comp instead)
+//      then 2. to 7. again, tested against the pyramid, instance culling first queueing the items the
+//      early pass deferred (queue_deferred.glsl; queue_deferred.comp where the traversal culls instances)
 //   8. resolve.comp              the compute rasterizers' pixels shaded into the colour target
 //   9. copies back               counters (and the image / draw list when asked; frame_readback.cpp)
 #include "gpu_renderer.h"
@@ -64,31 +66,36 @@ void GpuRenderer::recordCounterReset(VkCommandBuffer cmd, uint32_t nodesPending)
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
 }
 
-void GpuRenderer::pushPass(VkCommandBuffer cmd, uint32_t pass, uint32_t level) {
-  const shaderio::PassConstants constants{pass, level};
+void GpuRenderer::pushPass(VkCommandBuffer cmd, uint32_t pass) {
+  const shaderio::PassConstants constants{pass};
   vkCmdPushConstants(cmd, layout_, rendererStages(), 0, sizeof(constants), &constants);
 }
 
 void GpuRenderer::recordInstanceCull(VkCommandBuffer cmd, const FrameSettings& settings, uint32_t pass) {
-  // 1. Reset the counters; the late pass carries on from the early one's (begin_late_pass.comp).
+  // 1. Reset the counters; the late pass carries on from the early one's (begin_late_pass.glsl).
   // 2. Instance culling, unless the persistent traversal's workers do it: then each instance counts as
   // pending until its culling has queued its items (traverse_persistent.comp).
   const bool inTraversal = cullsInTraversal(settings);
   if (pass == VGEO_PASS_LATE) {  // the late pass's counters, then the early pass's deferred items queued
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, beginLatePass_);
-    vkCmdDispatch(cmd, 1, 1, 1);
-    computeToCompute(cmd);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, queueDeferred_);
-    vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, dispatch));
-    computeToCompute(cmd);
+    if (keepsPyramid(settings)) {  // else the pyramid's build began the late pass
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, beginLatePass_);
+      vkCmdDispatch(cmd, 1, 1, 1);
+      computeToCompute(cmd);
+    }
+    if (inTraversal) {  // else instance culling queues them (queue_deferred.glsl)
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, queueDeferred_);
+      vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, dispatch));
+      computeToCompute(cmd);
+    }
   } else {
     recordCounterReset(cmd, inTraversal ? uint32_t(scene_.data.instances.size()) : 0u);
   }
   if (inTraversal) return;
   const uint32_t instancesPerWorkgroup = cullInstancesPerWorkgroup(settings);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, instancesPerWorkgroup == 64 ? cullSerial_ : cull_);
-  if (pass == VGEO_PASS_LATE)  // only the instances the early pass deferred
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
+                    instancesPerWorkgroup == VGEO_CULL_SERIAL_WORKGROUP ? cullSerial_ : cull_);
+  if (pass == VGEO_PASS_LATE)  // only the instances the early pass deferred, and its deferred items queued
     vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, lateCullDispatch));
   else
     vkCmdDispatch(cmd, (uint32_t(scene_.data.instances.size()) + instancesPerWorkgroup - 1) / instancesPerWorkgroup, 1,
@@ -253,8 +260,8 @@ void GpuRenderer::recordRenderPass(VkCommandBuffer cmd, const FrameSettings& set
   vkCmdEndRenderPass(cmd);
 }
 
-// Between the passes of a frame with occlusion culling: the depth pyramid of what the early pass drew
-// (build_depth_pyramid.comp, a dispatch a level), read by the late pass's culling.
+// Between the passes of a frame with occlusion culling: the depth pyramid of what the early pass drew,
+// in one dispatch whose last workgroup also begins the late pass (build_depth_pyramid.comp).
 void GpuRenderer::recordDepthPyramid(VkCommandBuffer cmd) {
   // The early pass's depth: its compute rasterizers', its render pass's (the visibility buffer or the
   // depth target). The late pass's rasterizers then write them again (an execution dependency back).
@@ -265,14 +272,8 @@ void GpuRenderer::recordDepthPyramid(VkCommandBuffer cmd) {
                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, buildDepthPyramid_);
-  pushPass(cmd, VGEO_PASS_EARLY, 0);  // levels 1 to pyramidTileLevels(), a workgroup a 32 x 32 pixel tile
-  vkCmdDispatch(cmd, (width_ + 31) / 32, (height_ + 31) / 32, 1);
+  vkCmdDispatch(cmd, (width_ + 31) / 32, (height_ + 31) / 32, 1);  // a workgroup a 32 x 32 pixel tile
   computeToCompute(cmd);
-  if (pyramidLevels_ > pyramidTileLevels() + 1) {  // the rest, one workgroup
-    pushPass(cmd, VGEO_PASS_EARLY, 1);
-    vkCmdDispatch(cmd, 1, 1, 1);
-    computeToCompute(cmd);
-  }
 }
 
 }  // namespace vgeo

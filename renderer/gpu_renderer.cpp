@@ -314,7 +314,7 @@ shaderio::FrameData GpuRenderer::frameConstants(const FrameSettings& settings) c
   // nothing), from the camera it was drawn from; the late pass against the one built in between, from this
   // frame's camera. A frozen cut keeps the pyramid of the camera it froze at, for both.
   if (occludes(settings)) {
-    const bool frozen = settings.cullView.viewProjection != settings.drawView.viewProjection;
+    const bool frozen = keepsPyramid(settings);
     frame.occlusion = frozen ? VGEO_OCCLUSION_FROZEN : VGEO_OCCLUSION_ON;
     frame.earlyOcclusion = pyramidMade_ ? 1u : 0u;
     const View& late = frozen ? pyramidView_ : settings.cullView;

@@ -179,7 +179,7 @@ class GpuRenderer {
                                : 0u);
   }
   // Sets the push constants (shaderio_frame.h, PassConstants) that every pass's shaders read.
-  void pushPass(VkCommandBuffer cmd, uint32_t pass, uint32_t level = 0);
+  void pushPass(VkCommandBuffer cmd, uint32_t pass);
   // 1.-2. The counters reset (the late pass: begin_late_pass.comp instead), then instance culling.
   void recordInstanceCull(VkCommandBuffer cmd, const FrameSettings& settings, uint32_t pass);
   // Lanes that cull one instance: VGEO_CULL_INSTANCE_LANES test a root's children side by side (a shorter
@@ -194,7 +194,8 @@ class GpuRenderer {
   // Instances a workgroup of cull_instances.comp culls: 64 in its serial variant (one lane each), else
   // VGEO_CULL_SPREAD_WORKGROUP / VGEO_CULL_INSTANCE_LANES.
   uint32_t cullInstancesPerWorkgroup(const FrameSettings& settings) const {
-    return cullInstanceLanes(settings) == 1 ? 64u : VGEO_CULL_SPREAD_WORKGROUP / VGEO_CULL_INSTANCE_LANES;
+    return cullInstanceLanes(settings) == 1 ? VGEO_CULL_SERIAL_WORKGROUP
+                                            : VGEO_CULL_SPREAD_WORKGROUP / VGEO_CULL_INSTANCE_LANES;
   }
   void recordTraversal(VkCommandBuffer cmd, const FrameSettings& settings, uint32_t pass);
   void recordTriangleCull(VkCommandBuffer cmd, bool patches);
@@ -210,6 +211,9 @@ class GpuRenderer {
   bool occludes(const FrameSettings& s) const {
     return s.occlusion && s.draw && s.mode != VGEO_MODE_OVERDRAW && s.traversal == Traversal::Persistent;
   }
+  // Whether a frame culled by occlusion keeps the depth pyramid it has (a frozen cut: both passes test
+  // against the pyramid of the camera it froze at) instead of building one between its passes.
+  static bool keepsPyramid(const FrameSettings& s) { return s.cullView.viewProjection != s.drawView.viewProjection; }
   // Whether the depth pyramid was drawn from this camera: a frozen cut needs it from the camera it froze at.
   bool pyramidDrawnFrom(const View& view) const {
     return pyramidMade_ && pyramidView_.viewProjection == view.viewProjection;

@@ -4,21 +4,26 @@
 //   VGEO_CULL_SERIAL: one lane an instance, queueing its own (large scenes, lavapipe).
 //   otherwise cullInstancesSpread, VGEO_CULL_INSTANCE_LANES lanes an instance in workgroups of
 //     VGEO_CULL_SPREAD_WORKGROUP.
+// In the late pass of a frame with occlusion culling, each workgroup first queues its share of the items
+// the early pass deferred (queue_deferred.glsl): one dispatch and barrier less in front of the traversal.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 #ifdef VGEO_CULL_SERIAL
-layout(local_size_x = 64) in;
+#define VGEO_CULL_WORKGROUP VGEO_CULL_SERIAL_WORKGROUP
+layout(local_size_x = VGEO_CULL_WORKGROUP) in;
 #else
 #define VGEO_CULL_WORKGROUP VGEO_CULL_SPREAD_WORKGROUP
 layout(local_size_x = VGEO_CULL_WORKGROUP) in;
 #endif
 #include "traverse_common.glsl"
 #include "cull_instances.glsl"
+#include "queue_deferred.glsl"
 
 #ifdef VGEO_CULL_SERIAL
 shared uint sVisible, sPending, sQueueEnd;
 
 void main() {
+  if (passConstants.pass == VGEO_PASS_LATE) queueDeferredItems(gl_WorkGroupID.x, VGEO_CULL_WORKGROUP);
   beginStats();
   if (gl_LocalInvocationIndex == 0u) {
     sVisible = 0u;
@@ -52,6 +57,7 @@ void main() {
 }
 #else
 void main() {
+  if (passConstants.pass == VGEO_PASS_LATE) queueDeferredItems(gl_WorkGroupID.x, VGEO_CULL_WORKGROUP);
   beginStats();
   cullInstancesSpread(gl_WorkGroupID.x * kCullInstances, false);
   flushStats();

@@ -62,10 +62,11 @@ VGEO_NAMESPACE_BEGIN
 // cull_instances.comp: VGEO_CULL_INSTANCE_LANES lanes an instance in scenes of up to
 // VGEO_CULL_SPREAD_INSTANCES instances, in workgroups of VGEO_CULL_SPREAD_WORKGROUP (2 instances each), so
 // that the runs of a close view's few instances are written by many lanes side by side; one lane an
-// instance (workgroups of 64) in larger ones, where thousands of workgroups reserving queue slots on one
-// counter cost more (bench/README.md, cut selection).
+// instance (workgroups of VGEO_CULL_SERIAL_WORKGROUP) in larger ones, where thousands of workgroups
+// reserving queue slots on one counter cost more (bench/README.md, cut selection).
 #define VGEO_CULL_INSTANCE_LANES 64
 #define VGEO_CULL_SPREAD_WORKGROUP 128
+#define VGEO_CULL_SERIAL_WORKGROUP 64
 #define VGEO_CULL_SPREAD_INSTANCES 4096
 
 // The renderer's one descriptor set, named once for the host (gpu_renderer.cpp fills it) and the
@@ -139,8 +140,7 @@ VGEO_NAMESPACE_BEGIN
 #define VGEO_OCCLUSION_FROZEN 2u  // two passes, both against the pyramid of the camera the cut froze at
 
 struct PassConstants {
-  uint pass;   // VGEO_PASS_*
-  uint level;  // build_depth_pyramid.comp: the level it writes
+  uint pass;  // VGEO_PASS_*
 };
 
 // The scene's arrays (VGEO_BINDING_SCENE), each a device address as two words (low, high), in the
@@ -274,7 +274,10 @@ struct Counters {
   uint queueRead;  // items claimed by persistent workers
   uint linePad1[VGEO_COUNTER_LINE_PAD];
   uint drawCount;  // draw list entries requested (may exceed the capacity: see drawOverflow)
-  uint linePad2[VGEO_COUNTER_LINE_PAD];
+  // Two passes (begin_late_pass.glsl): the late pass's first draw-list entry (the early pass's listed
+  // clusters). Read by every workgroup of triangle culling: not on a line that its atomics hit.
+  uint drawBase;
+  uint linePad2[VGEO_COUNTER_LINE_PAD - 1];
   uint nodesPending;  // node items queued and not yet finished: only they produce items, so at 0 the
                       // queue is final (persistent traversal termination)
   uint linePad3[VGEO_COUNTER_LINE_PAD];
@@ -312,13 +315,13 @@ struct Counters {
   uint patchRasterDispatch[4];  // indirect dispatch of raster_patches.comp, a workgroup a patch
   uint softwarePatchTriangles;  // triangles of the grids raster_patches.comp drew
   uint patchGridPoints;         // grid points patch culling asked for (past patchGridCapacity: tessellator)
-  // Two passes (begin_late_pass.comp): the late pass lists its clusters after the early pass's and its
-  // queue items after them too; what the host reads as the frame's totals is summed from these.
-  uint drawBase;                  // the late pass's first draw-list entry (the early pass's listed clusters)
+  // Two passes (begin_late_pass.glsl): the late pass lists its clusters after the early pass's (drawBase)
+  // and its queue items after them too; what the host reads as the frame's totals is summed from these.
   uint queueBase;                 // the pass's first queue slot (the flat traversal's visible instances)
   uint earlyVisibleInstances;     // visibleInstances of the early pass
   uint earlySoftwareTriangles;    // softwareTriangles of the early pass
   uint earlyBudgetExits;          // budgetExits of the early pass
+  uint earlyPackedCull;           // packedCullDispatch[0] of the early pass
   uint deferredItems;             // early pass: queue items left to the late pass (past the queue's capacity:
                                   // overflow, counted in queueOverflow)
   uint deferredInstances;         // early pass: instances left to the late pass (listed)
@@ -327,6 +330,7 @@ struct Counters {
   uint occludedInstances;         // late pass: instances hidden by the pyramid
   uint occludedNodes;             // late pass: BVH nodes and groups hidden by it
   uint occludedClusters;          // late pass: clusters of the cut hidden by it
+  uint pyramidTilesDone;          // build_depth_pyramid.comp: its workgroups that finished their tile
 };
 
 // Triangle list entry: draw-list entry << 7 | triangle within its cluster. Patch list entry: two words,
@@ -345,7 +349,7 @@ struct Counters {
 static_assert(sizeof(FrameData) == 544, "FrameData layout (std140)");
 static_assert(offsetof(FrameData, pyramidViews) % 16 == 0 && offsetof(FrameData, pyramidProjections) % 16 == 0,
               "FrameData: std140 alignment");
-static_assert(sizeof(Counters) == 5 * 128 + 96 + 68, "Counters layout");
+static_assert(sizeof(Counters) == 5 * 128 + 96 + 72, "Counters layout");
 static_assert(sizeof(SceneArrays) == 18 * 8, "SceneArrays layout");
 static_assert(offsetof(Counters, itemsDone) == 4 * 128, "Counters: the hot words on lines of their own");
 #endif
