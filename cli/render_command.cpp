@@ -36,7 +36,7 @@ struct RenderArgs {
   float fov = 60.0f, tau = 1.0f;
   uint32_t grid = 1, frames = 2, queueCapacity = 0, drawCapacity = 0, triangleCapacity = 0, workgroups = 0,
            cullLanes = 0;
-  uint32_t sweepBudget = kDefaultSweepBudget, maxFrameMemoryMiB = kDefaultFrameMemoryMiB;
+  uint32_t sweepBudget = kDefaultSweepBudget, maxFrameMemoryMiB = kDefaultFrameMemoryMiB, deviceMemoryMiB = 0;
   uint32_t packedCullBelow = kDefaultPackedCullBelow;
   std::string instanceCulling = "auto", raster = "auto", layout = "grid";
   bool compareCpu = false, validate = false, noTriangleCull = false, noPatches = false, noOcclusion = false;
@@ -195,8 +195,14 @@ int runRender(const RenderArgs& a) {
   camera->fovYDegrees = a.fov;
   if (!cullCamera) cullCamera = camera;
 
-  VulkanContext vk({a.device, a.validate});
-  GpuRenderer renderer(vk, scene, width, height);
+  VulkanContext vk({a.device, a.validate, uint64_t(a.deviceMemoryMiB) << 20});
+  std::optional<GpuRenderer> made;
+  try {
+    made.emplace(vk, scene, width, height);
+  } catch (const SceneTooLargeError& e) {
+    throw SceneTooLargeError(a.input + ": " + e.what());
+  }
+  GpuRenderer& renderer = *made;
   renderer.setFrameMemoryLimit(uint64_t(a.maxFrameMemoryMiB) << 20);
   if (a.workgroups) renderer.setPersistentWorkgroups(a.workgroups);
   if (a.queueCapacity || a.drawCapacity || a.triangleCapacity)
@@ -273,6 +279,10 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
                   "with exit 5")
       ->capture_default_str()
       ->check(CLI::Range(1u, 1u << 20));
+  cmd->add_option("--device-memory", a->deviceMemoryMiB,
+                  "MiB of device memory to plan with: a scene whose arrays need more is refused (exit 5), as on a "
+                  "GPU of that size (default: the device's)")
+      ->check(CLI::Range(1u, 1u << 30));
   cmd->add_option("--queue-capacity", a->queueCapacity, "Initial traversal queue capacity, items (debugging overflow)");
   cmd->add_option("--draw-capacity", a->drawCapacity, "Initial draw list capacity, clusters (debugging overflow)");
   cmd->add_option("--triangle-capacity", a->triangleCapacity,

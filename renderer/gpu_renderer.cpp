@@ -84,13 +84,13 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
   };
   // Sweep runs carry their length above the instance index (shaderio.h, VGEO_ITEM_RUN_BIT).
   if (d.instances.size() >= (size_t(1) << VGEO_RUN_INSTANCE_BITS))
-    throw std::runtime_error("scene too large: " + std::to_string(d.instances.size()) + " instances (at most " +
+    throw SceneTooLargeError("scene too large: " + std::to_string(d.instances.size()) + " instances (at most " +
                              std::to_string((1u << VGEO_RUN_INSTANCE_BITS) - 1) + ")");
   // Refused before any upload when the arrays alone exceed the device's memory.
   uint64_t sceneBytes = 0;
   for (const auto& s : sections) sceneBytes += s.bytes;
   if (sceneBytes > vk_.deviceLocalBytes())
-    throw std::runtime_error("scene too large for this device: its arrays need " + std::to_string(sceneBytes >> 20) +
+    throw SceneTooLargeError("scene too large for this device: its arrays need " + std::to_string(sceneBytes >> 20) +
                              " MiB, the device's memory is " + std::to_string(vk_.deviceLocalBytes() >> 20) + " MiB");
   for (const auto& s : sections) sceneByAddress_ = sceneByAddress_ || s.bytes > range;
   for (const auto& s : sections) {

@@ -40,6 +40,11 @@ constexpr uint32_t kDefaultFrameMemoryMiB = 2048;
 struct FrameMemoryError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+// A scene the device cannot hold (its arrays past the device's memory, or more instances than the
+// queue's items can name), refused before anything is uploaded.
+struct SceneTooLargeError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 struct FrameSettings {
   View drawView;  // the picture

@@ -100,7 +100,7 @@ int deviceRank(VkPhysicalDeviceType type) {
 
 }  // namespace
 
-VulkanContext::VulkanContext(const ContextOptions& options) {
+VulkanContext::VulkanContext(const ContextOptions& options) : memoryLimitBytes_(options.memoryLimitBytes) {
   createInstance(options);
   pickDevice(options);
   createDevice();
@@ -347,7 +347,7 @@ VkDeviceSize VulkanContext::deviceLocalBytes() const {
   for (uint32_t i = 0; i < memory_.memoryHeapCount; i++)
     if (memory_.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
       largest = std::max(largest, memory_.memoryHeaps[i].size);
-  return largest;
+  return memoryLimitBytes_ ? std::min<VkDeviceSize>(largest, memoryLimitBytes_) : largest;
 }
 
 void VulkanContext::destroyBuffer(Buffer& b) {

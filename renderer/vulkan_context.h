@@ -13,6 +13,9 @@ namespace vgeo {
 struct ContextOptions {
   std::string deviceSubstring;  // pick the first device whose name contains it; empty: best available
   bool validation = false;      // Khronos validation layer with synchronization validation
+  // Device memory to plan with, when less than the device's (0: all of it): scenes are refused as on a
+  // GPU of this much memory.
+  uint64_t memoryLimitBytes = 0;
 };
 
 struct Buffer {
@@ -54,7 +57,7 @@ class VulkanContext {
   void destroyBuffer(Buffer& buffer);
   // The address shaders read a buffer at (made with VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT).
   VkDeviceAddress deviceAddress(const Buffer& buffer) const;
-  // The size of the largest device-local memory heap.
+  // The size of the largest device-local memory heap (at most ContextOptions::memoryLimitBytes).
   VkDeviceSize deviceLocalBytes() const;
   // Copies host data into a device-local buffer through a staging buffer (blocking).
   void upload(const Buffer& dst, const void* data, VkDeviceSize size, VkDeviceSize offset = 0);
@@ -91,6 +94,7 @@ class VulkanContext {
   std::vector<VkExtensionProperties> deviceExtensions_;
   std::string driverName_;
   uint32_t validationMessages_ = 0;
+  uint64_t memoryLimitBytes_ = 0;  // ContextOptions::memoryLimitBytes
 };
 
 // Throws std::runtime_error naming the call when a Vulkan call fails.

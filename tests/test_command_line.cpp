@@ -76,6 +76,16 @@ TEST_F(CommandLine, BadValuesAreUsageErrorsBeforeAnyWork) {
   expectOneLine("render " + *dir + "/nothing.vgeo -o " + *dir + "/out.png", 1, *dir + "/nothing.vgeo: ");
 }
 
+TEST_F(CommandLine, AScenePastTheDevicesMemoryIsRefusedBeforeAnyUpload) {
+  // 40,000 cows: their instance records alone take 2.4 MiB. Planned for a device of 1 MiB, the scene is
+  // refused with one line naming the file, what it needs and what the device has; with 64 MiB it renders.
+  expectOneLine(render("--grid 200 --device-memory 1"), 5, *dir + "/cow.vgeo: scene too large for this device");
+  expectOneLine(render("--grid 200 --device-memory 1"), 5, "the device's memory is 1 MiB");
+  test::RunResult r = test::runVgeo(render("--grid 200 --device-memory 64 --size 64x48"));
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(*dir + "/out.png"));
+}
+
 TEST_F(CommandLine, OutputsAreNeverLinksOrDevicesAndInterruptionsLeaveNothing) {
   // An existing output that is not a regular file would be replaced by the atomic rename: refused.
   std::filesystem::remove(*dir + "/link.png");
