@@ -93,8 +93,9 @@ void GpuRenderer::recordInstanceCull(VkCommandBuffer cmd, const FrameSettings& s
   }
   if (inTraversal) return;
   const uint32_t instancesPerWorkgroup = cullInstancesPerWorkgroup(settings);
+  const uint32_t tests = pass == VGEO_PASS_ONLY ? 0 : 1;  // the pipeline with the occlusion tests or without
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
-                    instancesPerWorkgroup == VGEO_CULL_SERIAL_WORKGROUP ? cullSerial_ : cull_);
+                    instancesPerWorkgroup == VGEO_CULL_SERIAL_WORKGROUP ? cullSerial_[tests] : cull_[tests]);
   if (pass == VGEO_PASS_LATE)  // only the instances the early pass deferred, and its deferred items queued
     vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, lateCullDispatch));
   else
@@ -122,7 +123,9 @@ void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& sett
     computeToCompute(cmd);
   };
   if (settings.traversal == Traversal::Persistent) {
-    const VkPipeline pipeline = settings.profileWorkers && persistentProfile_ ? persistentProfile_ : persistent_;
+    const VkPipeline pipeline = settings.profileWorkers && persistentProfile_
+                                    ? persistentProfile_
+                                    : persistent_[pass == VGEO_PASS_ONLY ? 0 : 1];
     if (pass == VGEO_PASS_LATE) {  // no workers when the early pass deferred nothing (begin_late_pass.comp)
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
       vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, lateTraversalDispatch));

@@ -293,18 +293,24 @@ VkPipeline GpuRenderer::resolvePipeline(uint32_t mode, bool patches, bool everyP
 }
 
 void GpuRenderer::createComputePipelines(bool softwareRaster) {
-  cull_ = computePipeline(VGEO_SPIRV(cull_instances_comp));
-  cullSerial_ = computePipeline(VGEO_SPIRV(cull_instances_comp_cull_serial));
-  // Tests a lane between draw-list atomics (traverse_persistent.comp, runRound): 1 on lavapipe.
-  const uint32_t laneTests = vk_.isLavapipe() ? 1u : 4u;
-  const VkSpecializationMapEntry laneTestsEntry{VGEO_SPEC_LANE_TESTS, 0, sizeof(uint32_t)};
-  const VkSpecializationInfo persistentSpecialization{1, &laneTestsEntry, sizeof(laneTests), &laneTests};
-  persistent_ = computePipeline(VGEO_SPIRV(traverse_persistent_comp), &persistentSpecialization);
+  // Instance culling and the traversals with the occlusion tests, and without them for one-pass frames
+  // (VGEO_SPEC_OCCLUSION; the levels and flat traversals only run those). Tests a lane between draw-list
+  // atomics (traverse_persistent.comp, runRound): 1 on lavapipe.
+  const uint32_t constants[2][2] = {{vk_.isLavapipe() ? 1u : 4u, 0u}, {vk_.isLavapipe() ? 1u : 4u, 1u}};  // VkBool32
+  const VkSpecializationMapEntry entries[2] = {{VGEO_SPEC_OCCLUSION, sizeof(uint32_t), sizeof(uint32_t)},
+                                               {VGEO_SPEC_LANE_TESTS, 0, sizeof(uint32_t)}};
+  VkSpecializationInfo specializations[2];
+  for (uint32_t occlusion = 0; occlusion < 2; occlusion++) {
+    specializations[occlusion] = {2, entries, sizeof(constants[occlusion]), constants[occlusion]};
+    cull_[occlusion] = computePipeline(VGEO_SPIRV(cull_instances_comp), &specializations[occlusion]);
+    cullSerial_[occlusion] = computePipeline(VGEO_SPIRV(cull_instances_comp_cull_serial), &specializations[occlusion]);
+    persistent_[occlusion] = computePipeline(VGEO_SPIRV(traverse_persistent_comp), &specializations[occlusion]);
+  }
   if (vk_.deviceClock())
-    persistentProfile_ = computePipeline(VGEO_SPIRV(traverse_persistent_comp_profile), &persistentSpecialization);
-  level_ = computePipeline(VGEO_SPIRV(traverse_level_comp));
+    persistentProfile_ = computePipeline(VGEO_SPIRV(traverse_persistent_comp_profile), &specializations[1]);
+  level_ = computePipeline(VGEO_SPIRV(traverse_level_comp), &specializations[0]);
   prepareLevel_ = computePipeline(VGEO_SPIRV(prepare_level_comp));
-  flat_ = computePipeline(VGEO_SPIRV(traverse_flat_comp));
+  flat_ = computePipeline(VGEO_SPIRV(traverse_flat_comp), &specializations[0]);
   prepareFlat_ = computePipeline(VGEO_SPIRV(prepare_flat_comp));
   resetFlat_ = computePipeline(VGEO_SPIRV(reset_flat_comp));
   finalize_ = computePipeline(VGEO_SPIRV(finalize_comp));

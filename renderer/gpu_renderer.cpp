@@ -172,7 +172,7 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
     VkCommandBuffer cmd = vk_.beginCommands();
     recordCounterReset(cmd);
     pushPass(cmd, VGEO_PASS_ONLY);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, persistent_);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, persistent_[0]);
     vkCmdDispatch(cmd, persistentWorkgroups_, 1, 1);
     vk_.submitAndWait(cmd);
   }
@@ -193,10 +193,10 @@ GpuRenderer::~GpuRenderer() {
   VkDevice dev = vk_.device();
   vkDeviceWaitIdle(dev);
   const VkPipeline computePipelines[] = {
-      cull_,           cullSerial_,   persistent_,        persistentProfile_, level_,         prepareLevel_,
-      flat_,           prepareFlat_,  resetFlat_,         finalize_,          cullTriangles_, cullSmallClusters_,
-      preparePatches_, cullPatches_,  finalizeTriangles_, rasterSoftware_,    rasterPatches_, buildDepthPyramid_,
-      beginLatePass_,  queueDeferred_};
+      cull_[0],           cull_[1],       cullSerial_[0],     cullSerial_[1],  persistent_[0], persistent_[1],
+      persistentProfile_, level_,         prepareLevel_,      flat_,           prepareFlat_,   resetFlat_,
+      finalize_,          cullTriangles_, cullSmallClusters_, preparePatches_, cullPatches_,   finalizeTriangles_,
+      rasterSoftware_,    rasterPatches_, buildDepthPyramid_, beginLatePass_,  queueDeferred_};
   const VkPipeline drawPipelines[] = {draw_,           drawOverdraw_,      drawPatches_, drawPatchesOverdraw_,
                                       drawVisibility_, drawGridVisibility_};
   for (VkPipeline p : computePipelines) vkDestroyPipeline(dev, p, nullptr);

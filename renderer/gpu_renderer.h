@@ -289,8 +289,9 @@ class GpuRenderer {
   VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
-  VkPipeline cull_ = VK_NULL_HANDLE, cullSerial_ = VK_NULL_HANDLE, persistent_ = VK_NULL_HANDLE,
-             persistentProfile_ = VK_NULL_HANDLE, level_ = VK_NULL_HANDLE, prepareLevel_ = VK_NULL_HANDLE,
+  // Instance culling and the persistent traversal, [0] without the occlusion tests, [1] with them.
+  VkPipeline cull_[2] = {}, cullSerial_[2] = {}, persistent_[2] = {};
+  VkPipeline persistentProfile_ = VK_NULL_HANDLE, level_ = VK_NULL_HANDLE, prepareLevel_ = VK_NULL_HANDLE,
              flat_ = VK_NULL_HANDLE, prepareFlat_ = VK_NULL_HANDLE, resetFlat_ = VK_NULL_HANDLE,
              finalize_ = VK_NULL_HANDLE, draw_ = VK_NULL_HANDLE, cullTriangles_ = VK_NULL_HANDLE,
              cullSmallClusters_ = VK_NULL_HANDLE, preparePatches_ = VK_NULL_HANDLE, cullPatches_ = VK_NULL_HANDLE,

@@ -26,8 +26,10 @@ uint passInstance(uint i) {
   return i < counters.deferredInstances ? deferredInstances[i] : VGEO_INVALID;
 }
 
+layout(constant_id = VGEO_SPEC_OCCLUSION) const bool kOcclusionTests = true;  // false: one-pass pipelines
 bool occlusionTests() {
-  return passConstants.pass == VGEO_PASS_LATE || (passConstants.pass == VGEO_PASS_EARLY && frame.earlyOcclusion != 0u);
+  return kOcclusionTests &&
+         (passConstants.pass == VGEO_PASS_LATE || (passConstants.pass == VGEO_PASS_EARLY && frame.earlyOcclusion != 0u));
 }
 
 float pyramidTexel(uint level, uint x, uint y) {
