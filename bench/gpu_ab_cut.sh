@@ -4,8 +4,7 @@
 # armadillo --subdiv 2 file (the format may differ). Arguments go to `vgeo bench cut` (e.g. --sizes 100).
 # Writes base-N.json and new-N.json to $OUT. Same setup as bench/gpu_run.sh.
 set -uo pipefail
-for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig
-export LD_LIBRARY_PATH=$PWD/.dev/lib
+source bench/gpu_env.sh
 ROUNDS=${ROUNDS:-2}
 for b in base new; do
   V=.dev/vgeo; [ $b = base ] && V=.dev/vgeo_base

@@ -4,11 +4,8 @@
 #   bash bench/gpu_bench_cut.sh --sizes 100,1000,100000 --traversals persistent --profile-workers
 # which also prints the profiles a line a record (bench/print_worker_profile.py).
 set -uo pipefail
-for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig
-export LD_LIBRARY_PATH=$PWD/.dev/lib
-V=.dev/vgeo
+source bench/gpu_env.sh
 $V build .dev/data/armadillo.off --subdiv 2 -o /tmp/arm2.vgeo --threads 16 -q > /dev/null
-nvidia-smi --query-gpu=name,driver_version --format=csv,noheader > $OUT/gpu.txt 2>&1
 args=("$@")
 [ $# -eq 0 ] && args=(--flat-max-instances 100000)
 $V bench cut /tmp/arm2.vgeo -o $OUT/cut.json --frames 10 --size 1920x1080 "${args[@]}" 2>&1 | tail -30

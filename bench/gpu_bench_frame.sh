@@ -5,25 +5,18 @@
 # and the default scene, a patch close-up and an open triangle mesh after one round (every face a tree
 # patch, boundaries) under validation.
 set -uo pipefail
-for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig
-export LD_LIBRARY_PATH=$PWD/.dev/lib
-V=.dev/vgeo
-nvidia-smi --query-gpu=name,driver_version --format=csv,noheader > $OUT/gpu.txt 2>&1
+source bench/gpu_env.sh
 $V build assets/horned_cube.obj --subdiv 4 -o /tmp/hc.vgeo -q > /dev/null
 $V build .dev/data/armadillo.off --subdiv 2 -o /tmp/arm2.vgeo --threads 16 -q > /dev/null
-mkdir -p /tmp/vl && dpkg -x .dev/vulkan-validationlayers_*.deb /tmp/vl
-VK_LAYER_PATH=/tmp/vl/usr/share/vulkan/explicit_layer.d LD_LIBRARY_PATH=$LD_LIBRARY_PATH:/tmp/vl/usr/lib/x86_64-linux-gnu \
-  $V render /tmp/hc.vgeo --grid 32 --size 1280x720 --validate --compare-cpu -o $OUT/default.png --stats $OUT/validate_default.json 2>&1 | tail -3
+validated $V render /tmp/hc.vgeo --grid 32 --size 1280x720 --validate --compare-cpu -o $OUT/default.png --stats $OUT/validate_default.json 2>&1 | tail -3
 $V build assets/horned_cube.obj --subdiv 2 -o /tmp/hc2.vgeo -q > /dev/null
 for mode in lit patch; do
-  VK_LAYER_PATH=/tmp/vl/usr/share/vulkan/explicit_layer.d LD_LIBRARY_PATH=$LD_LIBRARY_PATH:/tmp/vl/usr/lib/x86_64-linux-gnu \
-    $V render /tmp/hc2.vgeo --size 1280x720 --camera 1.2,1.0,2.2,0,0,0.5 --mode $mode --validate --compare-cpu -o $OUT/patches_$mode.png \
+  validated $V render /tmp/hc2.vgeo --size 1280x720 --camera 1.2,1.0,2.2,0,0,0.5 --mode $mode --validate --compare-cpu -o $OUT/patches_$mode.png \
     --stats $OUT/validate_patches_$mode.json 2>&1 | tail -3
 done
 $V build .dev/data/corner_tris_with_hole.off --subdiv 1 -o /tmp/ct1.vgeo -q > /dev/null
 for mode in lit patch; do
-  VK_LAYER_PATH=/tmp/vl/usr/share/vulkan/explicit_layer.d LD_LIBRARY_PATH=$LD_LIBRARY_PATH:/tmp/vl/usr/lib/x86_64-linux-gnu \
-    $V render /tmp/ct1.vgeo --size 1280x720 --mode $mode --validate --compare-cpu -o $OUT/trees_$mode.png --stats $OUT/validate_trees_$mode.json 2>&1 | tail -3
+  validated $V render /tmp/ct1.vgeo --size 1280x720 --mode $mode --validate --compare-cpu -o $OUT/trees_$mode.png --stats $OUT/validate_trees_$mode.json 2>&1 | tail -3
 done
 $V bench frame /tmp/hc.vgeo --grids 32 --sizes 1280x720,1920x1080 --cameras corner,inside,surface --frames 20 -o $OUT/frame_default.json 2>&1 | tail -8
 $V bench frame /tmp/arm2.vgeo --grids 100,316 --sizes 1280x720,1920x1080 --cameras corner,inside --frames 20 -o $OUT/frame_largest.json 2>&1 | tail -16

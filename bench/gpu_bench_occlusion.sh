@@ -6,10 +6,7 @@
 # then the forest's ground and above views under validation with the CPU cut compared, and their pictures
 # with and without occlusion compared byte for byte.
 set -uo pipefail
-for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig
-export LD_LIBRARY_PATH=$PWD/.dev/lib
-V=.dev/vgeo
-nvidia-smi --query-gpu=name,driver_version --format=csv,noheader > $OUT/gpu.txt 2>&1
+source bench/gpu_env.sh
 $V build assets/horned_cube.obj --subdiv 4 -o /tmp/hc.vgeo -q > /dev/null
 $V build .dev/data/armadillo.off --subdiv 2 -o /tmp/arm2.vgeo --threads 16 -q > /dev/null
 forest="/tmp/arm2.vgeo --layout forest --grids 316 --sizes 1920x1080 --cameras ground,above,flythrough --frames 20"
@@ -24,14 +21,12 @@ for bin in $V .dev/vgeo_base; do
   $bin bench frame /tmp/arm2.vgeo --grids 316 --sizes 1920x1080 --cameras corner,inside --frames 20 --rasters auto $occ \
     -o $OUT/largest$tag.json 2>&1 | grep -v "^ *$"
 done
-mkdir -p /tmp/vl && dpkg -x .dev/vulkan-validationlayers_*.deb /tmp/vl
-export VK_LAYER_PATH=/tmp/vl/usr/share/vulkan/explicit_layer.d
 for cam in ground above; do
   pose=$(grep -B3 "\"camera\": \"$cam\"" $OUT/forest_1.json | grep -m1 -o '"camera_option": "[^"]*"' | cut -d'"' -f4)
   echo "$cam: --camera $pose"
   for occ in on off; do
     flag=""; [ $occ = off ] && flag=--no-occlusion
-    LD_LIBRARY_PATH=$LD_LIBRARY_PATH:/tmp/vl/usr/lib/x86_64-linux-gnu $V render /tmp/arm2.vgeo --layout forest --grid 316 \
+    validated $V render /tmp/arm2.vgeo --layout forest --grid 316 \
       --size 1920x1080 --camera "$pose" $flag --validate --compare-cpu -o /tmp/${cam}_$occ.png \
       --stats /tmp/validate_${cam}_$occ.json 2>&1 | tail -2
     echo "exit $?"
@@ -40,7 +35,7 @@ for cam in ground above; do
 done
 # One instance (culled by the traversal's workers) and the default scene (64 lanes an instance).
 for grid in 1 32; do
-  LD_LIBRARY_PATH=$LD_LIBRARY_PATH:/tmp/vl/usr/lib/x86_64-linux-gnu $V render /tmp/hc.vgeo --grid $grid --size 1920x1080 \
+  validated $V render /tmp/hc.vgeo --grid $grid --size 1920x1080 \
     --validate --compare-cpu -o /tmp/hc_$grid.png 2>&1 | tail -2
   echo "exit $?"
 done

@@ -4,10 +4,9 @@
 # a cut benchmark, on a GPU machine set up as bench/README.md says (How to run; also .dev/data/cow.off);
 # everything packed into $OUT/results.tgz, summaries on stdout.
 set -uo pipefail
-for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig
-export LD_LIBRARY_PATH=$PWD/.dev/lib
-V=.dev/vgeo; D=.dev/data; R=/tmp/results; mkdir -p $R
-nvidia-smi --query-gpu=name,driver_version --format=csv,noheader > $R/gpu.txt 2>&1
+R=/tmp/results; mkdir -p $R
+source bench/gpu_env.sh $R
+D=.dev/data
 $V build assets/horned_cube.obj --subdiv 4 -o /tmp/hc.vgeo -q --threads 16
 $V build $D/cow.off --subdiv 1 -o /tmp/cow1.vgeo -q --threads 16
 $V build $D/armadillo.off --subdiv 2 -o /tmp/arm2.vgeo -q --threads 16
@@ -18,13 +17,10 @@ for i in 1 2; do for r in auto software hardware; do for np in "" --no-patches; 
   $V render $COW $np --raster $r --frames 30 -o /tmp/c.png --stats $R/cow_${r}${np}_$i.json > /dev/null 2>&1
   python3 -c "import json;d=json.load(open('$R/cow_${r}${np}_$i.json'));print('cow $r ${np:-patches}:', {k:d[k] for k in ['patches_drawn','software_patches','patch_triangles','triangles_drawn','software_triangles','triangle_cull_ms','raster_ms','draw_ms','resolve_ms','frame_ms']})"
 done; done; done
-if [ -d /tmp/vl ] || dpkg -x .dev/vulkan-validationlayers_*.deb /tmp/vl; then
-  for r in auto hardware; do
-    VK_LAYER_PATH=/tmp/vl/usr/share/vulkan/explicit_layer.d LD_LIBRARY_PATH=$LD_LIBRARY_PATH:/tmp/vl/usr/lib/x86_64-linux-gnu \
-      $V render $COW --raster $r --validate --compare-cpu -o $R/cow_$r.png > $R/cow_validate_$r.log 2>&1
-    echo "cow $r under validation: exit $?, $(grep -ci validation $R/cow_validate_$r.log) validation lines"
-  done
-fi
+for r in auto hardware; do
+  validated $V render $COW --raster $r --validate --compare-cpu -o $R/cow_$r.png > $R/cow_validate_$r.log 2>&1
+  echo "cow $r under validation: exit $?, $(grep -ci validation $R/cow_validate_$r.log) validation lines"
+done
 $V bench cut /tmp/arm2.vgeo -o $R/cut.json --sizes 100,100000 --layouts grid --taus 1 --traversals persistent --frames 20 > $R/cut.log 2>&1
 cat $R/gpu.txt; cat $R/frame_default.log $R/frame_arm.log | grep instances; tail -12 $R/cut.log
 tar czf $OUT/results.tgz -C /tmp results

@@ -5,14 +5,9 @@
 # (libtinygltf, libmetis, libstb from `ldd build/vgeo`), .dev/data/armadillo.off, and the
 # vulkan-validationlayers .deb in .dev/. Writes JSON to $OUT.
 set -uo pipefail
-for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig
-export LD_LIBRARY_PATH=$PWD/.dev/lib
-V=.dev/vgeo
-nvidia-smi --query-gpu=name,driver_version --format=csv,noheader > $OUT/gpu.txt 2>&1
+source bench/gpu_env.sh
 $V build .dev/data/armadillo.off --subdiv 2 -o /tmp/arm2.vgeo --stats $OUT/build.json --threads 16 -q
-mkdir -p /tmp/vl && dpkg -x .dev/vulkan-validationlayers_*.deb /tmp/vl
-VK_LAYER_PATH=/tmp/vl/usr/share/vulkan/explicit_layer.d LD_LIBRARY_PATH=$LD_LIBRARY_PATH:/tmp/vl/usr/lib/x86_64-linux-gnu \
-  $V render /tmp/arm2.vgeo --grid 10 --size 640x480 --validate --compare-cpu -o /tmp/val.png --stats $OUT/validate.json 2>&1 | tail -5
+validated $V render /tmp/arm2.vgeo --grid 10 --size 640x480 --validate --compare-cpu -o /tmp/val.png --stats $OUT/validate.json 2>&1 | tail -5
 for t in persistent levels flat; do
   extra=""; [ $t = persistent ] && extra="--compare-cpu"
   $V render /tmp/arm2.vgeo --grid 100 --size 1920x1080 --traversal $t --frames 30 $extra -o /tmp/grid_$t.png --stats $OUT/h100_$t.json 2>&1 | tail -3

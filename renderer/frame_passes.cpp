@@ -126,7 +126,7 @@ void GpuRenderer::recordTraversal(VkCommandBuffer cmd, const FrameSettings& sett
     const VkPipeline pipeline = settings.profileWorkers && persistentProfile_
                                     ? persistentProfile_
                                     : persistent_[pass == VGEO_PASS_ONLY ? 0 : 1];
-    if (pass == VGEO_PASS_LATE) {  // no workers when the early pass deferred nothing (begin_late_pass.comp)
+    if (pass == VGEO_PASS_LATE) {  // no workers when the early pass deferred nothing (begin_late_pass.glsl)
       vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
       vkCmdDispatchIndirect(cmd, counters_.buffer, offsetof(shaderio::Counters, lateTraversalDispatch));
     } else {

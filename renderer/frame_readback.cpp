@@ -67,7 +67,7 @@ void GpuRenderer::readResults(const FrameSettings& settings, const shaderio::Fra
                               FrameResult& result) {
   std::memcpy(&result.counters, countersReadback_.mapped, sizeof(result.counters));
   auto& c = result.counters;
-  // The frame's totals where the late pass counted its own (begin_late_pass.comp).
+  // The frame's totals where the late pass counted its own (begin_late_pass.glsl).
   c.visibleInstances += c.earlyVisibleInstances;
   c.budgetExits += c.earlyBudgetExits;
   const bool patches = frame.drawPatches != 0u, cullTriangles = frame.triangleCull != 0u;

@@ -296,7 +296,8 @@ void GpuRenderer::createComputePipelines(bool softwareRaster) {
   // Instance culling and the traversals with the occlusion tests, and without them for one-pass frames
   // (VGEO_SPEC_OCCLUSION; the levels and flat traversals only run those). Tests a lane between draw-list
   // atomics (traverse_persistent.comp, runRound): 1 on lavapipe.
-  const uint32_t constants[2][2] = {{vk_.isLavapipe() ? 1u : 4u, 0u}, {vk_.isLavapipe() ? 1u : 4u, 1u}};  // VkBool32
+  const uint32_t laneTests = vk_.isLavapipe() ? 1u : 4u;
+  const uint32_t constants[2][2] = {{laneTests, 0u}, {laneTests, 1u}};  // (lane tests, occlusion as VkBool32)
   const VkSpecializationMapEntry entries[2] = {{VGEO_SPEC_OCCLUSION, sizeof(uint32_t), sizeof(uint32_t)},
                                                {VGEO_SPEC_LANE_TESTS, 0, sizeof(uint32_t)}};
   VkSpecializationInfo specializations[2];

@@ -185,7 +185,7 @@ class GpuRenderer {
   }
   // Sets the push constants (shaderio_frame.h, PassConstants) that every pass's shaders read.
   void pushPass(VkCommandBuffer cmd, uint32_t pass);
-  // 1.-2. The counters reset (the late pass: begin_late_pass.comp instead), then instance culling.
+  // 1.-2. The counters reset (the late pass: begin_late_pass.glsl instead), then instance culling.
   void recordInstanceCull(VkCommandBuffer cmd, const FrameSettings& settings, uint32_t pass);
   // Lanes that cull one instance: VGEO_CULL_INSTANCE_LANES test a root's children side by side (a shorter
   // chain in front of the traversal of a small scene); in large scenes one, as the reservations of many
