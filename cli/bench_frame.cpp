@@ -5,6 +5,7 @@
 // warm-up; one JSON record each.
 #include <chrono>
 #include <cstdio>
+#include <numeric>
 
 #include <nlohmann/json.hpp>
 
@@ -55,7 +56,7 @@ struct Variant {
 // frame from each pose, the occlusion state carried from one to the next) in `variant`, medians.
 nlohmann::ordered_json measureFrames(const FrameBenchArgs& a, GpuRenderer& renderer, const VulkanContext& vk,
                                      const RenderScene& scene, const std::vector<Camera>& poses, const Variant& variant,
-                                     bool occlusion) {
+                                     Occlusion occlusion) {
   const uint32_t width = renderer.width(), height = renderer.height();
   const bool triangleCull = variant.triangleCull, patches = variant.patches;
   FrameSettings s;
@@ -119,6 +120,9 @@ nlohmann::ordered_json measureFrames(const FrameBenchArgs& a, GpuRenderer& rende
   r["pyramid_ms"] = median(pyramid);  // occlusion culling's depth pyramid
   r["frame_ms"] = median(frame);
   r["frame_max_ms"] = *std::max_element(frame.begin(), frame.end());
+  // The mean too: Auto's probes are a frame or two in kOcclusionProbePeriod, which a median leaves out.
+  r["frame_mean_ms"] = std::accumulate(frame.begin(), frame.end(), 0.0) / double(frame.size());
+  r["occlusion_setting"] = occlusionName(occlusion);
   r["clusters_median"] = median(clusters);  // drawn (a fly-through's vary; the counters are its last frame's)
   addFrameCounters(r, f, renderer, vk);
   r["pixels_covered"] = covered;
@@ -134,26 +138,25 @@ nlohmann::ordered_json measureFrames(const FrameBenchArgs& a, GpuRenderer& rende
                 poses[0].target.x, poses[0].target.y, poses[0].target.z);
   r["camera_option"] = pose;
   r["commit"] = VGEO_COMMIT;
-  std::fprintf(stderr,
-               "%7zu instances %4ux%-4u %-9s tc %-3s patches %-3s %-8s occlusion %-3s: cull %.3f  traversal %.3f  "
-               "triangles %.3f  raster %.3f  draw %.3f  resolve %.3f  pyramid %.3f  frame %.3f ms (%.0f clusters, %u "
-               "early; %u of %u triangles, %u of %u patches in compute)\n",
-               scene.data.instances.size(), width, height, poses.size() > 1 ? "path" : "", triangleCull ? "on" : "off",
-               patches ? "on" : "off", variant.raster.c_str(), occlusion ? "on" : "off", median(cull), median(traverse),
-               median(triangles), median(raster), median(draw), median(resolve), median(pyramid), median(frame),
-               median(clusters), f.counters.drawBase, f.softwareTriangles, f.trianglesDrawn, f.softwarePatches,
-               f.patchesDrawn);
+  std::fprintf(
+      stderr,
+      "%7zu instances %4ux%-4u %-9s tc %-3s patches %-3s %-8s occlusion %-4s: cull %.3f  traversal %.3f  "
+      "triangles %.3f  raster %.3f  draw %.3f  resolve %.3f  pyramid %.3f  frame %.3f ms (mean %.3f; %.0f clusters, %u "
+      "early; %u of %u triangles, %u of %u patches in compute)\n",
+      scene.data.instances.size(), width, height, poses.size() > 1 ? "path" : "", triangleCull ? "on" : "off",
+      patches ? "on" : "off", variant.raster.c_str(), occlusionName(occlusion), median(cull), median(traverse),
+      median(triangles), median(raster), median(draw), median(resolve), median(pyramid), median(frame),
+      r["frame_mean_ms"].get<double>(), median(clusters), f.counters.drawBase, f.softwareTriangles, f.trianglesDrawn,
+      f.softwarePatches, f.patchesDrawn);
   return r;
 }
 
 void runBenchFrame(const FrameBenchArgs& a) {
   traversalNamed("--traversal", a.traversal);  // checked before any work
   const BenchLayout layout = benchLayoutNamed(a.layout);
-  std::vector<bool> occlusions;
-  for (const std::string& o : parseList<std::string>(a.occlusion)) {
-    if (o != "on" && o != "off") throw std::runtime_error("--occlusion: on and/or off");
-    occlusions.push_back(o == "on");
-  }
+  std::vector<Occlusion> occlusions;
+  for (const std::string& o : parseList<std::string>(a.occlusion))
+    occlusions.push_back(occlusionNamed("--occlusion", o));
   VulkanContext vk({a.device, false});
   nlohmann::ordered_json records = nlohmann::json::array();
   for (uint32_t grid : parseList<uint32_t>(a.grids)) {
@@ -182,7 +185,7 @@ void runBenchFrame(const FrameBenchArgs& a) {
         }
         variants.push_back({false, false, "hardware"});
         for (const Variant& variant : variants)
-          for (bool occlusion : occlusions) {
+          for (Occlusion occlusion : occlusions) {
             nlohmann::ordered_json r = measureFrames(a, renderer, vk, scene, poses, variant, occlusion);
             r["camera"] = cameraName;
             records.push_back(r);
@@ -212,7 +215,7 @@ void addBenchFrameCommand(CLI::App& bench, int& exitCode) {
                   "grid (N x N copies of the input), forest (N x N instances of its first geometry packed in rows)")
       ->check(CLI::IsMember({"grid", "forest"}))
       ->capture_default_str();
-  cmd->add_option("--occlusion", a->occlusion, "Occlusion culling on and/or off (a record each)")
+  cmd->add_option("--occlusion", a->occlusion, "Occlusion culling auto, on and/or off (a record each)")
       ->capture_default_str();
   cmd->add_option("--path-frames", a->pathFrames, "Frames of the fly-through")
       ->capture_default_str()

@@ -56,6 +56,20 @@ inline Raster rasterNamed(const std::string& option, const std::string& name) {
   throw std::runtime_error(option + ": unknown rasterizer '" + name + "' (auto, hardware or software)");
 }
 
+// --occlusion auto|on|off (render, and lists of them in bench frame), the names of FrameSettings::occlusion.
+inline constexpr std::pair<const char*, Occlusion> kOcclusions[] = {
+    {"auto", Occlusion::Auto}, {"on", Occlusion::On}, {"off", Occlusion::Off}};
+inline Occlusion occlusionNamed(const std::string& option, const std::string& name) {
+  for (const auto& [n, o] : kOcclusions)
+    if (name == n) return o;
+  throw std::runtime_error(option + ": unknown occlusion culling '" + name + "' (auto, on or off)");
+}
+inline const char* occlusionName(Occlusion occlusion) {
+  for (const auto& [n, o] : kOcclusions)
+    if (o == occlusion) return n;
+  return "?";
+}
+
 // --traversal persistent|levels|flat (render and bench frame) and its value; bench cut lists several.
 inline constexpr Traversal kTraversals[] = {Traversal::Persistent, Traversal::Levels, Traversal::Flat};
 inline void addTraversalOption(CLI::App* cmd, std::string& name) {

@@ -38,7 +38,7 @@ struct RenderArgs {
            cullLanes = 0;
   uint32_t sweepBudget = kDefaultSweepBudget, maxFrameMemoryMiB = kDefaultFrameMemoryMiB, deviceMemoryMiB = 0;
   uint32_t packedCullBelow = kDefaultPackedCullBelow;
-  std::string instanceCulling = "auto", raster = "auto", layout = "grid";
+  std::string instanceCulling = "auto", raster = "auto", layout = "grid", occlusion = "auto";
   bool compareCpu = false, validate = false, noTriangleCull = false, noPatches = false, noOcclusion = false;
 };
 
@@ -59,7 +59,7 @@ FrameSettings frameSettings(const RenderArgs& a, const RenderScene& scene, const
   settings.patches = !a.noPatches;
   settings.raster = rasterNamed("--raster", a.raster);
   settings.packedCullBelow = a.packedCullBelow;
-  settings.occlusion = !a.noOcclusion;
+  settings.occlusion = a.noOcclusion ? Occlusion::Off : occlusionNamed("--occlusion", a.occlusion);
   return settings;
 }
 
@@ -290,9 +290,13 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_flag("--no-triangle-cull", a->noTriangleCull,
                 "Draw every triangle of the listed clusters (default: drop those that cannot make a fragment first); "
                 "implies --no-patches");
-  cmd->add_flag("--no-occlusion", a->noOcclusion,
-                "One pass, culled by frustum, cone and triangle only (default: two passes, the second culled against "
-                "the depth of what the first drew)");
+  cmd->add_option("--occlusion", a->occlusion,
+                  "Two passes, the second culled against the depth of what the first drew: auto (while they hide a "
+                  "tenth of what a frame draws, probed every few frames), on, off (one pass, culled by frustum, cone "
+                  "and triangle only)")
+      ->check(CLI::IsMember({"auto", "on", "off"}))
+      ->capture_default_str();
+  cmd->add_flag("--no-occlusion", a->noOcclusion, "The same as --occlusion off");
   cmd->add_flag("--no-patches", a->noPatches,
                 "Draw leaf clusters as their triangles even where their chord error projects above tau (default: "
                 "tessellated limit-surface patches)");

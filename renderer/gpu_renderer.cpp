@@ -278,8 +278,16 @@ void GpuRenderer::writeDescriptors() {
   vkUpdateDescriptorSets(vk_.device(), kRendererBindings, writes, 0, nullptr);
 }
 
+// How a frame with these settings runs: one pass, or two culling by occlusion (always with On and for a
+// frozen cut, with Auto as the policy says).
+OcclusionPlan GpuRenderer::occlusionPlan(const FrameSettings& settings) const {
+  if (!mayOcclude(settings)) return OcclusionPlan::OnePass;
+  if (settings.occlusion == Occlusion::On || keepsPyramid(settings)) return OcclusionPlan::TwoPass;
+  return occlusionPolicy_.next(pyramidMade_);
+}
+
 // The frame's constants (shaderio.h, FrameData) for these settings.
-shaderio::FrameData GpuRenderer::frameConstants(const FrameSettings& settings) const {
+shaderio::FrameData GpuRenderer::frameConstants(const FrameSettings& settings, OcclusionPlan plan) const {
   shaderio::FrameData frame{};
   frame.viewProjection = settings.drawView.viewProjection;
   for (int i = 0; i < 6; i++) frame.frustum[i] = settings.cullView.planes[i];
@@ -313,7 +321,7 @@ shaderio::FrameData GpuRenderer::frameConstants(const FrameSettings& settings) c
   // Occlusion culling: the early pass tests against the pyramid the last frame left (none: it tests
   // nothing), from the camera it was drawn from; the late pass against the one built in between, from this
   // frame's camera. A frozen cut keeps the pyramid of the camera it froze at, for both.
-  if (occludes(settings)) {
+  if (plan == OcclusionPlan::TwoPass) {
     const bool frozen = keepsPyramid(settings);
     frame.occlusion = frozen ? VGEO_OCCLUSION_FROZEN : VGEO_OCCLUSION_ON;
     frame.earlyOcclusion = pyramidMade_ ? 1u : 0u;
@@ -334,8 +342,8 @@ shaderio::FrameData GpuRenderer::frameConstants(const FrameSettings& settings) c
 // Records and submits the passes in frame order and times each: GPU timestamps in one submission, or on
 // lavapipe one submission a pass timed on the host. With occlusion culling the selection and drawing run
 // twice (docs/design.md, "Occlusion culling"), the depth pyramid between.
-void GpuRenderer::runPasses(const FrameSettings& settings, const shaderio::FrameData& frame, bool bare,
-                            FrameResult& result) {
+void GpuRenderer::runPasses(const FrameSettings& settings, const shaderio::FrameData& frame, OcclusionPlan plan,
+                            bool bare, FrameResult& result) {
   // The frame's passes in order, each with where its time goes (nullptr: the frame's only) and the
   // selection pass it belongs to (VGEO_PASS_*).
   const bool software = frame.softwareRaster != VGEO_RASTER_NONE;
@@ -366,6 +374,8 @@ void GpuRenderer::runPasses(const FrameSettings& settings, const shaderio::Frame
   };
   if (frame.occlusion == VGEO_OCCLUSION_OFF) {
     addSelection(VGEO_PASS_ONLY);
+    if (plan == OcclusionPlan::OnePassThenPyramid)  // for the next frame, a probe (occlusion_policy.h)
+      passes.push_back({&result.pyramidMs, VGEO_PASS_ONLY, [this](VkCommandBuffer cmd) { recordDepthPyramid(cmd); }});
   } else {
     addSelection(VGEO_PASS_EARLY);
     if (frame.occlusion == VGEO_OCCLUSION_ON)  // a frozen cut keeps the pyramid it froze with
@@ -444,15 +454,17 @@ bool GpuRenderer::checkDrained(FrameResult& result) {
 }
 
 FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
-  shaderio::FrameData frame = frameConstants(settings);
+  const OcclusionPlan plan = occlusionPlan(settings);
+  shaderio::FrameData frame = frameConstants(settings, plan);
   if (frame.occlusion == VGEO_OCCLUSION_FROZEN && !pyramidDrawnFrom(settings.cullView)) {
     // A cut frozen at a camera this renderer has not drawn from: a frame from it first, as a viewer would
     // have drawn before freezing, leaves its pyramid.
     FrameSettings from = settings;
     from.drawView = settings.cullView;
+    from.occlusion = Occlusion::On;
     from.readImage = from.readDrawList = from.profileWorkers = false;
     renderFrame(from);
-    frame = frameConstants(settings);
+    frame = frameConstants(settings, plan);
   }
   const bool profile = settings.profileWorkers && persistentProfile_ && settings.traversal == Traversal::Persistent;
   prepareReadbacks(settings, profile);
@@ -464,12 +476,18 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
                               : VGEO_PYRAMID_FROM_DEPTH_IMAGE |
                                     (frame.softwareRaster != VGEO_RASTER_NONE ? VGEO_PYRAMID_FROM_VISIBILITY : 0u);
   std::memcpy(frameData_.mapped, &frame, sizeof(frame));
-  runPasses(settings, frame, bare, result);
+  runPasses(settings, frame, plan, bare, result);
   readResults(settings, frame, profile, bare, result);
   result.bareRenderPass = bare;
-  if (frame.occlusion == VGEO_OCCLUSION_ON) {  // the next frame's early pass tests against this pyramid
+  result.pyramidBuilt = frame.occlusion == VGEO_OCCLUSION_ON || plan == OcclusionPlan::OnePassThenPyramid;
+  if (result.pyramidBuilt) {  // the next frame's early pass tests against this pyramid
     pyramidMade_ = true;
     pyramidView_ = settings.cullView;
+  }
+  if (settings.occlusion == Occlusion::Auto && frame.occlusion != VGEO_OCCLUSION_FROZEN && mayOcclude(settings)) {
+    const shaderio::Counters& c = result.counters;
+    occlusionPolicy_.record(plan, uint64_t(c.occludedInstances) + c.occludedNodes, c.occludedClusters,
+                            std::min(c.drawCount, drawCapacity_), c.visibleInstances);
   }
   if (checkDrained(result)) growOverflowedLists(result.counters, settings.tau);
   return result;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "camera.h"
+#include "occlusion_policy.h"
 #include "reference_cut.h"
 #include "scene.h"
 #include "vulkan_context.h"
@@ -74,9 +75,10 @@ struct FrameSettings {
   // triangles than this (0: never; tests force both ways).
   uint32_t packedCullBelow = kDefaultPackedCullBelow;
   // Two-pass occlusion culling (docs/design.md): what the last frame's depth does not hide first, then the
-  // rest tested against the depth that drew. Frames that draw nothing, show overdraw or traverse by levels
-  // or flat run one pass. A frozen cut (cullView != drawView) keeps the depth of the camera it froze at.
-  bool occlusion = true;
+  // rest tested against the depth that drew. Auto runs two passes while they pay (occlusion_policy.h).
+  // Frames that draw nothing, show overdraw or traverse by levels or flat run one pass. A frozen cut
+  // (cullView != drawView) keeps the depth of the camera it froze at, and with it Auto runs two passes.
+  Occlusion occlusion = Occlusion::Auto;
   bool profileWorkers = false;  // persistent traversal on a device with a shader device clock: record the
                                 // workers' iterations in FrameResult::workerProfile (benchmarks)
 };
@@ -95,6 +97,7 @@ struct FrameResult {
   bool culledInTraversal = false;       // the persistent traversal culled the instances (instanceCullMs: the reset)
   bool occlusion = false;               // two passes ran (counters: the frame's totals; drawBase the early pass's
                                         // clusters, occluded* what the late pass hid)
+  bool pyramidBuilt = false;            // the frame left a depth pyramid (two passes, or one before a probe)
   bool bareRenderPass = false;          // the render pass had no attachments: every pixel from the visibility buffer
   // The passes' times: rasterMs the software rasterizer, drawMs the render pass (hardware draws), resolveMs
   // the shading of the software rasterizer's pixels; frameMs all of them and the read-back copies.
@@ -169,9 +172,11 @@ class GpuRenderer {
   void createQueueAndDrawList();
   void writeDescriptors();
   // renderFrame's steps, in order (gpu_renderer.cpp).
-  shaderio::FrameData frameConstants(const FrameSettings& settings) const;
+  OcclusionPlan occlusionPlan(const FrameSettings& settings) const;
+  shaderio::FrameData frameConstants(const FrameSettings& settings, OcclusionPlan plan) const;
   void prepareReadbacks(const FrameSettings& settings, bool profile);
-  void runPasses(const FrameSettings& settings, const shaderio::FrameData& frame, bool bare, FrameResult& result);
+  void runPasses(const FrameSettings& settings, const shaderio::FrameData& frame, OcclusionPlan plan, bool bare,
+                 FrameResult& result);
   void readResults(const FrameSettings& settings, const shaderio::FrameData& frame, bool profile, bool bare,
                    FrameResult& result);
   bool checkDrained(FrameResult& result);
@@ -210,11 +215,12 @@ class GpuRenderer {
   // The pyramid levels a workgroup's tile reduces to in shared memory (build_depth_pyramid.comp): 1 on
   // lavapipe, where each of the tile's barriers costs more than the one workgroup's work above it.
   uint32_t pyramidTileLevels() const { return vk_.isLavapipe() ? 1u : 5u; }
-  // Whether a frame with these settings culls by occlusion (two passes): it must draw, the overdraw view
+  // Whether a frame with these settings may cull by occlusion (two passes): it must draw, the overdraw view
   // shows every layer (its compute rasterizers count instead of keeping depth), and the late pass's first
   // items may be clusters (runs of one), which only the persistent traversal takes.
-  bool occludes(const FrameSettings& s) const {
-    return s.occlusion && s.draw && s.mode != VGEO_MODE_OVERDRAW && s.traversal == Traversal::Persistent;
+  bool mayOcclude(const FrameSettings& s) const {
+    return s.occlusion != Occlusion::Off && s.draw && s.mode != VGEO_MODE_OVERDRAW &&
+           s.traversal == Traversal::Persistent;
   }
   // Whether a frame culled by occlusion keeps the depth pyramid it has (a frozen cut: both passes test
   // against the pyramid of the camera it froze at) instead of building one between its passes.
@@ -278,6 +284,7 @@ class GpuRenderer {
   uint32_t pyramidOffsets_[VGEO_PYRAMID_MAX_LEVELS] = {};
   bool pyramidMade_ = false;  // depthPyramid_ holds a picture, drawn from pyramidView_
   View pyramidView_;
+  OcclusionPolicy occlusionPolicy_;  // Occlusion::Auto's frames
   VkImage color_ = VK_NULL_HANDLE, depth_ = VK_NULL_HANDLE;
   VkDeviceMemory colorMemory_ = VK_NULL_HANDLE, depthMemory_ = VK_NULL_HANDLE;
   VkImageView colorView_ = VK_NULL_HANDLE, depthView_ = VK_NULL_HANDLE;

@@ -1,6 +1,7 @@
 #version 450
 // build_depth_pyramid.comp: the depth pyramid of the early pass's picture (shaderio_frame.h,
-// VGEO_PYRAMID_*) in one dispatch, then the late pass begun (begin_late_pass.glsl). Level k covers
+// VGEO_PYRAMID_*) in one dispatch, then the late pass begun (begin_late_pass.glsl); or of a one-pass
+// frame's picture, for the next frame. Level k covers
 // 2^k x 2^k pixels a texel and holds the farthest (smallest reversed) depth under it, so a texel never
 // claims a depth nearer than any pixel it covers. Level 0, a pixel's own depth, is not stored: the tests
 // start at level 1.
@@ -129,5 +130,6 @@ void main() {
   if (!sLastTile) return;  // the whole workgroup
   memoryBarrierBuffer();
   reduceTop();
-  if (gl_LocalInvocationIndex == 0u) beginLatePass();
+  // After a one-pass frame the pyramid is only for the next frame's early pass (occlusion_policy.h).
+  if (gl_LocalInvocationIndex == 0u && passConstants.pass != VGEO_PASS_ONLY) beginLatePass();
 }

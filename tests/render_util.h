@@ -56,7 +56,7 @@ inline FrameSettings frameSettings(const RenderScene& scene, const Camera& camer
   s.drawView = s.cullView = makeView(camera, width, height, scene.bounds);
   s.tau = tau;
   s.readDrawList = true;
-  s.occlusion = false;
+  s.occlusion = Occlusion::Off;
   return s;
 }
 

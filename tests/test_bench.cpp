@@ -103,8 +103,10 @@ TEST(BenchFrame, ForestWithAndWithoutOcclusionCulling) {
     EXPECT_EQ(on["instances"].get<int>(), 64);
     EXPECT_TRUE(on["occlusion"].get<bool>());
     EXPECT_FALSE(off["occlusion"].get<bool>());
-    for (const char* key : {"pyramid_ms", "frame_max_ms", "clusters_median", "early_clusters", "occluded_instances",
-                            "occluded_nodes", "occluded_clusters"})
+    EXPECT_EQ(on["occlusion_setting"], "on");
+    EXPECT_EQ(off["occlusion_setting"], "off");
+    for (const char* key : {"pyramid_ms", "frame_max_ms", "frame_mean_ms", "clusters_median", "early_clusters",
+                            "occluded_instances", "occluded_nodes", "occluded_clusters"})
       EXPECT_TRUE(on.contains(key)) << key;
     EXPECT_EQ(on["pixels_covered"], off["pixels_covered"]);  // the same picture
     EXPECT_LE(on["visible_clusters"].get<uint64_t>(), off["visible_clusters"].get<uint64_t>());
