@@ -97,6 +97,7 @@ void addFrameCounters(nlohmann::ordered_json& record, const FrameResult& frame, 
 void addBuildCommand(CLI::App& app, int& exitCode);
 void addCheckCommand(CLI::App& app, int& exitCode);
 void addRenderCommand(CLI::App& app, int& exitCode);
+void addViewCommand(CLI::App& app, int& exitCode);
 void addBenchCommand(CLI::App& app, int& exitCode);
 
 }  // namespace vgeo

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   vgeo::addBuildCommand(app, exitCode);
   vgeo::addCheckCommand(app, exitCode);
   vgeo::addRenderCommand(app, exitCode);
+  vgeo::addViewCommand(app, exitCode);
   vgeo::addBenchCommand(app, exitCode);
   try {
     app.parse(argc, argv);

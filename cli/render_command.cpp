@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "../common/input_error.h"
+#include "../renderer/debug_modes.h"
 #include "../renderer/gpu_renderer.h"
 #include "../renderer/image.h"
 #include "commands.h"
@@ -16,19 +17,6 @@
 
 namespace vgeo {
 namespace {
-
-const std::map<std::string, uint32_t> kModes = {{"lit", VGEO_MODE_LIT},
-                                                {"normal", VGEO_MODE_NORMAL},
-                                                {"cluster", VGEO_MODE_CLUSTER},
-                                                {"group", VGEO_MODE_GROUP},
-                                                {"lod", VGEO_MODE_LOD},
-                                                {"triangle", VGEO_MODE_TRIANGLE},
-                                                {"instance", VGEO_MODE_INSTANCE},
-                                                {"error", VGEO_MODE_ERROR},
-                                                {"wire", VGEO_MODE_WIRE},
-                                                {"overdraw", VGEO_MODE_OVERDRAW},
-                                                {"frozen-diff", VGEO_MODE_FROZEN_DIFF},
-                                                {"patch", VGEO_MODE_PATCH}};
 
 struct RenderArgs {
   std::string input, output, stats, camera, freezeCamera, mode = "lit", traversal = "persistent", size = "1280x720",
@@ -49,7 +37,7 @@ FrameSettings frameSettings(const RenderArgs& a, const RenderScene& scene, const
   settings.drawView = makeView(camera, width, height, scene.bounds);
   settings.cullView = makeView(cullCamera, width, height, scene.bounds);
   settings.tau = a.tau;
-  settings.mode = kModes.at(a.mode);
+  settings.mode = debugModeNamed(a.mode)->mode;  // checked by the option
   settings.sweepBudget = a.sweepBudget;
   settings.cullLanes = a.cullLanes;
   settings.instanceCulling = instanceCullingNamed(a.instanceCulling);
@@ -252,7 +240,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
       ->capture_default_str()
       ->check(finiteBetween(0.0, INFINITY));
   std::vector<std::string> modes;
-  for (const auto& [name, value] : kModes) modes.push_back(name);
+  for (const DebugMode& m : kDebugModes) modes.push_back(m.name);
   cmd->add_option("--mode", a->mode, "Debug view")->capture_default_str()->check(CLI::IsMember(modes));
   cmd->add_option("--grid", a->grid, "N x N instances of the input")
       ->capture_default_str()

@@ -125,6 +125,9 @@ class GpuRenderer {
   // buffers for the next frame.
   FrameResult renderFrame(const FrameSettings& settings);
 
+  // The frame's colour target (RGBA8): after a frame in VK_IMAGE_LAYOUT_GENERAL, or in
+  // TRANSFER_SRC_OPTIMAL when the frame read its image back (the viewer copies it to the window).
+  VkImage colorImage() const { return color_; }
   uint32_t width() const { return width_; }
   uint32_t height() const { return height_; }
   uint32_t queueCapacity() const { return queueCapacity_; }

@@ -102,6 +102,7 @@ int deviceRank(VkPhysicalDeviceType type) {
 
 VulkanContext::VulkanContext(const ContextOptions& options) : memoryLimitBytes_(options.memoryLimitBytes) {
   createInstance(options);
+  if (options.createSurface) surface_ = options.createSurface(instance_);
   pickDevice(options);
   createDevice();
 }
@@ -111,7 +112,7 @@ void VulkanContext::createInstance(const ContextOptions& options) {
   VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
   app.pApplicationName = "vgeo";
   app.apiVersion = VK_API_VERSION_1_2;
-  std::vector<const char*> layers, extensions;
+  std::vector<const char*> layers, extensions = options.instanceExtensions;
   if (options.validation) {
     uint32_t count = 0;
     vkEnumerateInstanceLayerProperties(&count, nullptr);
@@ -205,15 +206,20 @@ void VulkanContext::pickDevice(const ContextOptions& options) {
   std::vector<VkQueueFamilyProperties> familyProps(families);
   vkGetPhysicalDeviceQueueFamilyProperties(physical_, &families, familyProps.data());
   queueFamily_ = UINT32_MAX;
-  for (uint32_t i = 0; i < families; i++)
+  for (uint32_t i = 0; i < families; i++) {
+    VkBool32 presents = VK_TRUE;  // to the window's surface, when there is one
+    if (surface_) vkGetPhysicalDeviceSurfaceSupportKHR(physical_, i, surface_, &presents);
     if ((familyProps[i].queueFlags & (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) ==
-        (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT)) {
+            (VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT) &&
+        presents) {
       queueFamily_ = i;
       timestampValidBits_ = familyProps[i].timestampValidBits;
       break;
     }
+  }
   if (queueFamily_ == UINT32_MAX)
-    throw std::runtime_error("vulkan: no queue with graphics and compute on " + deviceName());
+    throw std::runtime_error("vulkan: no queue with graphics and compute" +
+                             std::string(surface_ ? " that presents to the window" : "") + " on " + deviceName());
 }
 
 // The logical device with the optional features the renderer uses where supported, its queue and a
@@ -263,14 +269,20 @@ void VulkanContext::createDevice() {
     vulkan12.bufferDeviceAddress = VK_TRUE;
     enabled.shaderInt64 = int64Atomics_;
   }
-  const char* clockExtension = VK_KHR_SHADER_CLOCK_EXTENSION_NAME;
+  std::vector<const char*> extensions;
   VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   deviceInfo.pNext = &vulkan12;
   if (deviceClock_) {  // `clock` holds the supported features: enabled as they are
     vulkan12.pNext = &clock;
-    deviceInfo.enabledExtensionCount = 1;
-    deviceInfo.ppEnabledExtensionNames = &clockExtension;
+    extensions.push_back(VK_KHR_SHADER_CLOCK_EXTENSION_NAME);
   }
+  if (surface_) {
+    if (!hasDeviceExtension(VK_KHR_SWAPCHAIN_EXTENSION_NAME))
+      throw std::runtime_error("vulkan: " + deviceName() + " cannot present to a window (no VK_KHR_swapchain)");
+    extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
+  }
+  deviceInfo.enabledExtensionCount = uint32_t(extensions.size());
+  deviceInfo.ppEnabledExtensionNames = extensions.data();
   deviceInfo.queueCreateInfoCount = 1;
   deviceInfo.pQueueCreateInfos = &queueInfo;
   deviceInfo.pEnabledFeatures = &enabled;
@@ -295,6 +307,7 @@ VulkanContext::~VulkanContext() {
     vkDestroyCommandPool(device_, pool_, nullptr);
     vkDestroyDevice(device_, nullptr);
   }
+  if (surface_) vkDestroySurfaceKHR(instance_, surface_, nullptr);
   if (messenger_) {
     auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
         vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
@@ -380,7 +393,8 @@ VkCommandBuffer VulkanContext::beginCommands() {
   return cmd;
 }
 
-void VulkanContext::submitAndWait(VkCommandBuffer cmd) {
+void VulkanContext::submitAndWait(VkCommandBuffer cmd, VkSemaphore wait, VkPipelineStageFlags waitStage,
+                                  VkSemaphore signal) {
   vkCheck(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
   VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
   VkFence fence;
@@ -388,6 +402,15 @@ void VulkanContext::submitAndWait(VkCommandBuffer cmd) {
   VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   submit.commandBufferCount = 1;
   submit.pCommandBuffers = &cmd;
+  if (wait) {
+    submit.waitSemaphoreCount = 1;
+    submit.pWaitSemaphores = &wait;
+    submit.pWaitDstStageMask = &waitStage;
+  }
+  if (signal) {
+    submit.signalSemaphoreCount = 1;
+    submit.pSignalSemaphores = &signal;
+  }
   vkCheck(vkQueueSubmit(queue_, 1, &submit, fence), "vkQueueSubmit");
   const VkResult waited = vkWaitForFences(device_, 1, &fence, VK_TRUE, kSubmitTimeoutNs);
   if (waited == VK_TIMEOUT)

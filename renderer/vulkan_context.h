@@ -1,10 +1,12 @@
 // vulkan_context.h: the Vulkan device the renderer runs on, and the few helpers every pass needs
-// (buffers, one-shot submissions, shader modules, timestamps). Headless: no surface, no swapchain.
+// (buffers, one-shot submissions, shader modules, timestamps). Headless unless a window's surface is asked
+// for (the viewer): then the queue also presents to it and the device has VK_KHR_swapchain.
 #pragma once
 
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -16,6 +18,10 @@ struct ContextOptions {
   // Device memory to plan with, when less than the device's (0: all of it): scenes are refused as on a
   // GPU of this much memory.
   uint64_t memoryLimitBytes = 0;
+  // A window's surface (the viewer): the instance extensions it needs, and what makes it once the
+  // instance exists. The context owns the surface.
+  std::vector<const char*> instanceExtensions;
+  std::function<VkSurfaceKHR(VkInstance)> createSurface;
 };
 
 struct Buffer {
@@ -32,6 +38,8 @@ class VulkanContext {
   VulkanContext(const VulkanContext&) = delete;
   VulkanContext& operator=(const VulkanContext&) = delete;
 
+  VkInstance instance() const { return instance_; }
+  VkSurfaceKHR surface() const { return surface_; }  // VK_NULL_HANDLE when headless
   VkDevice device() const { return device_; }
   VkPhysicalDevice physicalDevice() const { return physical_; }
   VkQueue queue() const { return queue_; }
@@ -63,8 +71,10 @@ class VulkanContext {
   void upload(const Buffer& dst, const void* data, VkDeviceSize size, VkDeviceSize offset = 0);
 
   VkCommandBuffer beginCommands();
-  // Ends, submits and waits for the command buffer (one submission), then frees it.
-  void submitAndWait(VkCommandBuffer cmd);
+  // Ends, submits and waits for the command buffer (one submission), then frees it; the submission
+  // waits for `wait` (at `waitStage`) and signals `signal` where given (the viewer's swapchain).
+  void submitAndWait(VkCommandBuffer cmd, VkSemaphore wait = VK_NULL_HANDLE, VkPipelineStageFlags waitStage = 0,
+                     VkSemaphore signal = VK_NULL_HANDLE);
 
   VkShaderModule createShaderModule(const uint32_t* code, size_t bytes);
 
@@ -79,6 +89,7 @@ class VulkanContext {
   uint32_t memoryType(uint32_t bits, VkMemoryPropertyFlags flags) const;
 
   VkInstance instance_ = VK_NULL_HANDLE;
+  VkSurfaceKHR surface_ = VK_NULL_HANDLE;
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
   VkPhysicalDevice physical_ = VK_NULL_HANDLE;
   VkDevice device_ = VK_NULL_HANDLE;

@@ -1,0 +1,114 @@
+// test_viewer.cpp: `vgeo view` under Xvfb (Debian xvfb) on lavapipe with the validation layer: a script
+// moves the camera, freezes the cut and flies on, switches every view, resizes the window and takes
+// screenshots; each screenshot is the PNG `vgeo render` writes for the same camera and settings, byte
+// for byte (the same renderer, so no tolerance is needed). Without a display the viewer says so in one
+// line that points to `vgeo render`; a bad script line is one line naming the file and the line.
+#include <filesystem>
+
+#include "../renderer/debug_modes.h"
+#include "test_util.h"
+
+namespace vgeo {
+namespace {
+
+class Viewer : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir = new std::string(std::filesystem::temp_directory_path() / "vgeo_viewer_tests");
+    std::filesystem::remove_all(*dir);
+    std::filesystem::create_directories(*dir);
+    writeVgeo(test::build(test::asset("horned_cube.obj"), 2), *dir + "/horned.vgeo");
+  }
+  static void TearDownTestSuite() { delete dir; }
+  // `vgeo view` of the horned cube in a 3 x 3 grid under a fresh Xvfb display.
+  static test::RunResult view(const std::string& options) {
+    EXPECT_TRUE(std::filesystem::exists("/usr/bin/xvfb-run")) << "xvfb-run is missing (scripts/setup.sh installs xvfb)";
+    return test::runShell("xvfb-run -a -s '-screen 0 1280x1024x24' " + std::string(VGEO_BINARY) + " view " + *dir +
+                          "/horned.vgeo --grid 3 " + options);
+  }
+  static std::string* dir;
+};
+std::string* Viewer::dir = nullptr;
+
+TEST_F(Viewer, ScriptedScreenshotsAreWhatRenderWrites) {
+  const std::string near = "2.5,1.8,3.5,0,0,0", far = "-4,1.2,2.5,0.3,0.1,0";
+  struct Shot {
+    std::string name, renderOptions;
+  };
+  std::vector<Shot> shots;
+  std::string script = "# frame command arguments\n0 camera " + near + "\n";
+  uint32_t frame = 2;
+  auto shoot = [&](const std::string& name, const std::string& renderOptions) {
+    script += std::to_string(frame) + " screenshot " + *dir + "/" + name + ".png\n";
+    shots.push_back({name, renderOptions});
+    frame += 2;
+  };
+  shoot("start", "--camera " + near);
+  // Frozen at `near`, flown along a path to `far`: the cut stays the frozen one.
+  script += std::to_string(frame) + " freeze on\n" + std::to_string(frame) + " path 5 " + far + "\n";
+  frame += 6;
+  shoot("frozen", "--camera " + far + " --freeze-camera " + near);
+  script += std::to_string(frame) + " mode frozen-diff\n";
+  frame++;
+  shoot("frozen_diff", "--camera " + far + " --freeze-camera " + near + " --mode frozen-diff");
+  script += std::to_string(frame) + " freeze off\n" + std::to_string(frame) + " resize 400x240\n";
+  frame += 2;
+  for (const DebugMode& m : kDebugModes) {
+    script += std::to_string(frame) + " mode " + m.name + "\n";
+    frame++;
+    shoot(std::string("mode_") + m.name, "--size 400x240 --camera " + far + " --mode " + m.name);
+  }
+  script += std::to_string(frame) + " mode lit\n" + std::to_string(frame) + " tau 4\n" + std::to_string(frame) +
+            " occlusion on\n" + std::to_string(frame) + " patches off\n";
+  frame++;
+  shoot("settings", "--size 400x240 --camera " + far + " --tau 4 --occlusion on --no-patches");
+  script += std::to_string(frame) + " window-screenshot " + *dir + "/window.png\n";
+  script += std::to_string(frame + 1) + " quit\n";
+  const std::string scriptPath = test::writeFile(*dir, "script.txt", script);
+
+  const test::RunResult run = view("--size 320x200 --validate --script " + scriptPath);
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_EQ(run.output.find("validation"), std::string::npos) << run.output;
+  for (const Shot& shot : shots) {
+    SCOPED_TRACE(shot.name);
+    const std::string shown = *dir + "/" + shot.name + ".png", rendered = *dir + "/" + shot.name + "_render.png";
+    const std::string size = shot.renderOptions.find("--size") == std::string::npos ? "--size 320x200 " : "";
+    const test::RunResult r = test::runVgeo("render " + *dir + "/horned.vgeo --grid 3 " + size + shot.renderOptions +
+                                            " -o " + rendered);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    ASSERT_TRUE(std::filesystem::exists(shown));
+    EXPECT_TRUE(test::readFile(shown) == test::readFile(rendered)) << shown << " differs from " << rendered;
+  }
+  // The window, panel and all, at the size the script gave it.
+  EXPECT_GT(std::filesystem::file_size(*dir + "/window.png"), 1000u);
+}
+
+TEST_F(Viewer, WithoutADisplayItSaysSoInOneLine) {
+  const test::RunResult r = test::runShell("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(VGEO_BINARY) + " view " +
+                                           *dir + "/horned.vgeo");
+  EXPECT_EQ(r.exitCode, 5) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_NE(r.output.find("vgeo render"), std::string::npos) << r.output;
+}
+
+TEST_F(Viewer, ABadScriptLineIsOneLineNamingIt) {
+  for (const auto& [text, expected] : std::vector<std::pair<std::string, std::string>>{
+           {"0 camera 1,2\n", "line 1: camera: expected six numbers"},
+           {"4 quit\n2 quit\n", "line 2: frame 2 comes before"},
+           {"0 mode bogus\n", "line 1: mode takes a view's name"},
+           {"0 fly\n", "line 1: unknown command 'fly'"},
+           {"x quit\n", "line 1: a line starts with a frame number"},
+           {"0 key Z\n", "line 1: key takes one of the viewer's keys"},
+           {"0 resize 10\n", "line 1: resize takes a size WxH"},
+           {"0 quit now\n", "line 1: quit takes no more than its arguments"}}) {
+    SCOPED_TRACE(text);
+    const std::string path = test::writeFile(*dir, "bad.txt", text);
+    const test::RunResult r = test::runVgeo("view " + *dir + "/horned.vgeo --script " + path);
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_NE(r.output.find(path + ": " + expected), std::string::npos) << r.output;
+  }
+}
+
+}  // namespace
+}  // namespace vgeo

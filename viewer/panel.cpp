@@ -1,0 +1,123 @@
+// panel.cpp: the viewer's panel (Dear ImGui) and its keys. Every setting of `vgeo render` that changes
+// a frame is here, so what the window shows can be written down as a command line (the camera too:
+// "print camera").
+#include <imgui.h>
+
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+
+#include "../renderer/debug_modes.h"
+#include "view_state.h"
+
+namespace vgeo {
+
+namespace {
+
+const char* kOcclusionNames[] = {"off", "on", "auto"};  // Occlusion's order
+
+void cycleMode(ViewState& s) {
+  const size_t count = std::size(kDebugModes);
+  for (size_t i = 0; i < count; i++)
+    if (kDebugModes[i].mode == s.mode) {
+      s.mode = kDebugModes[(i + 1) % count].mode;
+      return;
+    }
+  s.mode = VGEO_MODE_LIT;
+}
+
+void printCamera(const ViewState& s) {
+  const Camera c = s.camera.camera(s.fov);
+  std::printf("--camera %.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y,
+              c.target.z);
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+bool pressKey(ViewState& s, const std::string& key) {
+  if (key == "F") {
+    s.frozen = !s.frozen;
+    s.frozenCamera = s.camera.camera(s.fov);
+  } else if (key == "M") {
+    cycleMode(s);
+  } else if (key == "P") {
+    s.patches = !s.patches;
+  } else if (key == "T") {
+    s.triangleCull = !s.triangleCull;
+  } else if (key == "O") {
+    s.occlusion = s.occlusion == Occlusion::Auto ? Occlusion::On
+                  : s.occlusion == Occlusion::On ? Occlusion::Off
+                                                 : Occlusion::Auto;
+  } else if (key == "H") {
+    s.camera = FlyCamera::from(s.home, s.camera.speed);
+  } else if (key == "C") {
+    printCamera(s);
+  } else if (key == "+") {
+    s.tau *= 1.25f;
+  } else if (key == "-") {
+    s.tau /= 1.25f;
+  } else if (key == "F12") {  // a screenshot named by the time
+    char name[64];
+    std::snprintf(name, sizeof name, "vgeo-view-%ld.png", long(std::time(nullptr)));
+    s.screenshot = name;
+  } else if (key == "Escape") {
+    s.quit = true;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+void drawPanel(ViewState& s, const ViewStats& stats) {
+  ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(440, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("vgeo");
+  const FrameResult& f = stats.frame;
+  const auto& c = f.counters;
+  ImGui::Text("%s, %ux%u", stats.device.c_str(), stats.width, stats.height);
+  ImGui::Text("frame %.2f ms (%.0f fps), GPU passes %.2f ms (%s)", stats.frameMs,
+              stats.frameMs > 0 ? 1000.0 / stats.frameMs : 0.0, f.frameMs, f.timing.c_str());
+  ImGui::Text("cull %.3f  traverse %.3f  triangles %.3f", f.instanceCullMs, f.traversalMs, f.triangleCullMs);
+  ImGui::Text("raster %.3f  draw %.3f  resolve %.3f  pyramid %.3f", f.rasterMs, f.drawMs, f.resolveMs, f.pyramidMs);
+  ImGui::Text("instances %u visible, clusters %u, triangles %u", c.visibleInstances, c.drawCount, f.trianglesDrawn);
+  ImGui::Text("patches %u, queue high water %u", f.patchesDrawn, c.queueHighWater);
+  if (f.occlusion)
+    ImGui::Text("two passes: hidden %u instances, %u nodes, %u clusters", c.occludedInstances, c.occludedNodes,
+                c.occludedClusters);
+  if (!f.complete)
+    ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "overflow: queue %u, draw %u, triangles %u, patches %u (grown)",
+                       c.queueOverflow, c.drawOverflow, c.triangleOverflow, c.patchOverflow);
+  ImGui::Separator();
+  int mode = 0;
+  for (size_t i = 0; i < std::size(kDebugModes); i++)
+    if (kDebugModes[i].mode == s.mode) mode = int(i);
+  if (ImGui::BeginCombo("view [M]", kDebugModes[mode].name)) {
+    for (size_t i = 0; i < std::size(kDebugModes); i++)
+      if (ImGui::Selectable(kDebugModes[i].name, int(i) == mode)) s.mode = kDebugModes[i].mode;
+    ImGui::EndCombo();
+  }
+  ImGui::TextWrapped("%s", kDebugModes[mode].legend);
+  ImGui::SliderFloat("tau [+ -]", &s.tau, 0.05f, 64.0f, "%.2f px", ImGuiSliderFlags_Logarithmic);
+  int occlusion = int(s.occlusion);
+  if (ImGui::Combo("occlusion [O]", &occlusion, kOcclusionNames, 3)) s.occlusion = Occlusion(occlusion);
+  int traversal = int(s.traversal);
+  const char* traversals[] = {"persistent", "levels", "flat"};
+  if (ImGui::Combo("traversal", &traversal, traversals, 3)) s.traversal = Traversal(traversal);
+  int culling = int(s.instanceCulling);
+  const char* cullings[] = {"auto", "pass", "traversal"};
+  if (ImGui::Combo("instance culling", &culling, cullings, 3)) s.instanceCulling = InstanceCulling(culling);
+  ImGui::Checkbox("triangle culling [T]", &s.triangleCull);
+  ImGui::Checkbox("patches [P]", &s.patches);
+  bool frozen = s.frozen;
+  if (ImGui::Checkbox("freeze the cut [F]", &frozen)) pressKey(s, "F");
+  if (ImGui::Button("screenshot [F12]")) pressKey(s, "F12");
+  ImGui::SameLine();
+  if (ImGui::Button("print camera [C]")) pressKey(s, "C");
+  if (!stats.lastScreenshot.empty()) ImGui::Text("wrote %s", stats.lastScreenshot.c_str());
+  ImGui::SliderFloat("speed", &s.camera.speed, 1e-3f, 1e6f, "%.3g/s", ImGuiSliderFlags_Logarithmic);
+  ImGui::TextWrapped("WASD fly, Q/E down/up, right mouse look, scroll speed, H home, Esc quit");
+  ImGui::End();
+}
+
+}  // namespace vgeo
