@@ -13,6 +13,7 @@
 #include "../renderer/image.h"
 #include "bench.h"
 #include "commands.h"
+#include "options.h"
 
 namespace vgeo {
 namespace {
@@ -133,10 +134,7 @@ nlohmann::ordered_json measureFrames(const FrameBenchArgs& a, GpuRenderer& rende
       patchCovered && f.patchTriangles > 0 ? double(f.patchTriangles) / double(patchCovered) : 0.0;
   r["frames"] = count;
   // The first pose as `vgeo render --camera` takes it, to look at what was measured.
-  char pose[256];
-  std::snprintf(pose, sizeof pose, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", poses[0].eye.x, poses[0].eye.y, poses[0].eye.z,
-                poses[0].target.x, poses[0].target.y, poses[0].target.z);
-  r["camera_option"] = pose;
+  r["camera_option"] = cameraOption(poses[0]);
   r["commit"] = VGEO_COMMIT;
   std::fprintf(
       stderr,

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -81,6 +82,24 @@ inline Camera parseCameraOption(const std::string& option, const std::string& te
   c.fovYDegrees = fovYDegrees;
   if (!(glm::length(c.target - c.eye) > 0.0f)) throw UsageError(option, "the eye and the target are the same point");
   return c;
+}
+
+// "x,y,z", a direction: three finite numbers, not all zero.
+inline glm::vec3 parseDirectionOption(const std::string& option, const std::string& text) {
+  glm::vec3 d;
+  char end = 0;
+  if (std::sscanf(text.c_str(), "%f,%f,%f%c", &d.x, &d.y, &d.z, &end) != 3 || !std::isfinite(d.x) ||
+      !std::isfinite(d.y) || !std::isfinite(d.z) || glm::length(d) == 0.0f)
+    throw UsageError(option, "expected a direction x,y,z of three finite numbers, not all zero (got '" + text + "')");
+  return d;
+}
+
+// A camera as --camera takes it (eye, then target, each to float precision).
+inline std::string cameraOption(const Camera& c) {
+  char text[256];
+  std::snprintf(text, sizeof text, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y,
+                c.target.z);
+  return text;
 }
 
 // An output path that can be written: its folder exists, it is new or a regular file (not a folder,

@@ -19,8 +19,8 @@ namespace vgeo {
 namespace {
 
 struct RenderArgs {
-  std::string input, output, stats, camera, freezeCamera, mode = "lit", traversal = "persistent", size = "1280x720",
-                                                          device;
+  std::string input, output, stats, camera, freezeCamera, light, mode = "lit", traversal = "persistent",
+                                                                 size = "1280x720", device;
   float fov = 60.0f, tau = 1.0f;
   uint32_t grid = 1, frames = 2, queueCapacity = 0, drawCapacity = 0, triangleCapacity = 0, workgroups = 0,
            cullLanes = 0;
@@ -48,6 +48,7 @@ FrameSettings frameSettings(const RenderArgs& a, const RenderScene& scene, const
   settings.raster = rasterNamed("--raster", a.raster);
   settings.packedCullBelow = a.packedCullBelow;
   settings.occlusion = a.noOcclusion ? Occlusion::Off : occlusionNamed("--occlusion", a.occlusion);
+  if (!a.light.empty()) settings.light = parseDirectionOption("--light", a.light);
   return settings;
 }
 
@@ -86,9 +87,9 @@ RenderRun renderUntilComplete(GpuRenderer& renderer, const FrameSettings& settin
 }
 
 // The frame statistics of `--stats` (README lists the fields).
-nlohmann::ordered_json frameStats(const RenderArgs& a, const RenderScene& scene, const FrameSettings& settings,
-                                  const RenderRun& run, const GpuRenderer& renderer, const VulkanContext& vk,
-                                  uint32_t width, uint32_t height) {
+nlohmann::ordered_json frameStats(const RenderArgs& a, const RenderScene& scene, const Camera& camera,
+                                  const FrameSettings& settings, const RenderRun& run, const GpuRenderer& renderer,
+                                  const VulkanContext& vk, uint32_t width, uint32_t height) {
   const FrameResult& result = run.result;
   const auto& c = result.counters;
   const uint64_t covered = coveredPixels(result.rgba);
@@ -121,6 +122,7 @@ nlohmann::ordered_json frameStats(const RenderArgs& a, const RenderScene& scene,
   j["pyramid_ms"] = result.pyramidMs;
   j["frame_ms"] = result.frameMs;
   j["frames"] = run.frames;
+  j["camera"] = cameraOption(camera);
   if (a.compareCpu) {
     // With occlusion culling the GPU lists what the depth pyramid did not hide: a subset of the cut.
     SceneCut reference = selectSceneCut(scene, settings.cullView, a.tau);
@@ -174,12 +176,13 @@ int runRender(const RenderArgs& a) {
   std::optional<Camera> camera, cullCamera;
   if (!a.camera.empty()) camera = parseCameraOption("--camera", a.camera, a.fov);
   if (!a.freezeCamera.empty()) cullCamera = parseCameraOption("--freeze-camera", a.freezeCamera, a.fov);
+  if (!a.light.empty()) parseDirectionOption("--light", a.light);
 
   // A grid copies the whole scene; a forest packs N x N instances of its first geometry in rows.
   RenderScene scene = a.layout == "forest"
                           ? makeBenchScene(loadRenderScene(a.input), a.grid * a.grid, BenchLayout::Forest, 7)
                           : loadRenderScene(a.input, a.grid);
-  if (!camera) camera = defaultCamera(scene.bounds, scene.boxMin, scene.boxMax, a.fov);
+  if (!camera) camera = sceneCamera(scene, a.fov, float(width) / float(height));
   camera->fovYDegrees = a.fov;
   if (!cullCamera) cullCamera = camera;
 
@@ -212,9 +215,10 @@ int runRender(const RenderArgs& a) {
 
   const RenderRun run = renderUntilComplete(renderer, settings, a.frames);
   writePng(a.output, width, height, run.result.rgba);
-  const nlohmann::ordered_json j = frameStats(a, scene, settings, run, renderer, vk, width, height);
+  const nlohmann::ordered_json j = frameStats(a, scene, *camera, settings, run, renderer, vk, width, height);
   if (!a.stats.empty()) writeJson(a.stats, j, 2);  // before the summary: a failed write is the one line printed
   printSummary(a, scene, run, renderer, vk, j, width, height);
+  if (a.camera.empty()) std::printf("camera: --camera %s\n", cameraOption(*camera).c_str());  // to pass it back
   if (vk.validationMessages() > 0) {
     std::fprintf(stderr, "validation: %u messages\n", vk.validationMessages());
     return kExitValidation;
@@ -232,6 +236,8 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("-o,--output", a->output, "Output PNG")->required();
   cmd->add_option("--size", a->size, "Image size WxH")->capture_default_str();
   cmd->add_option("--camera", a->camera, "eye_x,eye_y,eye_z,target_x,target_y,target_z (default: frames the scene)");
+  cmd->add_option("--light", a->light,
+                  "x,y,z: the direction light comes from (default: a fixed light from above, right and front)");
   cmd->add_option("--fov", a->fov, "Vertical field of view, degrees")
       ->capture_default_str()
       ->check(finiteBetween(0.0, 180.0));

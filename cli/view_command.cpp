@@ -29,7 +29,7 @@ int runView(const ViewArgs& a) {
   RenderScene scene = a.layout == "forest"
                           ? makeBenchScene(loadRenderScene(a.input), a.grid * a.grid, BenchLayout::Forest, 7)
                           : loadRenderScene(a.input, a.grid);
-  if (!camera) camera = defaultCamera(scene.bounds, scene.boxMin, scene.boxMax, a.fov);
+  if (!camera) camera = sceneCamera(scene, a.fov, float(o.width) / float(o.height));
   camera->fovYDegrees = a.fov;
   o.camera = *camera;
   o.title = a.input;
@@ -71,7 +71,8 @@ void addViewCommand(CLI::App& app, int& exitCode) {
       ->capture_default_str();
   cmd->add_option("--script", a->script, "Timed events to play (docs/viewer.md): camera, path, settings, screenshots");
   addDeviceOption(cmd, a->device);
-  cmd->add_flag("--validate", a->validate, "Khronos validation layer with synchronization validation (exit 3 on any message)");
+  cmd->add_flag("--validate", a->validate,
+                "Khronos validation layer with synchronization validation (exit 3 on any message)");
   cmd->add_flag("--no-vsync", a->noVsync, "Present as fast as frames come (default: at the display's rate)");
   cmd->callback([a, &exitCode] { exitCode = runView(*a); });
 }

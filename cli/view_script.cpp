@@ -91,7 +91,7 @@ std::vector<ViewEvent> readViewScript(const std::string& path, float fovYDegrees
       } else if (command == "key") {
         e.kind = ViewEvent::Kind::Key;
         e.text = arg;
-        if (!isViewerKey(arg)) throw bad("one of the viewer's keys (F M P T O H C + - F12 Escape)");
+        if (!isViewerKey(arg)) throw bad("one of the viewer's keys (F M P T O L H C + - F12 Escape)");
       } else if (command == "quit") {
         e.kind = ViewEvent::Kind::Quit;
         if (!arg.empty())
@@ -111,8 +111,8 @@ std::vector<ViewEvent> readViewScript(const std::string& path, float fovYDegrees
     } catch (const std::runtime_error& r) {  // occlusionNamed
       throw InputError(path, r.what());
     }
-    if (words >> extra) throw InputError(path, where + ": " + command + " takes no more than its arguments ('" +
-                                                   extra + "' left over)");
+    if (words >> extra)
+      throw InputError(path, where + ": " + command + " takes no more than its arguments ('" + extra + "' left over)");
     events.push_back(e);
   }
   return events;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -40,7 +41,7 @@ View makeView(const Camera& camera, uint32_t width, uint32_t height, glm::vec4 b
   return v;
 }
 
-Camera defaultCamera(glm::vec4 bounds, glm::vec3 boxMin, glm::vec3 boxMax, float fovYDegrees) {
+Camera defaultCamera(glm::vec4 bounds, glm::vec3 boxMin, glm::vec3 boxMax, float fovYDegrees, float aspect) {
   Camera c;
   c.fovYDegrees = fovYDegrees;
   c.target = glm::vec3(bounds);
@@ -51,8 +52,37 @@ Camera defaultCamera(glm::vec4 bounds, glm::vec3 boxMin, glm::vec3 boxMax, float
     c.target = glm::vec3(bounds) - glm::vec3(0.1f, 0.0f, 0.1f) * wide;
     return c;
   }
-  float distance = std::max(bounds.w, 1e-6f) / std::sin(0.5f * glm::radians(fovYDegrees)) * 1.05f;
-  c.eye = c.target + glm::normalize(glm::vec3(0.55f, 0.6f, 0.9f)) * distance;
+  std::vector<glm::vec3> corners;
+  for (int corner = 0; corner < 8; corner++)
+    corners.push_back(
+        {corner & 1 ? boxMax.x : boxMin.x, corner & 2 ? boxMax.y : boxMin.y, corner & 4 ? boxMax.z : boxMin.z});
+  return framePoints(corners, fovYDegrees, aspect);
+}
+
+Camera framePoints(const std::vector<glm::vec3>& points, float fovYDegrees, float aspect) {
+  // Seen from the front (+z, the glTF convention), a little from the right and above, as near as keeps
+  // every point inside 90% of the picture each way, aimed at the middle of the points' box.
+  const glm::vec3 back = glm::normalize(glm::vec3(0.35f, 0.35f, 1.0f));  // from the target to the eye
+  const glm::vec3 right = glm::normalize(glm::cross(glm::vec3(0.0f, 1.0f, 0.0f), back)), up = glm::cross(back, right);
+  const float tanY = std::tan(0.5f * glm::radians(fovYDegrees)) * 0.9f, tanX = tanY * std::max(aspect, 1e-3f);
+  glm::vec3 lo(INFINITY), hi(-INFINITY);
+  for (const glm::vec3& p : points) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  Camera c;
+  c.fovYDegrees = fovYDegrees;
+  c.target = points.empty() ? glm::vec3(0.0f) : 0.5f * (lo + hi);
+  // A point's depth in front of the eye is distance - dot(o, back); its offsets across must fit that
+  // depth's half-width and half-height. The eye also stays a little outside the points.
+  float distance = 1e-6f;
+  for (const glm::vec3& p : points) {
+    const glm::vec3 o = p - c.target;
+    const float along = glm::dot(o, back);
+    distance = std::max({distance, along + std::abs(glm::dot(o, right)) / tanX,
+                         along + std::abs(glm::dot(o, up)) / tanY, along * 1.05f});
+  }
+  c.eye = c.target + back * distance;
   return c;
 }
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <glm/glm.hpp>
+#include <vector>
 
 namespace vgeo {
 
@@ -23,8 +24,13 @@ struct View {
 
 // A view of `camera` for a width x height image; near and far planes fit a scene of `bounds` (sphere).
 View makeView(const Camera& camera, uint32_t width, uint32_t height, glm::vec4 bounds);
-// Looks at the scene's bounding sphere from above and to the side, framing all of it; a flat scene
-// (a grid of instances) is seen from low over its near corner, so that distance shows in the picture.
-Camera defaultCamera(glm::vec4 bounds, glm::vec3 boxMin, glm::vec3 boxMax, float fovYDegrees);
+// Frames an object from its front (+z), a little from the right and above, its box filling the
+// picture of width / height `aspect`; a flat scene (a grid of instances) is seen from low over its near
+// corner, so that distance shows in the picture.
+Camera defaultCamera(glm::vec4 bounds, glm::vec3 boxMin, glm::vec3 boxMax, float fovYDegrees,
+                     float aspect = 16.0f / 9.0f);
+// Frames `points` from the front (+z), a little from the right and above, filling 90% of the picture of
+// width / height `aspect` along the tighter axis (sceneCamera: an object's own vertices).
+Camera framePoints(const std::vector<glm::vec3>& points, float fovYDegrees, float aspect);
 
 }  // namespace vgeo

@@ -16,11 +16,11 @@ struct DebugMode {
 };
 
 inline constexpr DebugMode kDebugModes[] = {
-    {"lit", VGEO_MODE_LIT, "the surface lit from the camera's upper left"},
+    {"lit", VGEO_MODE_LIT, "the surface lit by a fixed light from above, the right and the front (or the headlight)"},
     {"normal", VGEO_MODE_NORMAL, "the world normal as colour (x red, y green, z blue)"},
     {"cluster", VGEO_MODE_CLUSTER, "a colour a cluster"},
     {"group", VGEO_MODE_GROUP, "a colour a simplification group"},
-    {"lod", VGEO_MODE_LOD, "the DAG level: blue the leaves, red level 12 and above"},
+    {"lod", VGEO_MODE_LOD, "the DAG level: blue the leaves, red the roots (the scene's most levels)"},
     {"triangle", VGEO_MODE_TRIANGLE, "a colour a triangle"},
     {"instance", VGEO_MODE_INSTANCE, "a colour an instance"},
     {"error", VGEO_MODE_ERROR, "the cluster's projected error against tau: blue 0, red at tau"},

@@ -334,6 +334,8 @@ shaderio::FrameData GpuRenderer::frameConstants(const FrameSettings& settings, O
   frame.pyramidLevels = pyramidLevels_;
   frame.pyramidTileLevels = pyramidTileLevels();
   frame.cullInstancesPerWorkgroup = cullInstancesPerWorkgroup(settings);
+  frame.lodLevels = scene_.maxLevels;
+  if (glm::length(settings.light) > 0.0f) frame.light = glm::vec4(glm::normalize(settings.light), 1.0f);
   frame.persistentWorkgroups = persistentWorkgroups_;
   for (uint32_t i = 0; i < pyramidLevels_; i++) frame.pyramidOffsets[i / 4][i % 4] = pyramidOffsets_[i];
   return frame;

@@ -263,6 +263,7 @@ void finishScene(RenderScene& scene) {
   scene.bvhDepth.assign(d.geometries.size(), 0);
   scene.maxBvhDepth = 0;
   scene.maxClusters = 0;
+  scene.maxLevels = 0;
   for (size_t g = 0; g < d.geometries.size(); g++) {
     std::function<uint32_t(uint32_t)> depth = [&](uint32_t n) -> uint32_t {
       const auto& node = d.nodes[n];
@@ -274,6 +275,7 @@ void finishScene(RenderScene& scene) {
     scene.bvhDepth[g] = depth(d.geometries[g].nodeOffset);
     scene.maxBvhDepth = std::max(scene.maxBvhDepth, scene.bvhDepth[g]);
     scene.maxClusters = std::max(scene.maxClusters, d.geometries[g].clusterCount);
+    scene.maxLevels = std::max(scene.maxLevels, d.geometries[g].levelCount);
   }
   scene.instanceRoots.clear();
   for (const auto& inst : d.instances) {
@@ -338,6 +340,51 @@ void finishScene(RenderScene& scene) {
   scene.bounds = d.instances.empty() ? glm::vec4(0, 0, 0, 1) : glm::vec4(centre, radius);
   scene.boxMin = lo;
   scene.boxMax = hi;
+  // The tight box: each geometry's vertices' box, its corners placed by each instance.
+  std::vector<glm::vec3> geometryMin(d.geometries.size(), glm::vec3(INFINITY)),
+      geometryMax(d.geometries.size(), glm::vec3(-INFINITY));
+  for (size_t g = 0; g < d.geometries.size(); g++)
+    for (uint32_t v = d.geometries[g].vertexOffset; v < d.geometries[g].vertexOffset + d.geometries[g].vertexCount;
+         v++) {
+      geometryMin[g] = glm::min(geometryMin[g], d.position(v));
+      geometryMax[g] = glm::max(geometryMax[g], d.position(v));
+    }
+  scene.objectMin = glm::vec3(INFINITY);
+  scene.objectMax = glm::vec3(-INFINITY);
+  for (const auto& inst : d.instances) {
+    const glm::vec3 a = geometryMin[inst.geometry], b = geometryMax[inst.geometry];
+    if (a.x > b.x) continue;  // no vertices
+    for (int corner = 0; corner < 8; corner++) {
+      const glm::vec4 p(corner & 1 ? b.x : a.x, corner & 2 ? b.y : a.y, corner & 4 ? b.z : a.z, 1.0f);
+      const glm::vec3 w(glm::dot(inst.row0, p), glm::dot(inst.row1, p), glm::dot(inst.row2, p));
+      scene.objectMin = glm::min(scene.objectMin, w);
+      scene.objectMax = glm::max(scene.objectMax, w);
+    }
+  }
+  if (scene.objectMin.x > scene.objectMax.x) {
+    scene.objectMin = scene.boxMin;
+    scene.objectMax = scene.boxMax;
+  }
+}
+
+Camera sceneCamera(const RenderScene& scene, float fovYDegrees, float aspect) {
+  const glm::vec3 extent = scene.objectMax - scene.objectMin;
+  constexpr size_t kFramedVertices = size_t(1) << 22;  // past this many, the instances' boxes frame them
+  const auto& d = scene.data;
+  size_t vertices = 0;
+  for (const auto& inst : d.instances) vertices += d.geometries[inst.geometry].vertexCount;
+  if (extent.y < 0.25f * std::max(extent.x, extent.z) || vertices > kFramedVertices)  // flat, or too many
+    return defaultCamera(scene.bounds, scene.objectMin, scene.objectMax, fovYDegrees, aspect);
+  std::vector<glm::vec3> points;
+  points.reserve(vertices);
+  for (const auto& inst : d.instances) {
+    const shaderio::Geometry& g = d.geometries[inst.geometry];
+    for (uint32_t v = g.vertexOffset; v < g.vertexOffset + g.vertexCount; v++) {
+      const glm::vec4 p(d.position(v), 1.0f);
+      points.push_back({glm::dot(inst.row0, p), glm::dot(inst.row1, p), glm::dot(inst.row2, p)});
+    }
+  }
+  return framePoints(points, fovYDegrees, aspect);
 }
 
 BenchLayout benchLayoutNamed(const std::string& name) {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "../common/vgeo_file.h"
+#include "camera.h"
 
 namespace vgeo {
 
@@ -13,10 +14,12 @@ struct RenderScene {
   VgeoData data;                   // merged arrays, as uploaded to the GPU
   std::vector<uint32_t> bvhDepth;  // per geometry: levels of BVH nodes from the root to the groups
   uint32_t maxBvhDepth = 0;
-  uint32_t maxClusters = 0;              // largest cluster count of a geometry
-  glm::vec4 bounds{0.0f};                // world-space sphere around every instance
-  glm::vec3 boxMin{0.0f}, boxMax{0.0f};  // world-space box around every instance's sphere
-  uint64_t virtualTriangles = 0;         // leaf triangles summed over instances
+  uint32_t maxClusters = 0;                    // largest cluster count of a geometry
+  uint32_t maxLevels = 0;                      // most DAG levels of a geometry (the lod view's scale)
+  glm::vec4 bounds{0.0f};                      // world-space sphere around every instance
+  glm::vec3 boxMin{0.0f}, boxMax{0.0f};        // world-space box around every instance's sphere
+  glm::vec3 objectMin{0.0f}, objectMax{0.0f};  // world-space box around every instance's vertices (framing)
+  uint64_t virtualTriangles = 0;               // leaf triangles summed over instances
   // Per BVH node: for a simplification level's subtree root (a child of a geometry's root), the run of
   // clusters below it as (first cluster, count), what a sweep tests instead of walking the subtree;
   // (0, 0) for other nodes and for a subtree whose clusters are not one run.
@@ -27,6 +30,9 @@ struct RenderScene {
 // Loads a .vgeo, or a scene file (JSON, see README: geometries by path, instances with transforms),
 // then repeats the instances on an N x N grid when grid > 1. Throws InputError for bad files.
 RenderScene loadRenderScene(const std::string& path, uint32_t grid = 1);
+// The camera `vgeo render` and `vgeo view` start from: an object (or a few) framed by its own vertices
+// from the front (framePoints), a flat scene from low over its near corner (defaultCamera).
+Camera sceneCamera(const RenderScene& scene, float fovYDegrees, float aspect);
 // Appends `src` to `dst`, shifting every index; returns the index of src's first geometry in dst.
 uint32_t appendVgeo(VgeoData& dst, const VgeoData& src);
 // Recomputes the derived fields (depths, bounds, counts) after instances changed.

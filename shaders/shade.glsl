@@ -27,7 +27,7 @@ vec3 heat(float t) {  // 0 blue, 0.5 green, 1 red
 // What one fragment adds in the overdraw view (additive blending).
 const vec3 kOverdrawColor = vec3(0.09, 0.05, 0.02);
 float lighting(vec3 n) {
-  vec3 l = normalize(vec3(0.4, 0.8, 0.45));
+  vec3 l = frame.light.w != 0.0 ? frame.light.xyz : normalize(vec3(0.4, 0.8, 0.45));  // the viewer's, or fixed
   return 0.18 + 0.82 * max(dot(n, l), 0.0);
 }
 
@@ -59,7 +59,7 @@ vec3 shadeSurface(vec3 n, uvec4 ids, uint triangle, vec2 info, float edge) {
   if (mode == VGEO_MODE_NORMAL) color = n * 0.5 + 0.5;
   else if (mode == VGEO_MODE_CLUSTER) color = idColor(ids.x) * light;
   else if (mode == VGEO_MODE_GROUP) color = idColor(ids.y) * light;
-  else if (mode == VGEO_MODE_LOD) color = heat(float(ids.w) / 12.0) * light;
+  else if (mode == VGEO_MODE_LOD) color = heat(float(ids.w) / float(max(frame.lodLevels, 2u) - 1u)) * light;
   else if (mode == VGEO_MODE_TRIANGLE) color = idColor(ids.x * 131u + triangle) * light;
   else if (mode == VGEO_MODE_INSTANCE) color = idColor(ids.z) * light;
   else if (mode == VGEO_MODE_ERROR) color = heat(info.x) * light;  // projected error / tau: red at tau

@@ -227,7 +227,9 @@ struct FrameData {
   uint cullInstancesPerWorkgroup;  // cull_instances.comp's variant this frame (begin_late_pass.comp sizes
                                    // the late pass's dispatch over the deferred instances by it)
   uint persistentWorkgroups;       // the persistent traversal's dispatch (begin_late_pass.comp repeats it)
-  uint framePad[2];
+  uint lodLevels;                  // the lod view's scale: the most levels a geometry of the scene has
+  uint framePad;
+  vec4 light;  // xyz: the direction the light comes from, w 1; w 0: the default light
 };
 
 // The software rasterizer (raster_software.comp) takes the triangles triangle culling bins to it:
@@ -350,8 +352,9 @@ struct Counters {
 #define VGEO_MAX_DRAW_ENTRIES (1u << 25)
 
 #ifdef __cplusplus
-static_assert(sizeof(FrameData) == 544, "FrameData layout (std140)");
-static_assert(offsetof(FrameData, pyramidViews) % 16 == 0 && offsetof(FrameData, pyramidProjections) % 16 == 0,
+static_assert(sizeof(FrameData) == 560, "FrameData layout (std140)");
+static_assert(offsetof(FrameData, pyramidViews) % 16 == 0 && offsetof(FrameData, pyramidProjections) % 16 == 0 &&
+                  offsetof(FrameData, light) % 16 == 0,
               "FrameData: std140 alignment");
 static_assert(sizeof(Counters) == 5 * 128 + 96 + 72, "Counters layout");
 static_assert(sizeof(SceneArrays) == 18 * 8, "SceneArrays layout");

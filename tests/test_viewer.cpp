@@ -62,6 +62,12 @@ TEST_F(Viewer, ScriptedScreenshotsAreWhatRenderWrites) {
             " occlusion on\n" + std::to_string(frame) + " patches off\n";
   frame++;
   shoot("settings", "--size 400x240 --camera " + far + " --tau 4 --occlusion on --no-patches");
+  // The headlight, and the camera printed (C) as options for `vgeo render` to pass back.
+  script += std::to_string(frame) + " key L\n" + std::to_string(frame) + " key C\n";
+  script += std::to_string(frame + 1) + " screenshot " + *dir + "/headlight.png\n";
+  frame += 2;
+  script += std::to_string(frame) + " freeze on\n" + std::to_string(frame) + " path 3 " + near + "\n";
+  frame += 4;
   script += std::to_string(frame) + " window-screenshot " + *dir + "/window.png\n";
   script += std::to_string(frame + 1) + " quit\n";
   const std::string scriptPath = test::writeFile(*dir, "script.txt", script);
@@ -73,13 +79,24 @@ TEST_F(Viewer, ScriptedScreenshotsAreWhatRenderWrites) {
     SCOPED_TRACE(shot.name);
     const std::string shown = *dir + "/" + shot.name + ".png", rendered = *dir + "/" + shot.name + "_render.png";
     const std::string size = shot.renderOptions.find("--size") == std::string::npos ? "--size 320x200 " : "";
-    const test::RunResult r = test::runVgeo("render " + *dir + "/horned.vgeo --grid 3 " + size + shot.renderOptions +
-                                            " -o " + rendered);
+    const test::RunResult r =
+        test::runVgeo("render " + *dir + "/horned.vgeo --grid 3 " + size + shot.renderOptions + " -o " + rendered);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     ASSERT_TRUE(std::filesystem::exists(shown));
     EXPECT_TRUE(test::readFile(shown) == test::readFile(rendered)) << shown << " differs from " << rendered;
   }
-  // The window, panel and all, at the size the script gave it.
+  // The camera and light the viewer printed, passed back to `vgeo render`.
+  const size_t printed = run.output.find("--camera ");
+  ASSERT_NE(printed, std::string::npos) << run.output;
+  const std::string options = run.output.substr(printed, run.output.find('\n', printed) - printed);
+  EXPECT_NE(options.find("--light "), std::string::npos) << options;
+  const test::RunResult r =
+      test::runVgeo("render " + *dir + "/horned.vgeo --grid 3 --size 400x240 --tau 4 --occlusion on " +
+                    "--no-patches " + options + " -o " + *dir + "/headlight_render.png");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_TRUE(test::readFile(*dir + "/headlight.png") == test::readFile(*dir + "/headlight_render.png"));
+  EXPECT_FALSE(test::readFile(*dir + "/headlight.png") == test::readFile(*dir + "/settings.png"));
+  // The window, panel and all (and the frozen frustum), at the size the script gave it.
   EXPECT_GT(std::filesystem::file_size(*dir + "/window.png"), 1000u);
 }
 

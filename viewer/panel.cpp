@@ -3,6 +3,7 @@
 // "print camera").
 #include <imgui.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -28,8 +29,12 @@ void cycleMode(ViewState& s) {
 
 void printCamera(const ViewState& s) {
   const Camera c = s.camera.camera(s.fov);
-  std::printf("--camera %.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y,
-              c.target.z);
+  std::printf("--camera %.9g,%.9g,%.9g,%.9g,%.9g,%.9g", c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y, c.target.z);
+  if (s.headlight) {
+    const glm::vec3 l = headlight(s.camera);
+    std::printf(" --light %.9g,%.9g,%.9g", l.x, l.y, l.z);
+  }
+  std::printf("\n");
   std::fflush(stdout);
 }
 
@@ -49,6 +54,8 @@ bool pressKey(ViewState& s, const std::string& key) {
     s.occlusion = s.occlusion == Occlusion::Auto ? Occlusion::On
                   : s.occlusion == Occlusion::On ? Occlusion::Off
                                                  : Occlusion::Auto;
+  } else if (key == "L") {
+    s.headlight = !s.headlight;
   } else if (key == "H") {
     s.camera = FlyCamera::from(s.home, s.camera.speed);
   } else if (key == "C") {
@@ -67,6 +74,34 @@ bool pressKey(ViewState& s, const std::string& key) {
     return false;
   }
   return true;
+}
+
+void drawFrozenFrustum(const View& frozen, const View& draw, float farDistance) {
+  // The frozen camera's frustum from its near plane to farDistance (reversed depth: z = znear / depth),
+  // its corners in world space, its edges clipped in front of the draw camera and drawn over the picture.
+  const glm::mat4 toWorld = glm::inverse(frozen.viewProjection);
+  glm::vec3 corners[8];
+  for (int i = 0; i < 8; i++) {
+    const glm::vec4 p = toWorld * glm::vec4(i & 1 ? 1.0f : -1.0f, i & 2 ? 1.0f : -1.0f,
+                                            i & 4 ? frozen.znear / std::max(farDistance, frozen.znear) : 1.0f, 1.0f);
+    corners[i] = glm::vec3(p) / p.w;
+  }
+  const ImVec2 size = ImGui::GetIO().DisplaySize;
+  ImDrawList* lines = ImGui::GetBackgroundDrawList();
+  auto screen = [&](glm::vec4 c) {
+    return ImVec2((c.x / c.w * 0.5f + 0.5f) * size.x, (c.y / c.w * 0.5f + 0.5f) * size.y);
+  };
+  const int edges[12][2] = {{0, 1}, {2, 3}, {0, 2}, {1, 3}, {4, 5}, {6, 7},
+                            {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+  for (const auto& e : edges) {
+    glm::vec4 a = draw.viewProjection * glm::vec4(corners[e[0]], 1.0f),
+              b = draw.viewProjection * glm::vec4(corners[e[1]], 1.0f);
+    const float near = draw.znear;  // clip where the segment passes behind the draw camera's near plane
+    if (a.w < near && b.w < near) continue;
+    if (a.w < near) a = glm::mix(a, b, (near - a.w) / (b.w - a.w));
+    if (b.w < near) b = glm::mix(b, a, (near - b.w) / (a.w - b.w));
+    lines->AddLine(screen(a), screen(b), IM_COL32(255, 210, 60, 255), 1.5f);
+  }
 }
 
 void drawPanel(ViewState& s, const ViewStats& stats) {
@@ -98,6 +133,7 @@ void drawPanel(ViewState& s, const ViewStats& stats) {
     ImGui::EndCombo();
   }
   ImGui::TextWrapped("%s", kDebugModes[mode].legend);
+  if (s.mode == VGEO_MODE_LOD) ImGui::Text("blue level 0, red level %u", std::max(stats.lodLevels, 2u) - 1);
   ImGui::SliderFloat("tau [+ -]", &s.tau, 0.05f, 64.0f, "%.2f px", ImGuiSliderFlags_Logarithmic);
   int occlusion = int(s.occlusion);
   if (ImGui::Combo("occlusion [O]", &occlusion, kOcclusionNames, 3)) s.occlusion = Occlusion(occlusion);
@@ -109,6 +145,7 @@ void drawPanel(ViewState& s, const ViewStats& stats) {
   if (ImGui::Combo("instance culling", &culling, cullings, 3)) s.instanceCulling = InstanceCulling(culling);
   ImGui::Checkbox("triangle culling [T]", &s.triangleCull);
   ImGui::Checkbox("patches [P]", &s.patches);
+  ImGui::Checkbox("headlight [L] (else the fixed light)", &s.headlight);
   bool frozen = s.frozen;
   if (ImGui::Checkbox("freeze the cut [F]", &frozen)) pressKey(s, "F");
   if (ImGui::Button("screenshot [F12]")) pressKey(s, "F12");

@@ -93,6 +93,7 @@ FrameSettings frameSettings(const ViewState& s, const RenderScene& scene, uint32
   f.patches = s.patches;
   f.occlusion = s.occlusion;
   f.readImage = !s.screenshot.empty();
+  if (s.headlight) f.light = headlight(s.camera);
   return f;
 }
 
@@ -159,27 +160,51 @@ static void playEvents(ScriptPlayer& p, uint32_t frame, ViewState& s, uint32_t& 
   for (; p.next < p.events.size() && p.events[p.next].frame <= frame; p.next++) {
     const ViewEvent& e = p.events[p.next];
     switch (e.kind) {
-      case ViewEvent::Kind::Camera: s.camera = FlyCamera::from(e.camera, s.camera.speed); p.pathFrames = 0; break;
+      case ViewEvent::Kind::Camera:
+        s.camera = FlyCamera::from(e.camera, s.camera.speed);
+        p.pathFrames = 0;
+        break;
       case ViewEvent::Kind::Path:
         p.pathFrom = s.camera.camera(s.fov);
         p.pathTo = e.camera;
         p.pathStart = frame;
         p.pathFrames = std::max(e.frames, 1u);
         break;
-      case ViewEvent::Kind::Mode: s.mode = e.mode; break;
-      case ViewEvent::Kind::Tau: s.tau = e.value; break;
-      case ViewEvent::Kind::Occlusion: s.occlusion = e.occlusion; break;
-      case ViewEvent::Kind::Patches: s.patches = e.on; break;
-      case ViewEvent::Kind::TriangleCull: s.triangleCull = e.on; break;
+      case ViewEvent::Kind::Mode:
+        s.mode = e.mode;
+        break;
+      case ViewEvent::Kind::Tau:
+        s.tau = e.value;
+        break;
+      case ViewEvent::Kind::Occlusion:
+        s.occlusion = e.occlusion;
+        break;
+      case ViewEvent::Kind::Patches:
+        s.patches = e.on;
+        break;
+      case ViewEvent::Kind::TriangleCull:
+        s.triangleCull = e.on;
+        break;
       case ViewEvent::Kind::Freeze:
         s.frozen = e.on;
         s.frozenCamera = s.camera.camera(s.fov);
         break;
-      case ViewEvent::Kind::Resize: width = e.width; height = e.height; break;
-      case ViewEvent::Kind::Screenshot: s.screenshot = e.text; break;
-      case ViewEvent::Kind::WindowShot: s.windowShot = e.text; break;
-      case ViewEvent::Kind::Key: pressKey(s, e.text); break;
-      case ViewEvent::Kind::Quit: s.quit = true; break;
+      case ViewEvent::Kind::Resize:
+        width = e.width;
+        height = e.height;
+        break;
+      case ViewEvent::Kind::Screenshot:
+        s.screenshot = e.text;
+        break;
+      case ViewEvent::Kind::WindowShot:
+        s.windowShot = e.text;
+        break;
+      case ViewEvent::Kind::Key:
+        pressKey(s, e.text);
+        break;
+      case ViewEvent::Kind::Quit:
+        s.quit = true;
+        break;
     }
   }
   if (p.pathFrames) {  // along the path: eye and target each on a straight line
@@ -225,6 +250,7 @@ uint32_t runViewer(const RenderScene& scene, const ViewerOptions& o) {
   Overlay overlay(vk, window.handle, swapchain);
   ViewStats stats;
   stats.device = vk.deviceName();
+  stats.lodLevels = scene.maxLevels;
   ScriptPlayer player{o.script};
   auto last = std::chrono::steady_clock::now(), sizeChanged = last;
   double mouseX = 0, mouseY = 0;
@@ -237,7 +263,8 @@ uint32_t runViewer(const RenderScene& scene, const ViewerOptions& o) {
     if (s.quit) break;
     if (resizeW) {
       glfwSetWindowSize(window.handle, int(resizeW), int(resizeH));
-      for (int i = 0; i < 200 && (window.framebuffer().width != resizeW || window.framebuffer().height != resizeH); i++) {
+      for (int i = 0; i < 200 && (window.framebuffer().width != resizeW || window.framebuffer().height != resizeH);
+           i++) {
         glfwWaitEventsTimeout(0.01);
       }
     }
@@ -292,6 +319,9 @@ uint32_t runViewer(const RenderScene& scene, const ViewerOptions& o) {
     // 5. The picture into the swapchain, the panel over it, presented.
     overlay.begin();
     drawPanel(s, stats);
+    if (s.frozen)
+      drawFrozenFrustum(settings.cullView, settings.drawView,
+                        glm::distance(settings.cullView.eye, glm::vec3(scene.bounds)) + scene.bounds.w);
     uint32_t image = 0;
     if (!swapchain.acquire(image)) {
       ImGui::EndFrame();
@@ -300,8 +330,8 @@ uint32_t runViewer(const RenderScene& scene, const ViewerOptions& o) {
       continue;
     }
     VkCommandBuffer cmd = vk.beginCommands();
-    recordCopy(cmd, *renderer,
-               settings.readImage ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_GENERAL, swapchain, image);
+    recordCopy(cmd, *renderer, settings.readImage ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_GENERAL,
+               swapchain, image);
     overlay.record(cmd, image);
     Buffer shot;
     if (!s.windowShot.empty()) {

@@ -17,23 +17,35 @@ namespace vgeo {
 // One event of a script (docs/viewer.md), applied at the start of frame `frame`.
 struct ViewEvent {
   enum class Kind {
-    Camera, Path, Mode, Tau, Occlusion, Patches, TriangleCull, Freeze, Resize, Screenshot, WindowShot, Key, Quit
+    Camera,
+    Path,
+    Mode,
+    Tau,
+    Occlusion,
+    Patches,
+    TriangleCull,
+    Freeze,
+    Resize,
+    Screenshot,
+    WindowShot,
+    Key,
+    Quit
   };
   uint32_t frame = 0;
   Kind kind = Kind::Quit;
-  Camera camera;             // Camera, Path (the pose to reach)
-  uint32_t frames = 0;       // Path: over how many frames
-  uint32_t mode = 0;         // Mode (VGEO_MODE_*)
-  float value = 0.0f;        // Tau
+  Camera camera;        // Camera, Path (the pose to reach)
+  uint32_t frames = 0;  // Path: over how many frames
+  uint32_t mode = 0;    // Mode (VGEO_MODE_*)
+  float value = 0.0f;   // Tau
   Occlusion occlusion = Occlusion::Auto;
-  bool on = false;           // Patches, TriangleCull, Freeze
+  bool on = false;                 // Patches, TriangleCull, Freeze
   uint32_t width = 0, height = 0;  // Resize
-  std::string text;          // Screenshot, WindowShot: the PNG's path; Key: the key's name
+  std::string text;                // Screenshot, WindowShot: the PNG's path; Key: the key's name
 };
 
 struct ViewerOptions {
-  std::string title;              // the input's name
-  Camera camera;                  // the first camera
+  std::string title;  // the input's name
+  Camera camera;      // the first camera
   uint32_t width = 1280, height = 720;
   std::string device;
   bool validate = false, vsync = true;
