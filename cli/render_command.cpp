@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <cmath>
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <nlohmann/json.hpp>
@@ -14,13 +15,15 @@
 #include "../renderer/image.h"
 #include "commands.h"
 #include "options.h"
+#include "render_path.h"
+#include "view_script.h"
 
 namespace vgeo {
 namespace {
 
 struct RenderArgs {
-  std::string input, output, stats, camera, freezeCamera, light, mode = "lit", traversal = "persistent",
-                                                                 size = "1280x720", device;
+  std::string input, output, stats, camera, freezeCamera, light, path, mode = "lit", traversal = "persistent",
+                                                                       size = "1280x720", device;
   float fov = 60.0f, tau = 1.0f;
   uint32_t grid = 1, frames = 2, queueCapacity = 0, drawCapacity = 0, triangleCapacity = 0, workgroups = 0,
            cullLanes = 0;
@@ -171,7 +174,14 @@ int runRender(const RenderArgs& a) {
   traversalNamed("--traversal", a.traversal);
   if (rasterNamed("--raster", a.raster) == Raster::Software && a.noTriangleCull)
     throw UsageError("--raster", "software needs triangle culling, which bins the triangles (drop --no-triangle-cull)");
-  checkOutputPath("--output", a.output, {a.input}, ".png");
+  std::vector<ViewEvent> script;
+  if (a.path.empty()) {
+    checkOutputPath("--output", a.output, {a.input}, ".png");
+  } else {  // -o names a folder for the frames
+    if (!std::filesystem::is_directory(a.output))
+      throw UsageError("--output", "with --path, a folder that exists for the frames (got '" + a.output + "')");
+    script = readViewScript(a.path, a.fov, {a.input, a.path});
+  }
   if (!a.stats.empty()) checkOutputPath("--stats", a.stats, {a.input, a.output});
   std::optional<Camera> camera, cullCamera;
   if (!a.camera.empty()) camera = parseCameraOption("--camera", a.camera, a.fov);
@@ -213,6 +223,9 @@ int runRender(const RenderArgs& a) {
                                                " instances a worker (" +
                                                std::to_string(renderer.persistentWorkgroups()) + " workers)");
 
+  if (!a.path.empty())
+    return renderPath(script, a.output, vk, scene, made, settings, *camera,
+                      a.freezeCamera.empty() ? std::nullopt : cullCamera);
   const RenderRun run = renderUntilComplete(renderer, settings, a.frames);
   writePng(a.output, width, height, run.result.rgba);
   const nlohmann::ordered_json j = frameStats(a, scene, *camera, settings, run, renderer, vk, width, height);
@@ -236,6 +249,8 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("-o,--output", a->output, "Output PNG")->required();
   cmd->add_option("--size", a->size, "Image size WxH")->capture_default_str();
   cmd->add_option("--camera", a->camera, "eye_x,eye_y,eye_z,target_x,target_y,target_z (default: frames the scene)");
+  cmd->add_option("--path", a->path,
+                  "A viewer script (docs/viewer.md) played without a window: -o is then a folder, a PNG a frame");
   cmd->add_option("--light", a->light,
                   "x,y,z: the direction light comes from (default: a fixed light from above, right and front)");
   cmd->add_option("--fov", a->fov, "Vertical field of view, degrees")

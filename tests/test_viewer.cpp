@@ -34,13 +34,14 @@ TEST_F(Viewer, ScriptedScreenshotsAreWhatRenderWrites) {
   const std::string near = "2.5,1.8,3.5,0,0,0", far = "-4,1.2,2.5,0.3,0.1,0";
   struct Shot {
     std::string name, renderOptions;
+    uint32_t frame;
   };
   std::vector<Shot> shots;
   std::string script = "# frame command arguments\n0 camera " + near + "\n";
   uint32_t frame = 2;
   auto shoot = [&](const std::string& name, const std::string& renderOptions) {
     script += std::to_string(frame) + " screenshot " + *dir + "/" + name + ".png\n";
-    shots.push_back({name, renderOptions});
+    shots.push_back({name, renderOptions, frame});
     frame += 2;
   };
   shoot("start", "--camera " + near);
@@ -72,6 +73,13 @@ TEST_F(Viewer, ScriptedScreenshotsAreWhatRenderWrites) {
   script += std::to_string(frame + 1) + " quit\n";
   const std::string scriptPath = test::writeFile(*dir, "script.txt", script);
 
+  // The same script without a window (`render --path`) first: a PNG a frame (its screenshots the viewer's
+  // run then writes again).
+  const std::string frames = *dir + "/frames";
+  std::filesystem::create_directories(frames);
+  const test::RunResult path = test::runVgeo(
+      "render " + *dir + "/horned.vgeo --grid 3 --size 320x200 --validate --path " + scriptPath + " -o " + frames);
+  ASSERT_EQ(path.exitCode, 0) << path.output;
   const test::RunResult run = view("--size 320x200 --validate --script " + scriptPath);
   ASSERT_EQ(run.exitCode, 0) << run.output;
   EXPECT_EQ(run.output.find("validation"), std::string::npos) << run.output;
@@ -84,6 +92,9 @@ TEST_F(Viewer, ScriptedScreenshotsAreWhatRenderWrites) {
     ASSERT_EQ(r.exitCode, 0) << r.output;
     ASSERT_TRUE(std::filesystem::exists(shown));
     EXPECT_TRUE(test::readFile(shown) == test::readFile(rendered)) << shown << " differs from " << rendered;
+    char frame[32];
+    std::snprintf(frame, sizeof frame, "/frame_%05u.png", shot.frame);
+    EXPECT_TRUE(test::readFile(shown) == test::readFile(frames + frame)) << shown << " differs from " << frame;
   }
   // The camera and light the viewer printed, passed back to `vgeo render`.
   const size_t printed = run.output.find("--camera ");

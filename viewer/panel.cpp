@@ -17,64 +17,7 @@ namespace {
 
 const char* kOcclusionNames[] = {"off", "on", "auto"};  // Occlusion's order
 
-void cycleMode(ViewState& s) {
-  const size_t count = std::size(kDebugModes);
-  for (size_t i = 0; i < count; i++)
-    if (kDebugModes[i].mode == s.mode) {
-      s.mode = kDebugModes[(i + 1) % count].mode;
-      return;
-    }
-  s.mode = VGEO_MODE_LIT;
-}
-
-void printCamera(const ViewState& s) {
-  const Camera c = s.camera.camera(s.fov);
-  std::printf("--camera %.9g,%.9g,%.9g,%.9g,%.9g,%.9g", c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y, c.target.z);
-  if (s.headlight) {
-    const glm::vec3 l = headlight(s.camera);
-    std::printf(" --light %.9g,%.9g,%.9g", l.x, l.y, l.z);
-  }
-  std::printf("\n");
-  std::fflush(stdout);
-}
-
 }  // namespace
-
-bool pressKey(ViewState& s, const std::string& key) {
-  if (key == "F") {
-    s.frozen = !s.frozen;
-    s.frozenCamera = s.camera.camera(s.fov);
-  } else if (key == "M") {
-    cycleMode(s);
-  } else if (key == "P") {
-    s.patches = !s.patches;
-  } else if (key == "T") {
-    s.triangleCull = !s.triangleCull;
-  } else if (key == "O") {
-    s.occlusion = s.occlusion == Occlusion::Auto ? Occlusion::On
-                  : s.occlusion == Occlusion::On ? Occlusion::Off
-                                                 : Occlusion::Auto;
-  } else if (key == "L") {
-    s.headlight = !s.headlight;
-  } else if (key == "H") {
-    s.camera = FlyCamera::from(s.home, s.camera.speed);
-  } else if (key == "C") {
-    printCamera(s);
-  } else if (key == "+") {
-    s.tau *= 1.25f;
-  } else if (key == "-") {
-    s.tau /= 1.25f;
-  } else if (key == "F12") {  // a screenshot named by the time
-    char name[64];
-    std::snprintf(name, sizeof name, "vgeo-view-%ld.png", long(std::time(nullptr)));
-    s.screenshot = name;
-  } else if (key == "Escape") {
-    s.quit = true;
-  } else {
-    return false;
-  }
-  return true;
-}
 
 void drawFrozenFrustum(const View& frozen, const View& draw, float farDistance) {
   // The frozen camera's frustum from its near plane to farDistance (reversed depth: z = znear / depth),

@@ -2,8 +2,10 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "../renderer/gpu_renderer.h"
+#include "viewer.h"
 #include "fly_camera.h"
 
 namespace vgeo {
@@ -18,7 +20,8 @@ struct ViewState {
   Traversal traversal = Traversal::Persistent;
   InstanceCulling instanceCulling = InstanceCulling::Auto;
   bool patches = true, triangleCull = true;
-  bool headlight = false;  // light from the camera (FrameSettings::light), else the fixed light
+  bool headlight = false;  // light from the camera (FrameSettings::light), else `light`
+  glm::vec3 light{0.0f};   // FrameSettings::light without the headlight (render --light); 0: the fixed light
   bool frozen = false;     // the cut and its culling stay with frozenCamera
   Camera frozenCamera;
   std::string screenshot;  // a path: the next frame's picture is written there
@@ -45,6 +48,20 @@ inline bool isViewerKey(const std::string& key) {
     if (key == k) return true;
   return false;
 }
+
+// A script's progress (docs/viewer.md): the next event, and a camera path under way.
+struct ScriptPlayer {
+  const std::vector<ViewEvent>& events;
+  size_t next = 0;
+  Camera pathFrom, pathTo;
+  uint32_t pathStart = 0, pathFrames = 0;
+  bool done() const { return next >= events.size() && pathFrames == 0; }
+};
+// Applies the script's events of `frame` (and the path's pose) to the state; a resize is returned in
+// width, height (0: none).
+void playEvents(ScriptPlayer& player, uint32_t frame, ViewState& state, uint32_t& width, uint32_t& height);
+// The frame's settings made of the state, as `vgeo render` would have them for that camera.
+FrameSettings frameSettings(const ViewState& state, const RenderScene& scene, uint32_t width, uint32_t height);
 
 // The panel (panel.cpp): the stats, the settings as controls, the keys and the view's legend.
 void drawPanel(ViewState& state, const ViewStats& stats);

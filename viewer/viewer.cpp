@@ -72,31 +72,6 @@ ContextOptions windowContext(const ViewerOptions& o, GLFWwindow* window) {
   return c;
 }
 
-// The script's events of `frame`; a path's progress.
-struct ScriptPlayer {
-  const std::vector<ViewEvent>& events;
-  size_t next = 0;
-  Camera pathFrom, pathTo;
-  uint32_t pathStart = 0, pathFrames = 0;
-};
-
-// The frame's settings, as `vgeo render` would have them.
-FrameSettings frameSettings(const ViewState& s, const RenderScene& scene, uint32_t width, uint32_t height) {
-  FrameSettings f;
-  f.drawView = makeView(s.camera.camera(s.fov), width, height, scene.bounds);
-  f.cullView = s.frozen ? makeView(s.frozenCamera, width, height, scene.bounds) : f.drawView;
-  f.tau = s.tau;
-  f.mode = s.mode;
-  f.traversal = s.traversal;
-  f.instanceCulling = s.instanceCulling;
-  f.triangleCull = s.triangleCull;
-  f.patches = s.patches;
-  f.occlusion = s.occlusion;
-  f.readImage = !s.screenshot.empty();
-  if (s.headlight) f.light = headlight(s.camera);
-  return f;
-}
-
 // Copies the renderer's picture into swapchain image `image` (scaled when the window's size is not yet
 // the renderer's), to TRANSFER_DST_OPTIMAL for the panel's pass.
 void recordCopy(VkCommandBuffer cmd, const GpuRenderer& renderer, VkImageLayout pictureLayout,
@@ -153,72 +128,6 @@ void writeWindowShot(const std::string& path, const Buffer& b, const Swapchain& 
 }
 
 }  // namespace
-
-// Applies the script's events of `frame` to the state; a resize is returned in width, height (0: none).
-static void playEvents(ScriptPlayer& p, uint32_t frame, ViewState& s, uint32_t& width, uint32_t& height) {
-  width = height = 0;
-  for (; p.next < p.events.size() && p.events[p.next].frame <= frame; p.next++) {
-    const ViewEvent& e = p.events[p.next];
-    switch (e.kind) {
-      case ViewEvent::Kind::Camera:
-        s.camera = FlyCamera::from(e.camera, s.camera.speed);
-        p.pathFrames = 0;
-        break;
-      case ViewEvent::Kind::Path:
-        p.pathFrom = s.camera.camera(s.fov);
-        p.pathTo = e.camera;
-        p.pathStart = frame;
-        p.pathFrames = std::max(e.frames, 1u);
-        break;
-      case ViewEvent::Kind::Mode:
-        s.mode = e.mode;
-        break;
-      case ViewEvent::Kind::Tau:
-        s.tau = e.value;
-        break;
-      case ViewEvent::Kind::Occlusion:
-        s.occlusion = e.occlusion;
-        break;
-      case ViewEvent::Kind::Patches:
-        s.patches = e.on;
-        break;
-      case ViewEvent::Kind::TriangleCull:
-        s.triangleCull = e.on;
-        break;
-      case ViewEvent::Kind::Freeze:
-        s.frozen = e.on;
-        s.frozenCamera = s.camera.camera(s.fov);
-        break;
-      case ViewEvent::Kind::Resize:
-        width = e.width;
-        height = e.height;
-        break;
-      case ViewEvent::Kind::Screenshot:
-        s.screenshot = e.text;
-        break;
-      case ViewEvent::Kind::WindowShot:
-        s.windowShot = e.text;
-        break;
-      case ViewEvent::Kind::Key:
-        pressKey(s, e.text);
-        break;
-      case ViewEvent::Kind::Quit:
-        s.quit = true;
-        break;
-    }
-  }
-  if (p.pathFrames) {  // along the path: eye and target each on a straight line
-    const float t = std::min(float(frame - p.pathStart + 1) / float(p.pathFrames), 1.0f);
-    Camera c = p.pathFrom;
-    c.eye = glm::mix(p.pathFrom.eye, p.pathTo.eye, t);
-    c.target = glm::mix(p.pathFrom.target, p.pathTo.target, t);
-    s.camera = FlyCamera::from(c, s.camera.speed);
-    if (t >= 1.0f) {  // the pose itself at the end, not a rounding of it
-      s.camera = FlyCamera::from(p.pathTo, s.camera.speed);
-      p.pathFrames = 0;
-    }
-  }
-}
 
 uint32_t runViewer(const RenderScene& scene, const ViewerOptions& o) {
   Window window(o.width, o.height, o.title);
