@@ -58,7 +58,11 @@ FrameSettings frameSettings(const RenderArgs& a, const RenderScene& scene, const
 struct RenderRun {
   FrameResult result;  // the last frame's
   uint32_t frames = 0, queueOverflows = 0, drawOverflows = 0, triangleOverflows = 0, patchOverflows = 0;
+  // The frames' passes after the first kUntimedFrames (lists grown, caches warm): as `vgeo view` times them.
+  uint32_t timedFrames = 0;
+  double timedMs = 0.0;
 };
+constexpr uint32_t kUntimedFrames = 5;
 
 // Frames until one is complete (an overflow grows the buffers for the next); the first frames warm the
 // shader cache (docs/gpu-notes.md, 4), the last one is reported.
@@ -69,6 +73,10 @@ RenderRun renderUntilComplete(GpuRenderer& renderer, const FrameSettings& settin
       throw std::runtime_error("frames keep overflowing after growing the buffers and the workers 12 times");
     run.result = renderer.renderFrame(settings);
     run.frames++;
+    if (run.frames > kUntimedFrames) {
+      run.timedFrames++;
+      run.timedMs += run.result.frameMs;
+    }
     const auto& c = run.result.counters;
     if (run.result.workersRanOut) {
       std::fprintf(stderr, "frame %u: the traversal's workers ran out of their iteration budget; %u workers next\n",
@@ -124,6 +132,7 @@ nlohmann::ordered_json frameStats(const RenderArgs& a, const RenderScene& scene,
   j["resolve_ms"] = result.resolveMs;
   j["pyramid_ms"] = result.pyramidMs;
   j["frame_ms"] = result.frameMs;
+  j["frame_mean_ms"] = run.timedFrames ? run.timedMs / run.timedFrames : result.frameMs;  // past the first 5
   j["frames"] = run.frames;
   j["camera"] = cameraOption(camera);
   if (a.compareCpu) {

@@ -91,7 +91,7 @@ std::vector<ViewEvent> readViewScript(const std::string& path, float fovYDegrees
       } else if (command == "key") {
         e.kind = ViewEvent::Kind::Key;
         e.text = arg;
-        if (!isViewerKey(arg)) throw bad("one of the viewer's keys (F M P T O L H C + - F12 Escape)");
+        if (!isViewerKey(arg)) throw bad("one of the viewer's keys (F M P T O L H C + - F12 Tab Escape)");
       } else if (command == "quit") {
         e.kind = ViewEvent::Kind::Quit;
         if (!arg.empty())

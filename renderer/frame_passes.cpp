@@ -236,7 +236,8 @@ void GpuRenderer::recordRenderPass(VkCommandBuffer cmd, const FrameSettings& set
     return;
   }
   VkClearValue clears[2];
-  clears[0].color = {{VGEO_BACKGROUND_R, VGEO_BACKGROUND_G, VGEO_BACKGROUND_B, 1.0f}};
+  clears[0].color = {{settings.bgraTarget ? VGEO_BACKGROUND_B : VGEO_BACKGROUND_R, VGEO_BACKGROUND_G,
+                      settings.bgraTarget ? VGEO_BACKGROUND_R : VGEO_BACKGROUND_B, 1.0f}};
   clears[1].depthStencil = {0.0f, 0};
   VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
   // The resolve writes the background where nothing was drawn, except in the overdraw view (it adds).

@@ -89,6 +89,8 @@ void GpuRenderer::readResults(const FrameSettings& settings, const shaderio::Fra
   if (settings.readImage && settings.draw) {
     result.rgba.resize(size_t(width_) * height_ * 4);
     std::memcpy(result.rgba.data(), imageReadback_.mapped, result.rgba.size());
+    if (settings.bgraTarget)  // back to R, G, B, A
+      for (size_t i = 0; i < result.rgba.size(); i += 4) std::swap(result.rgba[i], result.rgba[i + 2]);
   }
   if (settings.readDrawList) {
     uint32_t n = std::min(c.drawCount, drawCapacity_);

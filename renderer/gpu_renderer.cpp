@@ -335,6 +335,7 @@ shaderio::FrameData GpuRenderer::frameConstants(const FrameSettings& settings, O
   frame.pyramidTileLevels = pyramidTileLevels();
   frame.cullInstancesPerWorkgroup = cullInstancesPerWorkgroup(settings);
   frame.lodLevels = scene_.maxLevels;
+  frame.bgraTarget = settings.bgraTarget ? 1u : 0u;
   if (glm::length(settings.light) > 0.0f) frame.light = glm::vec4(glm::normalize(settings.light), 1.0f);
   frame.persistentWorkgroups = persistentWorkgroups_;
   for (uint32_t i = 0; i < pyramidLevels_; i++) frame.pyramidOffsets[i / 4][i % 4] = pyramidOffsets_[i];

@@ -79,7 +79,10 @@ struct FrameSettings {
   // Frames that draw nothing, show overdraw or traverse by levels or flat run one pass. A frozen cut
   // (cullView != drawView) keeps the depth of the camera it froze at, and with it Auto runs two passes.
   Occlusion occlusion = Occlusion::Auto;
-  glm::vec3 light{0.0f};        // the direction light comes from (the viewer's headlight); 0: the fixed light
+  glm::vec3 light{0.0f};  // the direction light comes from (the viewer's headlight); 0: the fixed light
+  // The colour target's bytes in B, G, R, A order (the viewer copies them to a BGRA window; FrameResult's
+  // rgba is R, G, B, A either way).
+  bool bgraTarget = false;
   bool profileWorkers = false;  // persistent traversal on a device with a shader device clock: record the
                                 // workers' iterations in FrameResult::workerProfile (benchmarks)
 };

@@ -20,5 +20,5 @@ void main() {
     vec3 a = smoothstep(vec3(0.0), d * 1.2, inBarycentric);
     edge = 1.0 - min(min(a.x, a.y), a.z);
   }
-  outColor = vec4(shadeSurface(n, inIds, inTriangle, inInfo, edge), 1.0);
+  outColor = targetColor(shadeSurface(n, inIds, inTriangle, inInfo, edge));
 }

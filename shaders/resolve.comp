@@ -40,16 +40,16 @@ void main() {
     uint samples = overdraw[pixel];
     if (kEveryPixel) {
       vec3 background = vec3(VGEO_BACKGROUND_R, VGEO_BACKGROUND_G, VGEO_BACKGROUND_B);
-      imageStore(colorImage, xy, vec4(background + kOverdrawColor * float(samples), 1.0));
+      imageStore(colorImage, xy, targetColor(background + kOverdrawColor * float(samples)));
     } else if (samples != 0u) {
-      imageStore(colorImage, xy, vec4(imageLoad(colorImage, xy).rgb + kOverdrawColor * float(samples), 1.0));
+      imageStore(colorImage, xy, targetColor(targetColor(imageLoad(colorImage, xy).rgb).rgb + kOverdrawColor * float(samples)));
     }
     return;
   }
   uint64_t word = visibility[pixel];
   float drawnDepth = kEveryPixel ? 0.0 : texelFetch(depthImage, xy, 0).r;  // 0: the render pass drew nothing here
   if (word == 0ul) {
-    if (drawnDepth == 0.0) imageStore(colorImage, xy, vec4(VGEO_BACKGROUND_R, VGEO_BACKGROUND_G, VGEO_BACKGROUND_B, 1.0));
+    if (drawnDepth == 0.0) imageStore(colorImage, xy, targetColor(vec3(VGEO_BACKGROUND_R, VGEO_BACKGROUND_G, VGEO_BACKGROUND_B)));
     return;
   }
   if (visibilityDepth(word) < drawnDepth) return;
@@ -118,5 +118,5 @@ void main() {
   bool errorView = VGEO_VIEW_MODE == VGEO_MODE_ERROR || VGEO_VIEW_MODE == VGEO_MODE_FROZEN_DIFF;
   vec2 info = errorView ? clusterViewInfo(inst, c) : vec2(-1.0, 0.0);
   if (isPatch && (errorView || VGEO_VIEW_MODE == VGEO_MODE_PATCH)) info = patchViewInfo(inst, c, largestFactor);
-  imageStore(colorImage, xy, vec4(shadeSurface(normal, ids, triangle, info, edge), 1.0));
+  imageStore(colorImage, xy, targetColor(shadeSurface(normal, ids, triangle, info, edge)));
 }

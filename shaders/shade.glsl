@@ -26,6 +26,10 @@ vec3 heat(float t) {  // 0 blue, 0.5 green, 1 red
 
 // What one fragment adds in the overdraw view (additive blending).
 const vec3 kOverdrawColor = vec3(0.09, 0.05, 0.02);
+
+// A colour as the colour target holds it: R, G, B, or B, G, R for the viewer's BGRA window (a copy
+// there, not a converting blit). Swapping twice gives back the colour.
+vec4 targetColor(vec3 c) { return vec4(frame.bgraTarget != 0u ? c.bgr : c, 1.0); }
 float lighting(vec3 n) {
   vec3 l = frame.light.w != 0.0 ? frame.light.xyz : normalize(vec3(0.4, 0.8, 0.45));  // the viewer's, or fixed
   return 0.18 + 0.82 * max(dot(n, l), 0.0);

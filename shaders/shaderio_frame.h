@@ -228,8 +228,8 @@ struct FrameData {
                                    // the late pass's dispatch over the deferred instances by it)
   uint persistentWorkgroups;       // the persistent traversal's dispatch (begin_late_pass.comp repeats it)
   uint lodLevels;                  // the lod view's scale: the most levels a geometry of the scene has
-  uint framePad;
-  vec4 light;  // xyz: the direction the light comes from, w 1; w 0: the default light
+  uint bgraTarget;                 // 1: the colour target holds B, G, R, A (the viewer copies it to a BGRA window)
+  vec4 light;                      // xyz: the direction the light comes from, w 1; w 0: the default light
 };
 
 // The software rasterizer (raster_software.comp) takes the triangles triangle culling bins to it:

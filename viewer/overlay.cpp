@@ -9,6 +9,7 @@
 #include <imgui_impl_vulkan.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace vgeo {
@@ -126,10 +127,31 @@ void Overlay::begin() {
 
 void Overlay::record(VkCommandBuffer cmd, uint32_t image) {
   ImGui::Render();
+  // Only where the panel draws: a CPU device (lavapipe) loads and stores every tile the render area
+  // covers, which for the whole window cost as much as the panel itself.
+  const ImDrawData* data = ImGui::GetDrawData();
+  float x0 = float(extent_.width), y0 = float(extent_.height), x1 = 0.0f, y1 = 0.0f;
+  for (int l = 0; l < data->CmdListsCount; l++)
+    for (const ImDrawCmd& c : data->CmdLists[l]->CmdBuffer) {
+      x0 = std::min(x0, c.ClipRect.x);
+      y0 = std::min(y0, c.ClipRect.y);
+      x1 = std::max(x1, c.ClipRect.z);
+      y1 = std::max(y1, c.ClipRect.w);
+    }
+  const ImVec2 scale = data->FramebufferScale, origin = data->DisplayPos;
+  VkRect2D area{{0, 0}, {1, 1}};  // nothing drawn: the pass only makes the image presentable
+  if (x1 > x0 && y1 > y0) {
+    const int32_t ax = std::clamp(int32_t((x0 - origin.x) * scale.x), 0, int32_t(extent_.width) - 1),
+                  ay = std::clamp(int32_t((y0 - origin.y) * scale.y), 0, int32_t(extent_.height) - 1);
+    area.offset = {ax, ay};
+    area.extent = {
+        uint32_t(std::clamp(int32_t(std::ceil((x1 - origin.x) * scale.x)) - ax, 1, int32_t(extent_.width) - ax)),
+        uint32_t(std::clamp(int32_t(std::ceil((y1 - origin.y) * scale.y)) - ay, 1, int32_t(extent_.height) - ay))};
+  }
   VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
   begin.renderPass = renderPass_;
   begin.framebuffer = framebuffers_[image];
-  begin.renderArea = {{0, 0}, extent_};
+  begin.renderArea = area;
   vkCmdBeginRenderPass(cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
   ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd);
   vkCmdEndRenderPass(cmd);

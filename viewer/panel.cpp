@@ -48,6 +48,7 @@ void drawFrozenFrustum(const View& frozen, const View& draw, float farDistance) 
 }
 
 void drawPanel(ViewState& s, const ViewStats& stats) {
+  if (!s.panel) return;
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(440, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("vgeo");
@@ -96,7 +97,7 @@ void drawPanel(ViewState& s, const ViewStats& stats) {
   if (ImGui::Button("print camera [C]")) pressKey(s, "C");
   if (!stats.lastScreenshot.empty()) ImGui::Text("wrote %s", stats.lastScreenshot.c_str());
   ImGui::SliderFloat("speed", &s.camera.speed, 1e-3f, 1e6f, "%.3g/s", ImGuiSliderFlags_Logarithmic);
-  ImGui::TextWrapped("WASD fly, Q/E down/up, right mouse look, scroll speed, H home, Esc quit");
+  ImGui::TextWrapped("WASD fly, Q/E down/up, right mouse look, scroll speed, H home, Tab hides this, Esc quit");
   ImGui::End();
 }
 

@@ -66,7 +66,7 @@ void Swapchain::create(uint32_t width, uint32_t height) {
   // Copied into, drawn over, and copied out of for a picture of the window (where the surface allows).
   copyable_ = (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_SRC_BIT) != 0;
   info.imageUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT |
-                    (copyable_ ? VK_IMAGE_USAGE_TRANSFER_SRC_BIT : 0u);
+                    (copyable_ ? VkImageUsageFlags(VK_IMAGE_USAGE_TRANSFER_SRC_BIT) : 0u);
   info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
   info.preTransform = caps.currentTransform;
   info.compositeAlpha = (caps.supportedCompositeAlpha & VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR)

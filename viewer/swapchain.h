@@ -27,6 +27,7 @@ class Swapchain {
   bool present(uint32_t image);
 
   VkFormat format() const { return format_; }
+  bool bgra() const { return format_ == VK_FORMAT_B8G8R8A8_UNORM; }  // the picture can be copied in as B, G, R, A
   VkExtent2D extent() const { return extent_; }
   VkImage image(uint32_t i) const { return images_[i]; }
   VkImageView view(uint32_t i) const { return views_[i]; }

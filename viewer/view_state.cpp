@@ -50,6 +50,8 @@ bool pressKey(ViewState& s, const std::string& key) {
     s.occlusion = s.occlusion == Occlusion::Auto ? Occlusion::On
                   : s.occlusion == Occlusion::On ? Occlusion::Off
                                                  : Occlusion::Auto;
+  } else if (key == "Tab") {
+    s.panel = !s.panel;
   } else if (key == "L") {
     s.headlight = !s.headlight;
   } else if (key == "H") {

@@ -20,6 +20,7 @@ struct ViewState {
   Traversal traversal = Traversal::Persistent;
   InstanceCulling instanceCulling = InstanceCulling::Auto;
   bool patches = true, triangleCull = true;
+  bool panel = true;       // the panel is shown (Tab)
   bool headlight = false;  // light from the camera (FrameSettings::light), else `light`
   glm::vec3 light{0.0f};   // FrameSettings::light without the headlight (render --light); 0: the fixed light
   bool frozen = false;     // the cut and its culling stay with frozenCamera
@@ -42,7 +43,7 @@ struct ViewStats {
 };
 
 // The keys pressKey knows (the panel lists them; scripts name them the same way).
-inline constexpr const char* kViewerKeys[] = {"F", "M", "P", "T", "O", "L", "H", "C", "+", "-", "F12", "Escape"};
+inline constexpr const char* kViewerKeys[] = {"F", "M", "P", "T", "O", "L", "H", "C", "+", "-", "F12", "Tab", "Escape"};
 inline bool isViewerKey(const std::string& key) {
   for (const char* k : kViewerKeys)
     if (key == k) return true;

@@ -26,6 +26,8 @@ namespace {
 // A window resized by hand settles for this long before the renderer is remade at its size (it is
 // remade at once for a scripted resize); meanwhile the last size's picture is scaled.
 constexpr double kResizeSettleSeconds = 0.25;
+// Frames left out of the closing summary's times: the first ones grow lists and warm caches.
+constexpr uint32_t kUntimedFrames = 5;
 
 std::string glfwFailure() {
   const char* description = nullptr;
@@ -74,7 +76,7 @@ ContextOptions windowContext(const ViewerOptions& o, GLFWwindow* window) {
 
 // Copies the renderer's picture into swapchain image `image` (scaled when the window's size is not yet
 // the renderer's), to TRANSFER_DST_OPTIMAL for the panel's pass.
-void recordCopy(VkCommandBuffer cmd, const GpuRenderer& renderer, VkImageLayout pictureLayout,
+void recordCopy(VkCommandBuffer cmd, const GpuRenderer& renderer, VkImageLayout pictureLayout, bool bgraTarget,
                 const Swapchain& swapchain, uint32_t image) {
   layoutBarrier(cmd, renderer.colorImage(), VK_IMAGE_ASPECT_COLOR_BIT, pictureLayout,
                 VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
@@ -91,6 +93,14 @@ void recordCopy(VkCommandBuffer cmd, const GpuRenderer& renderer, VkImageLayout 
   blit.srcOffsets[1] = {int32_t(renderer.width()), int32_t(renderer.height()), 1};
   blit.dstOffsets[1] = {int32_t(to.width), int32_t(to.height), 1};
   const bool same = renderer.width() == to.width && renderer.height() == to.height;
+  if (bgraTarget) {  // the same size and byte order: a plain copy (a blit converts pixel by pixel)
+    VkImageCopy copy{};
+    copy.srcSubresource = copy.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    copy.extent = {to.width, to.height, 1};
+    vkCmdCopyImage(cmd, renderer.colorImage(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, swapchain.image(image),
+                   VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+    return;
+  }
   vkCmdBlitImage(cmd, renderer.colorImage(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, swapchain.image(image),
                  VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, same ? VK_FILTER_NEAREST : VK_FILTER_LINEAR);
 }
@@ -151,7 +161,11 @@ uint32_t runViewer(const RenderScene& scene, const ViewerOptions& o) {
   glfwSetKeyCallback(window.handle, [](GLFWwindow* w, int key, int, int action, int) {
     if (action != GLFW_PRESS || (ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureKeyboard)) return;
     const char* name = glfwGetKeyName(key, 0);
-    std::string k = key == GLFW_KEY_ESCAPE ? "Escape" : key == GLFW_KEY_F12 ? "F12" : name ? name : "";
+    std::string k = key == GLFW_KEY_ESCAPE ? "Escape"
+                    : key == GLFW_KEY_F12  ? "F12"
+                    : key == GLFW_KEY_TAB  ? "Tab"
+                    : name                 ? name
+                                           : "";
     if (k == "=") k = "+";
     if (k.size() == 1) k[0] = char(std::toupper(k[0]));
     pressKey(*static_cast<ViewState*>(glfwGetWindowUserPointer(w)), k);
@@ -161,6 +175,10 @@ uint32_t runViewer(const RenderScene& scene, const ViewerOptions& o) {
   stats.device = vk.deviceName();
   stats.lodLevels = scene.maxLevels;
   ScriptPlayer player{o.script};
+  struct {
+    uint32_t frames = 0;
+    double loopMs = 0.0, renderMs = 0.0;
+  } timed;  // frames after the first few (pipelines and lists warm), for the summary at the end
   auto last = std::chrono::steady_clock::now(), sizeChanged = last;
   double mouseX = 0, mouseY = 0;
   glfwGetCursorPos(window.handle, &mouseX, &mouseY);
@@ -182,6 +200,11 @@ uint32_t runViewer(const RenderScene& scene, const ViewerOptions& o) {
     const float seconds = std::min(std::chrono::duration<float>(now - last).count(), 0.25f);
     stats.frameMs = std::chrono::duration<double, std::milli>(now - last).count();
     last = now;
+    if (frame > kUntimedFrames) {  // the last frame's whole loop, and its renderer's part
+      timed.frames++;
+      timed.loopMs += stats.frameMs;
+      timed.renderMs += stats.frame.frameMs;
+    }
     double x, y;
     glfwGetCursorPos(window.handle, &x, &y);
     if (!overlay.wantsMouse() && glfwGetMouseButton(window.handle, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS)
@@ -213,7 +236,8 @@ uint32_t runViewer(const RenderScene& scene, const ViewerOptions& o) {
       renderer = std::make_unique<GpuRenderer>(vk, scene, target.width, target.height);
     }
     // 4. The renderer's frame, as `vgeo render` runs it; a screenshot is its picture.
-    const FrameSettings settings = frameSettings(s, scene, renderer->width(), renderer->height());
+    FrameSettings settings = frameSettings(s, scene, renderer->width(), renderer->height());
+    settings.bgraTarget = swapchain.bgra() && renderer->width() == target.width && renderer->height() == target.height;
     stats.frame = renderer->renderFrame(settings);
     // A screenshot is of a complete frame, as `vgeo render` writes (an overflow grows the lists first).
     for (int i = 0; i < 12 && settings.readImage && !stats.frame.complete; i++)
@@ -240,7 +264,7 @@ uint32_t runViewer(const RenderScene& scene, const ViewerOptions& o) {
     }
     VkCommandBuffer cmd = vk.beginCommands();
     recordCopy(cmd, *renderer, settings.readImage ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_GENERAL,
-               swapchain, image);
+               settings.bgraTarget, swapchain, image);
     overlay.record(cmd, image);
     Buffer shot;
     if (!s.windowShot.empty()) {
@@ -259,6 +283,12 @@ uint32_t runViewer(const RenderScene& scene, const ViewerOptions& o) {
     }
   }
   vkDeviceWaitIdle(vk.device());
+  if (timed.frames)
+    std::printf(
+        "vgeo view: %u frames timed, %.2f ms a frame: the renderer's passes %.2f, the rest (copy, panel, "
+        "present, events) %.2f\n",
+        timed.frames, timed.loopMs / timed.frames, timed.renderMs / timed.frames,
+        (timed.loopMs - timed.renderMs) / timed.frames);
   return vk.validationMessages();
 }
 
