@@ -27,6 +27,7 @@ struct RenderArgs {
   float fov = 60.0f, tau = 1.0f;
   uint32_t grid = 1, frames = 2, queueCapacity = 0, drawCapacity = 0, triangleCapacity = 0, workgroups = 0,
            cullLanes = 0;
+  uint32_t pyramidLevel = 3;
   uint32_t sweepBudget = kDefaultSweepBudget, maxFrameMemoryMiB = kDefaultFrameMemoryMiB, deviceMemoryMiB = 0;
   uint32_t packedCullBelow = kDefaultPackedCullBelow;
   std::string instanceCulling = "auto", raster = "auto", layout = "grid", occlusion = "auto";
@@ -52,6 +53,7 @@ FrameSettings frameSettings(const RenderArgs& a, const RenderScene& scene, const
   settings.packedCullBelow = a.packedCullBelow;
   settings.occlusion = a.noOcclusion ? Occlusion::Off : occlusionNamed("--occlusion", a.occlusion);
   if (!a.light.empty()) settings.light = parseDirectionOption("--light", a.light);
+  settings.pyramidViewLevel = a.pyramidLevel;
   return settings;
 }
 
@@ -258,6 +260,10 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("-o,--output", a->output, "Output PNG")->required();
   cmd->add_option("--size", a->size, "Image size WxH")->capture_default_str();
   cmd->add_option("--camera", a->camera, "eye_x,eye_y,eye_z,target_x,target_y,target_z (default: frames the scene)");
+  cmd->add_option("--pyramid-level", a->pyramidLevel,
+                  "--mode pyramid: the level shown (1 covers 2 x 2 pixels a texel; past the top, the top)")
+      ->capture_default_str()
+      ->check(CLI::Range(1u, 31u));
   cmd->add_option("--path", a->path,
                   "A viewer script (docs/viewer.md) played without a window: -o is then a folder, a PNG a frame");
   cmd->add_option("--light", a->light,

@@ -30,6 +30,9 @@ inline constexpr DebugMode kDebugModes[] = {
      "a frozen cut against the live camera's: green the same cluster, red it would pick finer, blue coarser"},
     {"patch", VGEO_MODE_PATCH,
      "leaves drawn as patches by their largest tessellation factor: blue 1, green 8, red 64; triangles grey"},
+    {"pyramid", VGEO_MODE_PYRAMID,
+     "the depth pyramid occlusion culling tests against, one level: the farthest depth drawn under each texel, "
+     "nearer brighter; black where part of it was not drawn (it hides nothing there)"},
 };
 
 // The mode named `name`, or nullptr.

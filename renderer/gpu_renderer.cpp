@@ -283,7 +283,10 @@ void GpuRenderer::writeDescriptors() {
 OcclusionPlan GpuRenderer::occlusionPlan(const FrameSettings& settings) const {
   if (!mayOcclude(settings)) return OcclusionPlan::OnePass;
   if (settings.occlusion == Occlusion::On || keepsPyramid(settings)) return OcclusionPlan::TwoPass;
-  return occlusionPolicy_.next(pyramidMade_);
+  const OcclusionPlan plan = occlusionPolicy_.next(pyramidMade_);
+  // The pyramid view shows this frame's pyramid: a one-pass frame builds one.
+  return plan == OcclusionPlan::OnePass && settings.mode == VGEO_MODE_PYRAMID ? OcclusionPlan::OnePassThenPyramid
+                                                                              : plan;
 }
 
 // The frame's constants (shaderio.h, FrameData) for these settings.
@@ -336,6 +339,7 @@ shaderio::FrameData GpuRenderer::frameConstants(const FrameSettings& settings, O
   frame.cullInstancesPerWorkgroup = cullInstancesPerWorkgroup(settings);
   frame.lodLevels = scene_.maxLevels;
   frame.bgraTarget = settings.bgraTarget ? 1u : 0u;
+  frame.pyramidViewLevel = std::clamp(settings.pyramidViewLevel, 1u, std::max(pyramidLevels_, 2u) - 1u);
   if (glm::length(settings.light) > 0.0f) frame.light = glm::vec4(glm::normalize(settings.light), 1.0f);
   frame.persistentWorkgroups = persistentWorkgroups_;
   for (uint32_t i = 0; i < pyramidLevels_; i++) frame.pyramidOffsets[i / 4][i % 4] = pyramidOffsets_[i];
@@ -385,7 +389,7 @@ void GpuRenderer::runPasses(const FrameSettings& settings, const shaderio::Frame
       passes.push_back({&result.pyramidMs, VGEO_PASS_EARLY, [this](VkCommandBuffer cmd) { recordDepthPyramid(cmd); }});
     addSelection(VGEO_PASS_LATE);
   }
-  if (settings.draw && software)
+  if (settings.draw && (software || settings.mode == VGEO_MODE_PYRAMID))  // the pyramid view: every pixel
     passes.push_back({&result.resolveMs, VGEO_PASS_LATE, [&](VkCommandBuffer cmd) {
                         recordResolve(cmd, settings.mode, frame.softwarePatches != 0u, bare);
                       }});

@@ -83,8 +83,9 @@ struct FrameSettings {
   // The colour target's bytes in B, G, R, A order (the viewer copies them to a BGRA window; FrameResult's
   // rgba is R, G, B, A either way).
   bool bgraTarget = false;
-  bool profileWorkers = false;  // persistent traversal on a device with a shader device clock: record the
-                                // workers' iterations in FrameResult::workerProfile (benchmarks)
+  uint32_t pyramidViewLevel = 3;  // VGEO_MODE_PYRAMID: the level shown (clamped to 1 .. the top)
+  bool profileWorkers = false;    // persistent traversal on a device with a shader device clock: record the
+                                  // workers' iterations in FrameResult::workerProfile (benchmarks)
 };
 
 struct FrameResult {

@@ -29,6 +29,18 @@ layout(constant_id = VGEO_SPEC_RESOLVE_EVERY_PIXEL) const bool kEveryPixel = fal
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = VGEO_BINDING_COLOR_IMAGE, rgba8) uniform image2D colorImage;
 layout(set = 0, binding = VGEO_BINDING_DEPTH_IMAGE) uniform sampler2D depthImage;
+layout(set = 0, binding = VGEO_BINDING_DEPTH_PYRAMID, std430) readonly buffer DepthPyramidBuffer { float depthPyramid[]; };
+
+// The pyramid view: the texel of level frame.pyramidViewLevel over this pixel, grey by distance (nearer
+// brighter), black where the texel holds no depth (something under it was not drawn: it hides nothing).
+// znear is 1e-4 of the distance to the scene's far side (camera.cpp), so depth x 1e4 is that distance
+// over the texel's: the grey spans 5 octaves of it.
+vec3 pyramidColor(ivec2 xy) {
+  const uint level = frame.pyramidViewLevel;
+  const uint width = (uint(frame.viewportWidth) + (1u << level) - 1u) >> level;
+  const float depth = depthPyramid[frame.pyramidOffsets[level >> 2u][level & 3u] + (uint(xy.y) >> level) * width + (uint(xy.x) >> level)];
+  return depth > 0.0 ? vec3(0.15 + 0.85 * clamp(log2(depth * 1e4) / 5.0, 0.0, 1.0)) : vec3(0.0);
+}
 
 float cross2(vec2 a, vec2 b) { return a.x * b.y - a.y * b.x; }
 
@@ -36,6 +48,10 @@ void main() {
   ivec2 xy = ivec2(gl_GlobalInvocationID.xy);
   if (xy.x >= int(frame.viewportWidth) || xy.y >= int(frame.viewportHeight)) return;
   uint pixel = uint(xy.y) * uint(frame.viewportWidth) + uint(xy.x);
+  if (VGEO_VIEW_MODE == VGEO_MODE_PYRAMID) {
+    imageStore(colorImage, xy, targetColor(pyramidColor(xy)));
+    return;
+  }
   if (VGEO_VIEW_MODE == VGEO_MODE_OVERDRAW) {
     uint samples = overdraw[pixel];
     if (kEveryPixel) {

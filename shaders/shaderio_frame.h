@@ -21,7 +21,8 @@ VGEO_NAMESPACE_BEGIN
 #define VGEO_MODE_OVERDRAW 9
 #define VGEO_MODE_FROZEN_DIFF 10
 #define VGEO_MODE_PATCH 11
-#define VGEO_MODE_COUNT 12
+#define VGEO_MODE_PYRAMID 12  // the depth pyramid occlusion culling tests against (FrameData.pyramidViewLevel)
+#define VGEO_MODE_COUNT 13
 // The clear colour (linear RGB): the render pass's, and the resolve's where nothing was drawn.
 #define VGEO_BACKGROUND_R 0.02f
 #define VGEO_BACKGROUND_G 0.025f
@@ -229,7 +230,11 @@ struct FrameData {
   uint persistentWorkgroups;       // the persistent traversal's dispatch (begin_late_pass.comp repeats it)
   uint lodLevels;                  // the lod view's scale: the most levels a geometry of the scene has
   uint bgraTarget;                 // 1: the colour target holds B, G, R, A (the viewer copies it to a BGRA window)
-  vec4 light;                      // xyz: the direction the light comes from, w 1; w 0: the default light
+  uint pyramidViewLevel;           // VGEO_MODE_PYRAMID: the level shown (1 to pyramidLevels - 1)
+  uint framePad0;
+  uint framePad1;
+  uint framePad2;
+  vec4 light;  // xyz: the direction the light comes from, w 1; w 0: the default light
 };
 
 // The software rasterizer (raster_software.comp) takes the triangles triangle culling bins to it:
@@ -352,7 +357,7 @@ struct Counters {
 #define VGEO_MAX_DRAW_ENTRIES (1u << 25)
 
 #ifdef __cplusplus
-static_assert(sizeof(FrameData) == 560, "FrameData layout (std140)");
+static_assert(sizeof(FrameData) == 576, "FrameData layout (std140)");
 static_assert(offsetof(FrameData, pyramidViews) % 16 == 0 && offsetof(FrameData, pyramidProjections) % 16 == 0 &&
                   offsetof(FrameData, light) % 16 == 0,
               "FrameData: std140 alignment");

@@ -7,6 +7,7 @@
 
 #include "../common/vgeo_file.h"
 #include "../renderer/gpu_renderer.h"
+#include "../renderer/image.h"
 #include "render_util.h"
 #include "test_util.h"
 
@@ -208,6 +209,32 @@ TEST_F(RenderOcclusion, AutoRunsTwoPassesWhileTheyHideATenth) {
   EXPECT_GE(twoPass, 5u);
   EXPECT_GE(probesAbove, 2u);  // the first frame above, and one probe at least
   EXPECT_GE(onePassAbove, kOcclusionProbePeriod);
+}
+
+TEST_F(RenderOcclusion, PyramidViewShowsDepthOnlyWhereThePictureHasIt) {
+  // The pyramid view at level 1 (a texel a 2 x 2 block of pixels): a texel holds a depth only where all
+  // four pixels show a surface, both as the late pass tests against it (two passes) and as a one-pass
+  // frame leaves it for the next (auto).
+  GpuRenderer renderer(*vk, *forest, kW, kH);
+  for (Occlusion occlusion : {Occlusion::On, Occlusion::Auto}) {
+    FrameSettings s = settings(ground(0.02f, 0.1f), false);
+    s.occlusion = occlusion;
+    const FrameResult lit = complete(renderer, s);
+    s.mode = VGEO_MODE_PYRAMID;
+    s.pyramidViewLevel = 1;
+    const FrameResult pyramid = complete(renderer, s);
+    ASSERT_EQ(pyramid.rgba.size(), lit.rgba.size());
+    uint32_t deep = 0;
+    for (uint32_t y = 0; y < kH; y++)
+      for (uint32_t x = 0; x < kW; x++) {
+        if (pyramid.rgba[4 * (y * kW + x)] < 20) continue;  // black: no depth
+        deep++;
+        for (uint32_t p : {(y & ~1u) * kW + (x & ~1u), (y & ~1u) * kW + (x | 1u), (y | 1u) * kW + (x & ~1u),
+                           (y | 1u) * kW + (x | 1u)})
+          ASSERT_TRUE(isCovered(&lit.rgba[4 * p])) << "a depth over background at " << x << ", " << y;
+      }
+    EXPECT_GT(deep, kW * kH / 20) << "the pyramid holds the forest's depth";
+  }
 }
 
 TEST(OcclusionPolicy, ProbesEveryPeriodWhileTwoPassesDoNotPay) {

@@ -78,6 +78,10 @@ void drawPanel(ViewState& s, const ViewStats& stats) {
   }
   ImGui::TextWrapped("%s", kDebugModes[mode].legend);
   if (s.mode == VGEO_MODE_LOD) ImGui::Text("blue level 0, red level %u", std::max(stats.lodLevels, 2u) - 1);
+  if (s.mode == VGEO_MODE_PYRAMID) {
+    int level = int(s.pyramidLevel);
+    if (ImGui::SliderInt("pyramid level", &level, 1, 12)) s.pyramidLevel = uint32_t(level);
+  }
   ImGui::SliderFloat("tau [+ -]", &s.tau, 0.05f, 64.0f, "%.2f px", ImGuiSliderFlags_Logarithmic);
   int occlusion = int(s.occlusion);
   if (ImGui::Combo("occlusion [O]", &occlusion, kOcclusionNames, 3)) s.occlusion = Occlusion(occlusion);

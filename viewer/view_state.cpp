@@ -88,6 +88,7 @@ FrameSettings frameSettings(const ViewState& s, const RenderScene& scene, uint32
   f.occlusion = s.occlusion;
   f.readImage = !s.screenshot.empty();
   f.light = s.headlight ? headlight(s.camera) : s.light;
+  f.pyramidViewLevel = s.pyramidLevel;
   return f;
 }
 

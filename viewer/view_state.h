@@ -20,10 +20,11 @@ struct ViewState {
   Traversal traversal = Traversal::Persistent;
   InstanceCulling instanceCulling = InstanceCulling::Auto;
   bool patches = true, triangleCull = true;
-  bool panel = true;       // the panel is shown (Tab)
-  bool headlight = false;  // light from the camera (FrameSettings::light), else `light`
-  glm::vec3 light{0.0f};   // FrameSettings::light without the headlight (render --light); 0: the fixed light
-  bool frozen = false;     // the cut and its culling stay with frozenCamera
+  bool panel = true;          // the panel is shown (Tab)
+  uint32_t pyramidLevel = 3;  // the pyramid view's level
+  bool headlight = false;     // light from the camera (FrameSettings::light), else `light`
+  glm::vec3 light{0.0f};      // FrameSettings::light without the headlight (render --light); 0: the fixed light
+  bool frozen = false;        // the cut and its culling stay with frozenCamera
   Camera frozenCamera;
   std::string screenshot;  // a path: the next frame's picture is written there
   std::string windowShot;  // a path: the next frame's window, panel and all
