@@ -277,7 +277,12 @@ void GpuRenderer::recordDepthPyramid(VkCommandBuffer cmd) {
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, buildDepthPyramid_);
   vkCmdDispatch(cmd, (width_ + 31) / 32, (height_ + 31) / 32, 1);  // a workgroup a 32 x 32 pixel tile
-  computeToCompute(cmd);
+  // Read by the late pass, or, after a one-pass frame, its counters (pyramidTilesDone) by the copies back.
+  globalBarrier(
+      cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT,
+      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT |
+          VK_ACCESS_TRANSFER_READ_BIT);
 }
 
 }  // namespace vgeo
