@@ -13,22 +13,19 @@ namespace {
 
 class Viewer : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    dir = new std::string(std::filesystem::temp_directory_path() / "vgeo_viewer_tests");
-    std::filesystem::remove_all(*dir);
-    std::filesystem::create_directories(*dir);
-    writeVgeo(test::build(test::asset("horned_cube.obj"), 2), *dir + "/horned.vgeo");
+  // A folder of the test's own: ctest runs the tests of a suite side by side.
+  void SetUp() override {
+    dir = test::tempDir();
+    writeVgeo(test::build(test::asset("horned_cube.obj"), 2), dir + "/horned.vgeo");
   }
-  static void TearDownTestSuite() { delete dir; }
   // `vgeo view` of the horned cube in a 3 x 3 grid under a fresh Xvfb display.
-  static test::RunResult view(const std::string& options) {
+  test::RunResult view(const std::string& options) const {
     EXPECT_TRUE(std::filesystem::exists("/usr/bin/xvfb-run")) << "xvfb-run is missing (scripts/setup.sh installs xvfb)";
-    return test::runShell("xvfb-run -a -s '-screen 0 1280x1024x24' " + std::string(VGEO_BINARY) + " view " + *dir +
+    return test::runShell("xvfb-run -a -s '-screen 0 1280x1024x24' " + std::string(VGEO_BINARY) + " view " + dir +
                           "/horned.vgeo --grid 3 " + options);
   }
-  static std::string* dir;
+  std::string dir;
 };
-std::string* Viewer::dir = nullptr;
 
 TEST_F(Viewer, ScriptedScreenshotsAreWhatRenderWrites) {
   const std::string near = "2.5,1.8,3.5,0,0,0", far = "-4,1.2,2.5,0.3,0.1,0";
@@ -40,7 +37,7 @@ TEST_F(Viewer, ScriptedScreenshotsAreWhatRenderWrites) {
   std::string script = "# frame command arguments\n0 camera " + near + "\n";
   uint32_t frame = 2;
   auto shoot = [&](const std::string& name, const std::string& renderOptions) {
-    script += std::to_string(frame) + " screenshot " + *dir + "/" + name + ".png\n";
+    script += std::to_string(frame) + " screenshot " + dir + "/" + name + ".png\n";
     shots.push_back({name, renderOptions, frame});
     frame += 2;
   };
@@ -65,30 +62,30 @@ TEST_F(Viewer, ScriptedScreenshotsAreWhatRenderWrites) {
   shoot("settings", "--size 400x240 --camera " + far + " --tau 4 --occlusion on --no-patches");
   // The headlight, and the camera printed (C) as options for `vgeo render` to pass back.
   script += std::to_string(frame) + " key L\n" + std::to_string(frame) + " key C\n";
-  script += std::to_string(frame + 1) + " screenshot " + *dir + "/headlight.png\n";
+  script += std::to_string(frame + 1) + " screenshot " + dir + "/headlight.png\n";
   frame += 2;
   script += std::to_string(frame) + " freeze on\n" + std::to_string(frame) + " path 3 " + near + "\n";
   frame += 4;
-  script += std::to_string(frame) + " window-screenshot " + *dir + "/window.png\n";
+  script += std::to_string(frame) + " window-screenshot " + dir + "/window.png\n";
   script += std::to_string(frame + 1) + " quit\n";
-  const std::string scriptPath = test::writeFile(*dir, "script.txt", script);
+  const std::string scriptPath = test::writeFile(dir, "script.txt", script);
 
   // The same script without a window (`render --path`) first: a PNG a frame (its screenshots the viewer's
   // run then writes again).
-  const std::string frames = *dir + "/frames";
+  const std::string frames = dir + "/frames";
   std::filesystem::create_directories(frames);
   const test::RunResult path = test::runVgeo(
-      "render " + *dir + "/horned.vgeo --grid 3 --size 320x200 --validate --path " + scriptPath + " -o " + frames);
+      "render " + dir + "/horned.vgeo --grid 3 --size 320x200 --validate --path " + scriptPath + " -o " + frames);
   ASSERT_EQ(path.exitCode, 0) << path.output;
   const test::RunResult run = view("--size 320x200 --validate --script " + scriptPath);
   ASSERT_EQ(run.exitCode, 0) << run.output;
   EXPECT_EQ(run.output.find("validation"), std::string::npos) << run.output;
   for (const Shot& shot : shots) {
     SCOPED_TRACE(shot.name);
-    const std::string shown = *dir + "/" + shot.name + ".png", rendered = *dir + "/" + shot.name + "_render.png";
+    const std::string shown = dir + "/" + shot.name + ".png", rendered = dir + "/" + shot.name + "_render.png";
     const std::string size = shot.renderOptions.find("--size") == std::string::npos ? "--size 320x200 " : "";
     const test::RunResult r =
-        test::runVgeo("render " + *dir + "/horned.vgeo --grid 3 " + size + shot.renderOptions + " -o " + rendered);
+        test::runVgeo("render " + dir + "/horned.vgeo --grid 3 " + size + shot.renderOptions + " -o " + rendered);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     ASSERT_TRUE(std::filesystem::exists(shown));
     EXPECT_TRUE(test::readFile(shown) == test::readFile(rendered)) << shown << " differs from " << rendered;
@@ -102,18 +99,18 @@ TEST_F(Viewer, ScriptedScreenshotsAreWhatRenderWrites) {
   const std::string options = run.output.substr(printed, run.output.find('\n', printed) - printed);
   EXPECT_NE(options.find("--light "), std::string::npos) << options;
   const test::RunResult r =
-      test::runVgeo("render " + *dir + "/horned.vgeo --grid 3 --size 400x240 --tau 4 --occlusion on " +
-                    "--no-patches " + options + " -o " + *dir + "/headlight_render.png");
+      test::runVgeo("render " + dir + "/horned.vgeo --grid 3 --size 400x240 --tau 4 --occlusion on " + "--no-patches " +
+                    options + " -o " + dir + "/headlight_render.png");
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  EXPECT_TRUE(test::readFile(*dir + "/headlight.png") == test::readFile(*dir + "/headlight_render.png"));
-  EXPECT_FALSE(test::readFile(*dir + "/headlight.png") == test::readFile(*dir + "/settings.png"));
+  EXPECT_TRUE(test::readFile(dir + "/headlight.png") == test::readFile(dir + "/headlight_render.png"));
+  EXPECT_FALSE(test::readFile(dir + "/headlight.png") == test::readFile(dir + "/settings.png"));
   // The window, panel and all (and the frozen frustum), at the size the script gave it.
-  EXPECT_GT(std::filesystem::file_size(*dir + "/window.png"), 1000u);
+  EXPECT_GT(std::filesystem::file_size(dir + "/window.png"), 1000u);
 }
 
 TEST_F(Viewer, WithoutADisplayItSaysSoInOneLine) {
-  const test::RunResult r = test::runShell("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(VGEO_BINARY) + " view " +
-                                           *dir + "/horned.vgeo");
+  const test::RunResult r =
+      test::runShell("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(VGEO_BINARY) + " view " + dir + "/horned.vgeo");
   EXPECT_EQ(r.exitCode, 5) << r.output;
   EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
   EXPECT_NE(r.output.find("vgeo render"), std::string::npos) << r.output;
@@ -130,8 +127,8 @@ TEST_F(Viewer, ABadScriptLineIsOneLineNamingIt) {
            {"0 resize 10\n", "line 1: resize takes a size WxH"},
            {"0 quit now\n", "line 1: quit takes no more than its arguments"}}) {
     SCOPED_TRACE(text);
-    const std::string path = test::writeFile(*dir, "bad.txt", text);
-    const test::RunResult r = test::runVgeo("view " + *dir + "/horned.vgeo --script " + path);
+    const std::string path = test::writeFile(dir, "bad.txt", text);
+    const test::RunResult r = test::runVgeo("view " + dir + "/horned.vgeo --script " + path);
     EXPECT_EQ(r.exitCode, 1) << r.output;
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
     EXPECT_NE(r.output.find(path + ": " + expected), std::string::npos) << r.output;
