@@ -1,9 +1,8 @@
 #!/usr/bin/env bash
 # The test suite built with clang under AddressSanitizer and UndefinedBehaviorSanitizer (build-asan/):
 # every test that needs no GPU, then a GPU smoke test on lavapipe (the viewer under Xvfb with it), then
-# each libFuzzer target for
-# FUZZ_SECONDS (default 60; scripts/fuzz.sh). Any sanitizer report fails the run. scripts/test.sh runs
-# it after the normal suite.
+# each libFuzzer target for FUZZ_SECONDS (default 60; scripts/fuzz.sh). Any sanitizer report fails the
+# run. scripts/test.sh runs it after the normal suite.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
