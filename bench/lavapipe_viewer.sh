@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The viewer's own cost on lavapipe (bench/README.md, "The viewer"): the default scene at 1280x720 from
+# The viewer's own cost on lavapipe (bench/viewer.md): the default scene at 1280x720 from
 # its default camera, `vgeo view --no-vsync` under Xvfb for 65 frames (the panel shown, and hidden with
 # Tab) against `vgeo render --frames 65`, both timing the frames after the fifth; three rounds in
 # alternating order. Prints a line a run and writes bench/results/viewer-lavapipe-<date>/runs.txt.

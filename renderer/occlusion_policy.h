@@ -22,10 +22,10 @@ enum class OcclusionPlan {
 };
 
 // Frames between probes while two passes do not pay: the probe's two frames cost about one frame's
-// worth of the two passes' fixed cost, spread over this many (bench/README.md, "Occlusion culling").
+// worth of the two passes' fixed cost, spread over this many (bench/occlusion.md).
 constexpr uint32_t kOcclusionProbePeriod = 16;
 // Two passes pay while they hide at least 1 / kOcclusionPaysAbove of what a frame draws: about what they
-// cost a frame that hides nothing, on the H100 and on lavapipe (bench/README.md).
+// cost a frame that hides nothing, on the H100 and on lavapipe (bench/occlusion.md).
 constexpr uint64_t kOcclusionPaysAbove = 10;
 
 class OcclusionPolicy {

@@ -14,7 +14,7 @@
 //   fits there, and then begins the late pass.
 // One dispatch, not one a level: every dispatch and barrier costs a GPU a few microseconds, and lavapipe
 // pays for every barrier of its 256 lanes, so there the tile stops at level 1 and the last workgroup does
-// the rest; a GPU takes the tile to level 5 (bench/README.md, "Occlusion culling").
+// the rest; a GPU takes the tile to level 5 (bench/occlusion.md).
 #extension GL_GOOGLE_include_directive : require
 layout(local_size_x = 16, local_size_y = 16) in;
 #include "common.glsl"
