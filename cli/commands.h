@@ -70,6 +70,12 @@ inline const char* occlusionName(Occlusion occlusion) {
   return "?";
 }
 
+// The scene and view options `render` and `view` share: --fov, --tau, --mode, --grid, --layout.
+void addSceneViewOptions(CLI::App* cmd, float& fov, float& tau, std::string& mode, uint32_t& grid, std::string& layout);
+// The scene those options name: --grid copies of the input, or a forest of N x N instances of its first
+// geometry.
+RenderScene loadLaidOutScene(const std::string& input, uint32_t grid, const std::string& layout);
+
 // --traversal persistent|levels|flat (render and bench frame) and its value; bench cut lists several.
 inline constexpr Traversal kTraversals[] = {Traversal::Persistent, Traversal::Levels, Traversal::Flat};
 inline void addTraversalOption(CLI::App* cmd, std::string& name) {

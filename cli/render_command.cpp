@@ -200,9 +200,7 @@ int runRender(const RenderArgs& a) {
   if (!a.light.empty()) parseDirectionOption("--light", a.light);
 
   // A grid copies the whole scene; a forest packs N x N instances of its first geometry in rows.
-  RenderScene scene = a.layout == "forest"
-                          ? makeBenchScene(loadRenderScene(a.input), a.grid * a.grid, BenchLayout::Forest, 7)
-                          : loadRenderScene(a.input, a.grid);
+  RenderScene scene = loadLaidOutScene(a.input, a.grid, a.layout);
   if (!camera) camera = sceneCamera(scene, a.fov, float(width) / float(height));
   camera->fovYDegrees = a.fov;
   if (!cullCamera) cullCamera = camera;
@@ -253,6 +251,30 @@ int runRender(const RenderArgs& a) {
 
 }  // namespace
 
+void addSceneViewOptions(CLI::App* cmd, float& fov, float& tau, std::string& mode, uint32_t& grid,
+                         std::string& layout) {
+  cmd->add_option("--fov", fov, "Vertical field of view, degrees")
+      ->capture_default_str()
+      ->check(finiteBetween(0.0, 180.0));
+  cmd->add_option("--tau", tau, "Allowed projected error, pixels (a tau below what the leaves reach draws the leaves)")
+      ->capture_default_str()
+      ->check(finiteBetween(0.0, INFINITY));
+  std::vector<std::string> modes;
+  for (const DebugMode& m : kDebugModes) modes.push_back(m.name);
+  cmd->add_option("--mode", mode, "Debug view")->capture_default_str()->check(CLI::IsMember(modes));
+  cmd->add_option("--grid", grid, "N x N instances of the input")->capture_default_str()->check(CLI::Range(1u, 4096u));
+  cmd->add_option("--layout", layout,
+                  "grid: --grid copies of the input side by side; forest: N x N instances of its first geometry "
+                  "packed in rows, jittered, turned and scaled (a dense scene for occlusion culling)")
+      ->check(CLI::IsMember({"grid", "forest"}))
+      ->capture_default_str();
+}
+
+RenderScene loadLaidOutScene(const std::string& input, uint32_t grid, const std::string& layout) {
+  return layout == "forest" ? makeBenchScene(loadRenderScene(input), grid * grid, BenchLayout::Forest, 7)
+                            : loadRenderScene(input, grid);
+}
+
 void addRenderCommand(CLI::App& app, int& exitCode) {
   auto* cmd = app.add_subcommand("render", "Render a .vgeo or a scene file (JSON) to a PNG with the GPU LOD renderer");
   auto a = std::make_shared<RenderArgs>();
@@ -268,24 +290,7 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
                   "A viewer script (docs/viewer.md) played without a window: -o is then a folder, a PNG a frame");
   cmd->add_option("--light", a->light,
                   "x,y,z: the direction light comes from (default: a fixed light from above, right and front)");
-  cmd->add_option("--fov", a->fov, "Vertical field of view, degrees")
-      ->capture_default_str()
-      ->check(finiteBetween(0.0, 180.0));
-  cmd->add_option("--tau", a->tau,
-                  "Allowed projected error, pixels (a tau below what the leaves reach draws the leaves)")
-      ->capture_default_str()
-      ->check(finiteBetween(0.0, INFINITY));
-  std::vector<std::string> modes;
-  for (const DebugMode& m : kDebugModes) modes.push_back(m.name);
-  cmd->add_option("--mode", a->mode, "Debug view")->capture_default_str()->check(CLI::IsMember(modes));
-  cmd->add_option("--grid", a->grid, "N x N instances of the input")
-      ->capture_default_str()
-      ->check(CLI::Range(1u, 4096u));
-  cmd->add_option("--layout", a->layout,
-                  "grid: --grid copies of the input side by side; forest: N x N instances of its first geometry "
-                  "packed in rows, jittered, turned and scaled (a dense scene for occlusion culling)")
-      ->check(CLI::IsMember({"grid", "forest"}))
-      ->capture_default_str();
+  addSceneViewOptions(cmd, a->fov, a->tau, a->mode, a->grid, a->layout);
   addTraversalOption(cmd, a->traversal);
   cmd->add_option("--freeze-camera", a->freezeCamera,
                   "Select and cull with this camera (six numbers), draw from --camera");

@@ -19,14 +19,7 @@ int renderPath(const std::vector<ViewEvent>& script, const std::string& folder, 
   s.fov = camera.fovYDegrees;
   s.home = camera;
   s.camera = FlyCamera::from(camera, scene.bounds.w * 0.5f);
-  s.mode = initial.mode;
-  s.tau = initial.tau;
-  s.occlusion = initial.occlusion;
-  s.traversal = initial.traversal;
-  s.instanceCulling = initial.instanceCulling;
-  s.patches = initial.patches;
-  s.triangleCull = initial.triangleCull;
-  s.light = initial.light;
+  s.frame = initial;
   s.frozen = frozen.has_value();
   if (frozen) s.frozenCamera = *frozen;
   ScriptPlayer player{script};
@@ -40,10 +33,6 @@ int renderPath(const std::vector<ViewEvent>& script, const std::string& folder, 
       renderer.emplace(vk, scene, width, height);
     }
     FrameSettings settings = frameSettings(s, scene, renderer->width(), renderer->height());
-    settings.raster = initial.raster;
-    settings.cullLanes = initial.cullLanes;
-    settings.sweepBudget = initial.sweepBudget;
-    settings.packedCullBelow = initial.packedCullBelow;
     settings.readImage = true;
     FrameResult result = renderer->renderFrame(settings);
     for (int i = 0; i < 12 && !result.complete; i++) result = renderer->renderFrame(settings);  // lists grown

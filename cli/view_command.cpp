@@ -26,9 +26,7 @@ int runView(const ViewArgs& a) {
   std::optional<Camera> camera;
   if (!a.camera.empty()) camera = parseCameraOption("--camera", a.camera, a.fov);
   if (!a.script.empty()) o.script = readViewScript(a.script, a.fov, {a.input, a.script});
-  RenderScene scene = a.layout == "forest"
-                          ? makeBenchScene(loadRenderScene(a.input), a.grid * a.grid, BenchLayout::Forest, 7)
-                          : loadRenderScene(a.input, a.grid);
+  RenderScene scene = loadLaidOutScene(a.input, a.grid, a.layout);
   if (!camera) camera = sceneCamera(scene, a.fov, float(o.width) / float(o.height));
   camera->fovYDegrees = a.fov;
   o.camera = *camera;
@@ -54,21 +52,7 @@ void addViewCommand(CLI::App& app, int& exitCode) {
   cmd->add_option("input", a->input, ".vgeo file or scene file (.json)")->required();
   cmd->add_option("--camera", a->camera, "eye_x,eye_y,eye_z,target_x,target_y,target_z (default: frames the scene)");
   cmd->add_option("--size", a->size, "Window size WxH")->capture_default_str();
-  cmd->add_option("--fov", a->fov, "Vertical field of view, degrees")
-      ->capture_default_str()
-      ->check(finiteBetween(0.0, 180.0));
-  cmd->add_option("--tau", a->tau, "Allowed projected error, pixels")
-      ->capture_default_str()
-      ->check(finiteBetween(0.0, INFINITY));
-  std::vector<std::string> modes;
-  for (const DebugMode& m : kDebugModes) modes.push_back(m.name);
-  cmd->add_option("--mode", a->mode, "Debug view")->capture_default_str()->check(CLI::IsMember(modes));
-  cmd->add_option("--grid", a->grid, "N x N instances of the input")
-      ->capture_default_str()
-      ->check(CLI::Range(1u, 4096u));
-  cmd->add_option("--layout", a->layout, "grid, or forest (N x N instances packed in rows)")
-      ->check(CLI::IsMember({"grid", "forest"}))
-      ->capture_default_str();
+  addSceneViewOptions(cmd, a->fov, a->tau, a->mode, a->grid, a->layout);
   cmd->add_option("--script", a->script, "Timed events to play (docs/viewer.md): camera, path, settings, screenshots");
   addDeviceOption(cmd, a->device);
   cmd->add_flag("--validate", a->validate,

@@ -70,29 +70,29 @@ void drawPanel(ViewState& s, const ViewStats& stats) {
   ImGui::Separator();
   int mode = 0;
   for (size_t i = 0; i < std::size(kDebugModes); i++)
-    if (kDebugModes[i].mode == s.mode) mode = int(i);
+    if (kDebugModes[i].mode == s.frame.mode) mode = int(i);
   if (ImGui::BeginCombo("view [M]", kDebugModes[mode].name)) {
     for (size_t i = 0; i < std::size(kDebugModes); i++)
-      if (ImGui::Selectable(kDebugModes[i].name, int(i) == mode)) s.mode = kDebugModes[i].mode;
+      if (ImGui::Selectable(kDebugModes[i].name, int(i) == mode)) s.frame.mode = kDebugModes[i].mode;
     ImGui::EndCombo();
   }
   ImGui::TextWrapped("%s", kDebugModes[mode].legend);
-  if (s.mode == VGEO_MODE_LOD) ImGui::Text("blue level 0, red level %u", std::max(stats.lodLevels, 2u) - 1);
-  if (s.mode == VGEO_MODE_PYRAMID) {
-    int level = int(s.pyramidLevel);
-    if (ImGui::SliderInt("pyramid level", &level, 1, 12)) s.pyramidLevel = uint32_t(level);
+  if (s.frame.mode == VGEO_MODE_LOD) ImGui::Text("blue level 0, red level %u", std::max(stats.lodLevels, 2u) - 1);
+  if (s.frame.mode == VGEO_MODE_PYRAMID) {
+    int level = int(s.frame.pyramidViewLevel);
+    if (ImGui::SliderInt("pyramid level", &level, 1, 12)) s.frame.pyramidViewLevel = uint32_t(level);
   }
-  ImGui::SliderFloat("tau [+ -]", &s.tau, 0.05f, 64.0f, "%.2f px", ImGuiSliderFlags_Logarithmic);
-  int occlusion = int(s.occlusion);
-  if (ImGui::Combo("occlusion [O]", &occlusion, kOcclusionNames, 3)) s.occlusion = Occlusion(occlusion);
-  int traversal = int(s.traversal);
+  ImGui::SliderFloat("tau [+ -]", &s.frame.tau, 0.05f, 64.0f, "%.2f px", ImGuiSliderFlags_Logarithmic);
+  int occlusion = int(s.frame.occlusion);
+  if (ImGui::Combo("occlusion [O]", &occlusion, kOcclusionNames, 3)) s.frame.occlusion = Occlusion(occlusion);
+  int traversal = int(s.frame.traversal);
   const char* traversals[] = {"persistent", "levels", "flat"};
-  if (ImGui::Combo("traversal", &traversal, traversals, 3)) s.traversal = Traversal(traversal);
-  int culling = int(s.instanceCulling);
+  if (ImGui::Combo("traversal", &traversal, traversals, 3)) s.frame.traversal = Traversal(traversal);
+  int culling = int(s.frame.instanceCulling);
   const char* cullings[] = {"auto", "pass", "traversal"};
-  if (ImGui::Combo("instance culling", &culling, cullings, 3)) s.instanceCulling = InstanceCulling(culling);
-  ImGui::Checkbox("triangle culling [T]", &s.triangleCull);
-  ImGui::Checkbox("patches [P]", &s.patches);
+  if (ImGui::Combo("instance culling", &culling, cullings, 3)) s.frame.instanceCulling = InstanceCulling(culling);
+  ImGui::Checkbox("triangle culling [T]", &s.frame.triangleCull);
+  ImGui::Checkbox("patches [P]", &s.frame.patches);
   ImGui::Checkbox("headlight [L] (else the fixed light)", &s.headlight);
   bool frozen = s.frozen;
   if (ImGui::Checkbox("freeze the cut [F]", &frozen)) pressKey(s, "F");

@@ -16,11 +16,11 @@ namespace {
 void cycleMode(ViewState& s) {
   const size_t count = std::size(kDebugModes);
   for (size_t i = 0; i < count; i++)
-    if (kDebugModes[i].mode == s.mode) {
-      s.mode = kDebugModes[(i + 1) % count].mode;
+    if (kDebugModes[i].mode == s.frame.mode) {
+      s.frame.mode = kDebugModes[(i + 1) % count].mode;
       return;
     }
-  s.mode = VGEO_MODE_LIT;
+  s.frame.mode = VGEO_MODE_LIT;
 }
 
 void printCamera(const ViewState& s) {
@@ -43,13 +43,13 @@ bool pressKey(ViewState& s, const std::string& key) {
   } else if (key == "M") {
     cycleMode(s);
   } else if (key == "P") {
-    s.patches = !s.patches;
+    s.frame.patches = !s.frame.patches;
   } else if (key == "T") {
-    s.triangleCull = !s.triangleCull;
+    s.frame.triangleCull = !s.frame.triangleCull;
   } else if (key == "O") {
-    s.occlusion = s.occlusion == Occlusion::Auto ? Occlusion::On
-                  : s.occlusion == Occlusion::On ? Occlusion::Off
-                                                 : Occlusion::Auto;
+    s.frame.occlusion = s.frame.occlusion == Occlusion::Auto ? Occlusion::On
+                        : s.frame.occlusion == Occlusion::On ? Occlusion::Off
+                                                             : Occlusion::Auto;
   } else if (key == "Tab") {
     s.panel = !s.panel;
   } else if (key == "L") {
@@ -59,9 +59,9 @@ bool pressKey(ViewState& s, const std::string& key) {
   } else if (key == "C") {
     printCamera(s);
   } else if (key == "+") {
-    s.tau *= 1.25f;
+    s.frame.tau *= 1.25f;
   } else if (key == "-") {
-    s.tau /= 1.25f;
+    s.frame.tau /= 1.25f;
   } else if (key == "F12") {  // a screenshot named by the time
     char name[64];
     std::snprintf(name, sizeof name, "vgeo-view-%ld.png", long(std::time(nullptr)));
@@ -76,19 +76,11 @@ bool pressKey(ViewState& s, const std::string& key) {
 
 // The frame's settings, as `vgeo render` would have them.
 FrameSettings frameSettings(const ViewState& s, const RenderScene& scene, uint32_t width, uint32_t height) {
-  FrameSettings f;
+  FrameSettings f = s.frame;
   f.drawView = makeView(s.camera.camera(s.fov), width, height, scene.bounds);
   f.cullView = s.frozen ? makeView(s.frozenCamera, width, height, scene.bounds) : f.drawView;
-  f.tau = s.tau;
-  f.mode = s.mode;
-  f.traversal = s.traversal;
-  f.instanceCulling = s.instanceCulling;
-  f.triangleCull = s.triangleCull;
-  f.patches = s.patches;
-  f.occlusion = s.occlusion;
   f.readImage = !s.screenshot.empty();
-  f.light = s.headlight ? headlight(s.camera) : s.light;
-  f.pyramidViewLevel = s.pyramidLevel;
+  if (s.headlight) f.light = headlight(s.camera);
   return f;
 }
 
@@ -109,19 +101,19 @@ void playEvents(ScriptPlayer& p, uint32_t frame, ViewState& s, uint32_t& width, 
         p.pathFrames = std::max(e.frames, 1u);
         break;
       case ViewEvent::Kind::Mode:
-        s.mode = e.mode;
+        s.frame.mode = e.mode;
         break;
       case ViewEvent::Kind::Tau:
-        s.tau = e.value;
+        s.frame.tau = e.value;
         break;
       case ViewEvent::Kind::Occlusion:
-        s.occlusion = e.occlusion;
+        s.frame.occlusion = e.occlusion;
         break;
       case ViewEvent::Kind::Patches:
-        s.patches = e.on;
+        s.frame.patches = e.on;
         break;
       case ViewEvent::Kind::TriangleCull:
-        s.triangleCull = e.on;
+        s.frame.triangleCull = e.on;
         break;
       case ViewEvent::Kind::Freeze:
         s.frozen = e.on;

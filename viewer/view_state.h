@@ -14,17 +14,12 @@ struct ViewState {
   FlyCamera camera;
   Camera home;  // the first camera: the Home key goes back to it
   float fov = 60.0f;
-  uint32_t mode = VGEO_MODE_LIT;
-  float tau = 1.0f;
-  Occlusion occlusion = Occlusion::Auto;
-  Traversal traversal = Traversal::Persistent;
-  InstanceCulling instanceCulling = InstanceCulling::Auto;
-  bool patches = true, triangleCull = true;
-  bool panel = true;          // the panel is shown (Tab)
-  uint32_t pyramidLevel = 3;  // the pyramid view's level
-  bool headlight = false;     // light from the camera (FrameSettings::light), else `light`
-  glm::vec3 light{0.0f};      // FrameSettings::light without the headlight (render --light); 0: the fixed light
-  bool frozen = false;        // the cut and its culling stay with frozenCamera
+  // The frame's settings but the views and the image read-back (frameSettings makes those): view, tau,
+  // occlusion, traversal, culling, patches, the fixed light, the pyramid view's level.
+  FrameSettings frame;
+  bool panel = true;       // the panel is shown (Tab)
+  bool headlight = false;  // light from the camera, else frame.light
+  bool frozen = false;     // the cut and its culling stay with frozenCamera
   Camera frozenCamera;
   std::string screenshot;  // a path: the next frame's picture is written there
   std::string windowShot;  // a path: the next frame's window, panel and all

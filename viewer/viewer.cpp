@@ -150,8 +150,8 @@ uint32_t runViewer(const RenderScene& scene, const ViewerOptions& o) {
   s.fov = o.camera.fovYDegrees;
   s.home = o.camera;
   s.camera = FlyCamera::from(o.camera, scene.bounds.w * 0.5f);
-  s.tau = o.tau;
-  s.mode = o.mode;
+  s.frame.tau = o.tau;
+  s.frame.mode = o.mode;
   // Installed before the panel's, which calls them after its own: scroll sets the speed, keys toggle.
   glfwSetWindowUserPointer(window.handle, &s);
   glfwSetScrollCallback(window.handle, [](GLFWwindow* w, double, double dy) {
