@@ -56,6 +56,40 @@ void globalBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessF
   vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 1, &b, 0, nullptr, 0, nullptr);
 }
 
+void createImage(VulkanContext& vk, uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage,
+                 VkImageAspectFlags aspect, VkImage& image, VkDeviceMemory& memory, VkImageView& view) {
+  VkDevice dev = vk.device();
+  VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  info.imageType = VK_IMAGE_TYPE_2D;
+  info.format = format;
+  info.extent = {width, height, 1};
+  info.mipLevels = 1;
+  info.arrayLayers = 1;
+  info.samples = VK_SAMPLE_COUNT_1_BIT;
+  info.tiling = VK_IMAGE_TILING_OPTIMAL;
+  info.usage = usage;
+  vkCheck(vkCreateImage(dev, &info, nullptr, &image), "vkCreateImage");
+  VkMemoryRequirements req;
+  vkGetImageMemoryRequirements(dev, image, &req);
+  VkPhysicalDeviceMemoryProperties mem;
+  vkGetPhysicalDeviceMemoryProperties(vk.physicalDevice(), &mem);
+  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  alloc.allocationSize = req.size;
+  for (uint32_t i = 0; i < mem.memoryTypeCount; i++)
+    if ((req.memoryTypeBits & (1u << i)) && (mem.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) {
+      alloc.memoryTypeIndex = i;
+      break;
+    }
+  vkCheck(vkAllocateMemory(dev, &alloc, nullptr, &memory), "vkAllocateMemory (image)");
+  vkCheck(vkBindImageMemory(dev, image, memory, 0), "vkBindImageMemory");
+  VkImageViewCreateInfo v{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  v.image = image;
+  v.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  v.format = format;
+  v.subresourceRange = {aspect, 0, 1, 0, 1};
+  vkCheck(vkCreateImageView(dev, &v, nullptr, &view), "vkCreateImageView");
+}
+
 void layoutBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,
                    VkPipelineStageFlags srcStage, VkAccessFlags srcAccess, VkPipelineStageFlags dstStage,
                    VkAccessFlags dstAccess) {

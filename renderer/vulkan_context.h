@@ -111,6 +111,9 @@ class VulkanContext {
 // Throws std::runtime_error naming the call when a Vulkan call fails.
 void vkCheck(VkResult result, const char* what);
 
+// Creates a one-level 2D image in device-local memory (optimal tiling) and its view of `aspect`.
+void createImage(VulkanContext& vk, uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage,
+                 VkImageAspectFlags aspect, VkImage& image, VkDeviceMemory& memory, VkImageView& view);
 // Records a barrier that moves the whole of a one-level image (`aspect`) from layout `from` to `to`, after
 // `srcAccess` in `srcStage` and before `dstAccess` in `dstStage`.
 void layoutBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout from, VkImageLayout to,

@@ -3,6 +3,8 @@
 // screenshots; each screenshot is the PNG `vgeo render` writes for the same camera and settings, byte
 // for byte (the same renderer, so no tolerance is needed). Without a display the viewer says so in one
 // line that points to `vgeo render`; a bad script line is one line naming the file and the line.
+#include <stb/stb_image.h>
+
 #include <filesystem>
 
 #include "../renderer/debug_modes.h"
@@ -106,6 +108,66 @@ TEST_F(Viewer, ScriptedScreenshotsAreWhatRenderWrites) {
   EXPECT_FALSE(test::readFile(dir + "/headlight.png") == test::readFile(dir + "/settings.png"));
   // The window, panel and all (and the frozen frustum), at the size the script gave it.
   EXPECT_GT(std::filesystem::file_size(dir + "/window.png"), 1000u);
+}
+
+struct Rgba {
+  int width = 0, height = 0;
+  std::vector<uint8_t> pixels;
+  bool same(const Rgba& o, int x, int y) const {
+    return std::equal(&pixels[(size_t(y) * width + x) * 4], &pixels[(size_t(y) * width + x) * 4 + 3],
+                      &o.pixels[(size_t(y) * width + x) * 4]);
+  }
+};
+Rgba readPng(const std::string& path) {
+  Rgba image;
+  int channels = 0;
+  uint8_t* p = stbi_load(path.c_str(), &image.width, &image.height, &channels, 4);
+  EXPECT_NE(p, nullptr) << path;
+  if (p) image.pixels.assign(p, p + size_t(image.width) * image.height * 4);
+  stbi_image_free(p);
+  return image;
+}
+
+// The panel is opaque and drawn once, then copied while it does not change: the window shows the
+// picture everywhere but in the panel's rectangle at the top left, and a changed panel is drawn again.
+TEST_F(Viewer, ThePanelIsItsRectangleOverThePicture) {
+  const std::string script = "0 camera 2.5,1.8,3.5,0,0,0\n4 screenshot " + dir + "/a.png\n4 window-screenshot " + dir +
+                             "/a_window.png\n5 mode normal\n8 screenshot " + dir + "/b.png\n8 window-screenshot " +
+                             dir + "/b_window.png\n9 quit\n";
+  const test::RunResult run = view("--size 900x640 --validate --script " + test::writeFile(dir, "script.txt", script));
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_EQ(run.output.find("validation"), std::string::npos) << run.output;
+  Rgba panels[2];
+  for (int shot = 0; shot < 2; shot++) {
+    const std::string name = dir + (shot ? "/b" : "/a");
+    const Rgba picture = readPng(name + ".png"), window = readPng(name + "_window.png");
+    ASSERT_EQ(picture.width, 900);
+    ASSERT_EQ(window.width, 900);
+    ASSERT_EQ(window.height, picture.height);
+    int x0 = window.width, y0 = window.height, x1 = -1, y1 = -1;
+    for (int y = 0; y < window.height; y++)
+      for (int x = 0; x < window.width; x++)
+        if (!window.same(picture, x, y)) {
+          x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
+        }
+    ASSERT_GE(x1, x0) << name << ": no panel";
+    SCOPED_TRACE(name + ": the panel at " + std::to_string(x0) + "," + std::to_string(y0) + " to " +
+                 std::to_string(x1) + "," + std::to_string(y1));
+    EXPECT_LE(x0, 10);
+    EXPECT_LE(y0, 10);
+    EXPECT_LT(x1, 8 + 460);
+    EXPECT_LT(y1, window.height - 8);
+    uint64_t differ = 0;
+    for (int y = y0; y <= y1; y++)
+      for (int x = x0; x <= x1; x++) differ += !window.same(picture, x, y);
+    EXPECT_GT(differ, uint64_t(x1 - x0 + 1) * (y1 - y0 + 1) * 9 / 10) << "the panel is opaque";
+    panels[shot] = window;
+  }
+  // The normal view's legend is another panel.
+  uint64_t changed = 0;
+  for (int y = 0; y < 400; y++)
+    for (int x = 0; x < 440; x++) changed += !panels[0].same(panels[1], x + 8, y + 8);
+  EXPECT_GT(changed, 1000u);
 }
 
 TEST_F(Viewer, WithoutADisplayItSaysSoInOneLine) {

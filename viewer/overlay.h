@@ -1,6 +1,6 @@
 // overlay.h: the viewer's panel, drawn with Dear ImGui (Debian libimgui-dev: its GLFW and Vulkan
-// backends) over the swapchain image the picture was copied into, in a render pass of its own that
-// keeps that picture (overlay.cpp).
+// backends) over the swapchain image the picture was copied into; a panel that did not change is copied
+// from its last drawing (overlay.cpp).
 #pragma once
 
 #include <vulkan/vulkan.h>
@@ -25,9 +25,9 @@ class Overlay {
   void resize(const Swapchain& swapchain);
   // Starts the panel's frame: ImGui calls follow, then record().
   void begin();
-  // Draws the panel over swapchain image `image` (in TRANSFER_DST_OPTIMAL, the picture copied in by a
-  // transfer before), leaving it ready to present.
-  void record(VkCommandBuffer cmd, uint32_t image);
+  // Draws the panel over swapchain image number `image`, `swapchainImage` (in TRANSFER_DST_OPTIMAL, the
+  // picture copied in by a transfer before), leaving it ready to present.
+  void record(VkCommandBuffer cmd, VkImage swapchainImage, uint32_t image);
   // Whether the panel takes the mouse or the keyboard now (the camera then leaves them alone).
   bool wantsMouse() const;
   bool wantsKeyboard() const;
@@ -35,12 +35,20 @@ class Overlay {
  private:
   void createFramebuffers(const Swapchain& swapchain);
   void destroyFramebuffers();
+  VkFramebuffer framebuffer(VkRenderPass pass, VkImageView view) const;
 
   VulkanContext& vk_;
-  VkRenderPass renderPass_ = VK_NULL_HANDLE;
+  VkRenderPass overPass_ = VK_NULL_HANDLE, panelPass_ = VK_NULL_HANDLE;
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   std::vector<VkFramebuffer> framebuffers_;
   VkExtent2D extent_{};
+  // The panel's own image (the window's size; the panel's rectangle used) and what was drawn in it.
+  VkImage panelImage_ = VK_NULL_HANDLE;
+  VkDeviceMemory panelMemory_ = VK_NULL_HANDLE;
+  VkImageView panelView_ = VK_NULL_HANDLE;
+  VkFramebuffer panelFramebuffer_ = VK_NULL_HANDLE;
+  bool panelDrawn_ = false;
+  uint64_t panelHash_ = 0;
 };
 
 }  // namespace vgeo

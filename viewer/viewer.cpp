@@ -28,6 +28,9 @@ namespace {
 constexpr double kResizeSettleSeconds = 0.25;
 // Frames left out of the closing summary's times: the first ones grow lists and warm caches.
 constexpr uint32_t kUntimedFrames = 5;
+// The panel's numbers change this often (the frame time averaged over it): readable, and a panel that
+// does not change is copied, not drawn again (overlay.cpp).
+constexpr double kPanelNumbersSeconds = 0.5;
 
 std::string glfwFailure() {
   const char* description = nullptr;
@@ -174,6 +177,12 @@ uint32_t runViewer(const RenderScene& scene, const ViewerOptions& o) {
   ViewStats stats;
   stats.device = vk.deviceName();
   stats.lodLevels = scene.maxLevels;
+  ViewStats shown;  // what the panel shows: stats as of the last refresh
+  struct {
+    std::chrono::steady_clock::time_point at;
+    double ms = 0.0;
+    uint32_t frames = 0;
+  } refresh;
   ScriptPlayer player{o.script};
   struct {
     uint32_t frames = 0;
@@ -249,9 +258,19 @@ uint32_t runViewer(const RenderScene& scene, const ViewerOptions& o) {
       stats.lastScreenshot = s.screenshot;
       s.screenshot.clear();
     }
+    refresh.ms += stats.frameMs;
+    refresh.frames++;
+    if (frame == 0 || std::chrono::duration<double>(now - refresh.at).count() >= kPanelNumbersSeconds) {
+      shown = stats;
+      shown.frameMs = refresh.ms / refresh.frames;
+      refresh = {now, 0.0, 0};
+    }
+    shown.width = stats.width;
+    shown.height = stats.height;
+    shown.lastScreenshot = stats.lastScreenshot;
     // 5. The picture into the swapchain, the panel over it, presented.
     overlay.begin();
-    drawPanel(s, stats);
+    drawPanel(s, shown);
     if (s.frozen)
       drawFrozenFrustum(settings.cullView, settings.drawView,
                         glm::distance(settings.cullView.eye, glm::vec3(scene.bounds)) + scene.bounds.w);
@@ -265,7 +284,7 @@ uint32_t runViewer(const RenderScene& scene, const ViewerOptions& o) {
     VkCommandBuffer cmd = vk.beginCommands();
     recordCopy(cmd, *renderer, settings.readImage ? VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL : VK_IMAGE_LAYOUT_GENERAL,
                settings.bgraTarget, swapchain, image);
-    overlay.record(cmd, image);
+    overlay.record(cmd, swapchain.image(image), image);
     Buffer shot;
     if (!s.windowShot.empty()) {
       if (!swapchain.copyable()) throw std::runtime_error("this display's window images cannot be copied out");
