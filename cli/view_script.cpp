@@ -84,6 +84,10 @@ std::vector<ViewEvent> readViewScript(const std::string& path, float fovYDegrees
       } else if (command == "resize") {
         e.kind = ViewEvent::Kind::Resize;
         if (!parseSize(arg, e.width, e.height)) throw bad("a size WxH");
+      } else if (command == "minimise") {
+        e.kind = ViewEvent::Kind::Minimise;
+        e.value = std::stof(arg);
+        if (!(e.value > 0.0f) || e.value > 3600.0f) throw bad("seconds, more than 0 and at most 3600");
       } else if (command == "screenshot" || command == "window-screenshot") {
         e.kind = command == "screenshot" ? ViewEvent::Kind::Screenshot : ViewEvent::Kind::WindowShot;
         e.text = arg;
@@ -99,7 +103,7 @@ std::vector<ViewEvent> readViewScript(const std::string& path, float fovYDegrees
       } else {
         throw InputError(path, where + ": unknown command '" + command +
                                    "' (camera, path, mode, tau, occlusion, patches, triangle-cull, freeze, resize, "
-                                   "screenshot, window-screenshot, key, quit)");
+                                   "minimise, screenshot, window-screenshot, key, quit)");
       }
     } catch (const InputError&) {
       throw;

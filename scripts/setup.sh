@@ -7,7 +7,7 @@ packages=(
   libopenmesh-dev libcgal-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev libstb-dev
   libmetis-dev libgtest-dev
   libvulkan-dev glslang-tools mesa-vulkan-drivers vulkan-validationlayers
-  libglfw3-dev libimgui-dev xvfb xauth
+  libglfw3-dev libimgui-dev xvfb xauth twm
   libcgal-demo assimp-testmodels python3 python3-matplotlib
   clang libclang-rt-14-dev clang-format-14
 )

@@ -170,6 +170,32 @@ TEST_F(Viewer, ThePanelIsItsRectangleOverThePicture) {
   EXPECT_GT(changed, 1000u);
 }
 
+// Minimised (by twm, a window manager under Xvfb), the viewer draws nothing and takes no script frame;
+// restored, it draws what `vgeo render` writes.
+TEST_F(Viewer, MinimisedItWaitsAndComesBack) {
+  ASSERT_TRUE(std::filesystem::exists("/usr/bin/twm")) << "twm is missing (scripts/setup.sh installs it)";
+  const std::string script = "0 camera 2.5,1.8,3.5,0,0,0\n2 minimise 1.5\n3 screenshot " + dir + "/back.png\n4 quit\n";
+  const std::string scriptPath = test::writeFile(dir, "script.txt", script);
+  // twm's own fonts are not in Debian's xfonts-base ("fixed" is); it places new windows itself.
+  const std::string twmrc = test::writeFile(dir, "twmrc",
+                                            "TitleFont \"fixed\"\nResizeFont \"fixed\"\nMenuFont \"fixed\"\n"
+                                            "IconFont \"fixed\"\nIconManagerFont \"fixed\"\nRandomPlacement\n");
+  const test::RunResult run =
+      test::runShell("xvfb-run -a -s '-screen 0 1280x1024x24' sh -c 'twm -f " + twmrc +
+                     " >/dev/null 2>&1 & sleep 1; timeout 120 " + std::string(VGEO_BINARY) + " view " + dir +
+                     "/horned.vgeo --grid 3 --size 320x200 --validate --script " + scriptPath + "'");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_EQ(run.output.find("validation"), std::string::npos) << run.output;
+  const size_t at = run.output.find("minimised for ");
+  ASSERT_NE(at, std::string::npos) << run.output;
+  EXPECT_GE(std::stod(run.output.substr(at + 14)), 1.4) << run.output;
+  const test::RunResult r =
+      test::runVgeo("render " + dir + "/horned.vgeo --grid 3 --size 320x200 --camera 2.5,1.8,3.5,0,0,0 -o " + dir +
+                    "/back_render.png");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_TRUE(test::readFile(dir + "/back.png") == test::readFile(dir + "/back_render.png"));
+}
+
 TEST_F(Viewer, WithoutADisplayItSaysSoInOneLine) {
   const test::RunResult r =
       test::runShell("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(VGEO_BINARY) + " view " + dir + "/horned.vgeo");
@@ -187,6 +213,7 @@ TEST_F(Viewer, ABadScriptLineIsOneLineNamingIt) {
            {"x quit\n", "line 1: a line starts with a frame number"},
            {"0 key Z\n", "line 1: key takes one of the viewer's keys"},
            {"0 resize 10\n", "line 1: resize takes a size WxH"},
+           {"0 minimise 0\n", "line 1: minimise takes seconds"},
            {"0 quit now\n", "line 1: quit takes no more than its arguments"}}) {
     SCOPED_TRACE(text);
     const std::string path = test::writeFile(dir, "bad.txt", text);

@@ -123,6 +123,9 @@ void playEvents(ScriptPlayer& p, uint32_t frame, ViewState& s, uint32_t& width, 
         width = e.width;
         height = e.height;
         break;
+      case ViewEvent::Kind::Minimise:
+        s.minimiseSeconds = e.value;
+        break;
       case ViewEvent::Kind::Screenshot:
         s.screenshot = e.text;
         break;

@@ -21,8 +21,9 @@ struct ViewState {
   bool headlight = false;  // light from the camera, else frame.light
   bool frozen = false;     // the cut and its culling stay with frozenCamera
   Camera frozenCamera;
-  std::string screenshot;  // a path: the next frame's picture is written there
-  std::string windowShot;  // a path: the next frame's window, panel and all
+  std::string screenshot;        // a path: the next frame's picture is written there
+  std::string windowShot;        // a path: the next frame's window, panel and all
+  float minimiseSeconds = 0.0f;  // a script's minimise: the window is minimised for this long
   bool quit = false;
 };
 

@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <optional>
 
 #include "../renderer/image.h"
 #include "overlay.h"
@@ -75,6 +76,13 @@ ContextOptions windowContext(const ViewerOptions& o, GLFWwindow* window) {
     return surface;
   };
   return c;
+}
+
+// Waits, a second at most, for the window to be minimised (iconified) or not: a window manager does it.
+bool awaitIconified(const Window& window, bool iconified) {
+  for (int i = 0; i < 100 && bool(glfwGetWindowAttrib(window.handle, GLFW_ICONIFIED)) != iconified; i++)
+    glfwWaitEventsTimeout(0.01);
+  return bool(glfwGetWindowAttrib(window.handle, GLFW_ICONIFIED)) == iconified;
 }
 
 // Copies the renderer's picture into swapchain image `image` (scaled when the window's size is not yet
@@ -189,6 +197,8 @@ uint32_t runViewer(const RenderScene& scene, const ViewerOptions& o) {
     double loopMs = 0.0, renderMs = 0.0;
   } timed;  // frames after the first few (pipelines and lists warm), for the summary at the end
   auto last = std::chrono::steady_clock::now(), sizeChanged = last;
+  double minimisedSeconds = 0.0;
+  std::optional<std::chrono::steady_clock::time_point> restoreAt;  // a script's minimise
   double mouseX = 0, mouseY = 0;
   glfwGetCursorPos(window.handle, &mouseX, &mouseY);
   for (uint32_t frame = 0; !glfwWindowShouldClose(window.handle); frame++) {
@@ -226,13 +236,36 @@ uint32_t runViewer(const RenderScene& scene, const ViewerOptions& o) {
       s.camera.move((held(GLFW_KEY_W) - held(GLFW_KEY_S)) * boost, (held(GLFW_KEY_D) - held(GLFW_KEY_A)) * boost,
                     (held(GLFW_KEY_E) - held(GLFW_KEY_Q)) * boost, seconds);
     }
-    // 3. The window's size: a minimised window waits; a new size remakes the swapchain, and the
+    // 3. A minimised window draws nothing until it is back; a new size remakes the swapchain, and the
     // renderer once the size settles.
-    size = window.framebuffer();
-    if (size.width == 0 || size.height == 0) {
-      glfwWaitEvents();
-      continue;
+    if (s.minimiseSeconds > 0.0f) {  // a script's: restored when its time is up
+      glfwIconifyWindow(window.handle);
+      awaitIconified(window, true);
+      restoreAt = now + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                            std::chrono::duration<double>(s.minimiseSeconds));
+      s.minimiseSeconds = 0.0f;
     }
+    // Minimised, the frame waits (and takes no script frame) until the window is back.
+    auto minimised = [&] {
+      size = window.framebuffer();
+      return size.width == 0 || size.height == 0 || glfwGetWindowAttrib(window.handle, GLFW_ICONIFIED);
+    };
+    while (minimised() && !glfwWindowShouldClose(window.handle)) {
+      const auto from = std::chrono::steady_clock::now();
+      if (restoreAt && from >= *restoreAt) {
+        glfwRestoreWindow(window.handle);
+        awaitIconified(window, false);
+        restoreAt.reset();
+      } else if (restoreAt) {
+        glfwWaitEventsTimeout(std::chrono::duration<double>(*restoreAt - from).count());
+      } else {
+        glfwWaitEvents();
+      }
+      minimisedSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - from).count();
+      last = std::chrono::steady_clock::now();
+    }
+    if (glfwWindowShouldClose(window.handle)) break;
+    restoreAt.reset();  // no window manager minimised it
     if (size.width != swapchain.extent().width || size.height != swapchain.extent().height) {
       swapchain.recreate(size.width, size.height);
       overlay.resize(swapchain);
@@ -308,6 +341,7 @@ uint32_t runViewer(const RenderScene& scene, const ViewerOptions& o) {
         "present, events) %.2f\n",
         timed.frames, timed.loopMs / timed.frames, timed.renderMs / timed.frames,
         (timed.loopMs - timed.renderMs) / timed.frames);
+  if (minimisedSeconds > 0.0) std::printf("vgeo view: minimised for %.1f s, nothing drawn\n", minimisedSeconds);
   return vk.validationMessages();
 }
 

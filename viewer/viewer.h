@@ -26,6 +26,7 @@ struct ViewEvent {
     TriangleCull,
     Freeze,
     Resize,
+    Minimise,
     Screenshot,
     WindowShot,
     Key,
@@ -36,7 +37,7 @@ struct ViewEvent {
   Camera camera;        // Camera, Path (the pose to reach)
   uint32_t frames = 0;  // Path: over how many frames
   uint32_t mode = 0;    // Mode (VGEO_MODE_*)
-  float value = 0.0f;   // Tau
+  float value = 0.0f;   // Tau; Minimise: seconds
   Occlusion occlusion = Occlusion::Auto;
   bool on = false;                 // Patches, TriangleCull, Freeze
   uint32_t width = 0, height = 0;  // Resize
