@@ -68,7 +68,9 @@ std::string unreducedReason(const SurfaceTopology& t) {
 
 VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, SceneBuildStats& stats) {
   auto start = std::chrono::steady_clock::now();
+  StageTimer loading(&stats.stages, "load");
   SourceScene scene = loadMeshFile(path);
+  loading.stop();
   stats.loadSeconds = secondsSince(start);
   if (options.subdivisionLevels < 0) throw InputError(path, "--subdiv must be >= 0");
 
@@ -81,7 +83,9 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
     PolygonMesh& mesh = scene.meshes[m];
     stats.inputTriangles += mesh.triangleCount();
     const std::string where = scene.meshes.size() > 1 ? path + " (mesh '" + scene.meshNames[m] + "')" : path;
-    RepairReport report = repairMesh(mesh, where);
+    StageTimer repairing(&stats.stages, "repair");
+    RepairReport report = repairMesh(mesh, where, options.threads);
+    repairing.stop();
     add(stats.repair, report);
     // Closed: no boundary edge, no vertex split by repair (so positions identify vertices), and facing
     // out (positive signed volume): the renderer drops back faces of closed instances, which would drop
@@ -97,6 +101,7 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
                                   std::to_string(uint64_t(vertices)) + " vertices (limit about 1 billion triangles)");
   }
   auto subdivideStart = std::chrono::steady_clock::now();
+  StageTimer subdividing(&stats.stages, "subdivide and limit");
   for (size_t m = 0; m < scene.meshes.size(); m++) {
     leaves[m] = std::move(scene.meshes[m]);
     for (int l = 0; l < options.subdivisionLevels; l++) {
@@ -113,6 +118,7 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
     fanLargeFaces(leaves[m]);
     stats.leafTriangles += leaves[m].triangleCount();
   }
+  subdividing.stop();
   stats.subdivideSeconds = secondsSince(subdivideStart);
 
   auto buildStart = std::chrono::steady_clock::now();
@@ -121,11 +127,14 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
     BuildOptions bo;
     bo.threads = options.threads;
     bo.leafFaceErrors = &patchErrors[m];
+    bo.times = &stats.stages;
     if (options.progress)
       bo.progress = [&, m](double f, const char* stage) {
         options.progress((double(m) + f) / double(leaves.size()), stage);
       };
+    StageTimer normals(&stats.stages, "shading normals");
     const ShadingNormals shading = shadingNormals(leaves[m], leafNormals[m], options.creaseAngleDegrees);
+    normals.stop();
     bo.shading = &shading;
     const std::string where = scene.meshes.size() > 1 ? path + " (mesh '" + scene.meshNames[m] + "')" : path;
     Dag dag;
@@ -134,7 +143,9 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
     } catch (const SurfaceError& e) {
       throw InputError(where, e.what());
     }
+    StageTimer layout(&stats.stages, "layout");
     appendGeometry(data, dag, leaves[m], shading, std::move(patches[m]), patchErrors[m], closed[m]);
+    layout.stop();
     patches[m] = MeshPatches();  // what the layout did not move into the file
     stats.clusters += dag.clusters.size();
     stats.leafClusters += dag.levelClusters[0];

@@ -44,6 +44,7 @@ struct SceneBuildStats {
   RepairReport repair;  // summed over meshes
   std::vector<UnreducedMesh> unreduced;
   double loadSeconds = 0.0, subdivideSeconds = 0.0, buildSeconds = 0.0;
+  StageTimes stages;  // every step's seconds, the DAG's own steps among them
 };
 
 // Loads, repairs, subdivides and builds every mesh of `path`; throws InputError for bad input (nothing

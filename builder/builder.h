@@ -14,6 +14,7 @@
 #include <glm/glm.hpp>
 
 #include "../common/input_error.h"
+#include "../common/stage_times.h"
 #include "../shaders/patch_eval.h"
 
 namespace vgeo {
@@ -87,7 +88,7 @@ struct RepairReport {
 // Welds bit-identical positions, drops degenerate and duplicate faces, and splits non-manifold edges and
 // vertices so that every edge has at most two faces of opposite orientation and every vertex has one fan.
 // Throws InputError (naming `file`) when positions are not finite or nothing is left.
-RepairReport repairMesh(PolygonMesh& mesh, const std::string& file);
+RepairReport repairMesh(PolygonMesh& mesh, const std::string& file, int threads = 1);
 
 // ---- orient.cpp -------------------------------------------------------------------------------------
 struct OrientReport {
@@ -97,7 +98,7 @@ struct OrientReport {
 };
 // Turns faces so that every component walks each of its two-face edges once each way, keeping the
 // orientation of the larger part (by area) of each component. Deterministic; positions are not moved.
-OrientReport orientFaces(PolygonMesh& mesh);
+OrientReport orientFaces(PolygonMesh& mesh, int threads = 1);
 
 // ---- topology.cpp -----------------------------------------------------------------------------------
 struct SurfaceTopology {
@@ -345,6 +346,7 @@ struct BuildOptions {
   // The leaf mesh's wedges; clusters list them only where some vertex has two (a hard edge).
   const ShadingNormals* shading = nullptr;
   std::function<void(double fraction, const char* stage)> progress;
+  StageTimes* times = nullptr;  // where the DAG's steps add their seconds (leaves, grouping, ...)
 };
 struct BuildGroup {
   std::vector<uint32_t> members;  // cluster ids

@@ -49,7 +49,8 @@ BuildGroup makeGroup(std::vector<BuildCluster>& clusters, const std::vector<uint
 
 // Every undirected edge of every cluster made so far, as an open-addressing hash set of (min << 32 | max).
 // Threads insert with compare-and-swap (being a set, its contents do not depend on the order); before
-// each batch, reserve() grows it so that it stays at most half full. (A home slot following the
+// each batch, reserve() grows it so that it stays at most two thirds full (half full took twice the
+// memory, 77 bytes a leaf triangle, for chord checks no faster). (A home slot following the
 // smaller vertex id was tried for cache locality: vertices that survive many levels gather dozens of
 // edges, and linear probing then took 100x longer.)
 class EdgeSet {
@@ -63,7 +64,7 @@ class EdgeSet {
   }
   // Makes room for `triangles` more triangles' edges; not thread-safe.
   void reserve(size_t triangles) {
-    size_t needed = 2 * (count_ + 3 * triangles);
+    size_t needed = (count_ + 3 * triangles) * 3 / 2;
     if (needed <= capacity_) return;
     size_t capacity = std::max<size_t>(capacity_, 1024);
     while (capacity < needed) capacity *= 2;
@@ -73,29 +74,29 @@ class EdgeSet {
     std::fill(slots_.get(), slots_.get() + capacity, kEmpty);
     capacity_ = capacity;
     mask_ = capacity - 1;
-    count_ = 0;
     for (size_t i = 0; i < oldCapacity; i++)
       if (old[i] != kEmpty) insert(old[i]);
   }
   void insertTriangles(const std::vector<uint32_t>& indices) {
+    size_t added = 0;  // counted here, added once: one counter shared by every thread's inserts would not scale
     for (size_t t = 0; t + 2 < indices.size(); t += 3)
       for (int k = 0; k < 3; k++) {
         uint32_t a = indices[t + size_t(k)], b = indices[t + size_t((k + 1) % 3)];
-        insert(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
+        added += insert(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
       }
+    __atomic_fetch_add(&count_, added, __ATOMIC_RELAXED);
   }
 
  private:
   static constexpr uint64_t kEmpty = ~uint64_t(0);
   static size_t hash(uint64_t k) { return size_t((k * 0x9e3779b97f4a7c15ull) >> 20); }
-  void insert(uint64_t key) {
+  // Whether the key was new.
+  bool insert(uint64_t key) {
     for (size_t i = hash(key) & mask_;; i = (i + 1) & mask_) {
       uint64_t expected = kEmpty;
-      if (__atomic_compare_exchange_n(&slots_[i], &expected, key, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) {
-        __atomic_fetch_add(&count_, size_t(1), __ATOMIC_RELAXED);
-        return;
-      }
-      if (expected == key) return;
+      if (__atomic_compare_exchange_n(&slots_[i], &expected, key, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED))
+        return true;
+      if (expected == key) return false;
     }
   }
   std::unique_ptr<uint64_t[]> slots_;
@@ -128,7 +129,7 @@ void checkNoFold(const std::vector<BuildCluster>& clusters, const std::vector<gl
 // grows a round at a time, after the round: its chords were checked against earlier rounds only.
 class ChordRule {
  public:
-  ChordRule(size_t vertices, uint64_t leafTriangles) : holders_(vertices * kHolders) {
+  ChordRule(size_t vertices, uint64_t leafTriangles) : holders_(vertices * kHolders, UINT32_MAX) {
     // Leaves and every level above (which halves each time): about twice the leaf triangles, 1.5 edges each.
     edges_.reserve(leafTriangles);
   }
@@ -145,18 +146,21 @@ class ChordRule {
   void startRound(const std::vector<GroupPlan>& plans, const std::vector<BuildCluster>& clusters, int threads) {
     const size_t vertices = holders_.size() / kHolders;
     holderCount_.assign(vertices, 0);
+    round_ += roundGroups_;  // this round's groups hold ids round_ + g: entries of earlier rounds are below
+    roundGroups_ = uint32_t(plans.size());
     parallelFor(plans.size(), threads, [&](size_t g) {
-      thread_local std::vector<uint32_t> seenBy;
-      if (seenBy.size() < vertices) seenBy.assign(vertices, UINT32_MAX);
+      // A group's vertex is counted once: a group runs on one thread, so it sees its own earlier
+      // entry; one beyond kHolders is not stored, but then the vertex takes no chord anyway.
+      const uint32_t id = round_ + uint32_t(g);
       for (uint32_t m : plans[g].clusters)
         for (uint32_t v : clusters[m].indices) {
-          if (seenBy[v] == g) continue;
-          seenBy[v] = uint32_t(g);
+          uint32_t* held = &holders_[size_t(v) * kHolders];
+          bool seen = false;
+          for (uint32_t i = 0; i < kHolders && !seen; i++) seen = __atomic_load_n(&held[i], __ATOMIC_RELAXED) == id;
+          if (seen) continue;
           uint8_t slot = __atomic_fetch_add(&holderCount_[v], uint8_t(1), __ATOMIC_RELAXED);
-          if (slot < kHolders) __atomic_store_n(&holders_[size_t(v) * kHolders + slot], uint32_t(g), __ATOMIC_RELAXED);
+          if (slot < kHolders) __atomic_store_n(&held[slot], id, __ATOMIC_RELAXED);
         }
-      for (uint32_t m : plans[g].clusters)
-        for (uint32_t v : clusters[m].indices) seenBy[v] = UINT32_MAX;
     });
   }
   // Whether group g of this round may make the chord (a, b).
@@ -167,7 +171,7 @@ class ChordRule {
     for (uint32_t i = 0; i < holderCount_[a]; i++)
       for (uint32_t j = 0; j < holderCount_[b]; j++)
         if (holders_[size_t(a) * kHolders + i] == holders_[size_t(b) * kHolders + j] &&
-            holders_[size_t(a) * kHolders + i] < g)
+            holders_[size_t(a) * kHolders + i] < round_ + g)
           return false;
     return true;
   }
@@ -177,6 +181,7 @@ class ChordRule {
   EdgeSet edges_;
   std::vector<uint8_t> holderCount_;
   std::vector<uint32_t> holders_;
+  uint32_t round_ = 0, roundGroups_ = 0;  // the first id of this round's groups, and how many
 };
 
 // Leaf clusters of the mesh, with their own spheres and (from the limit surface, when given) errors.
@@ -275,9 +280,13 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
   };
   report(0.0, "clustering");
   Dag dag;
+  StageTimer leaves(options.times, "leaf clusters");
   dag.clusters = makeLeafClusters(mesh, options);
+  leaves.stop();
+  StageTimer firstChords(options.times, "chord rule");
   ChordRule chords(mesh.positions.size(), mesh.triangleCount());
   chords.addClusters(dag.clusters, 0, options.threads);
+  firstChords.stop();
   std::vector<uint32_t> active(dag.clusters.size());
   for (uint32_t i = 0; i < active.size(); i++) active[i] = i;
   dag.levelClusters.push_back(uint32_t(active.size()));
@@ -292,23 +301,35 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
        active.size() > 1 || (active.size() == 1 && triangleCount(dag.clusters, active) > kSmallestRoot); round++) {
     report(doneWork / totalWork, "simplifying");
     std::vector<uint64_t> openEdges;
+    StageTimer grouping(options.times, "grouping");
     const std::vector<GroupPlan> plans =
         groupClusters(dag.clusters, active, options.groupSize, options.threads, &openEdges);
+    grouping.stop();
+    StageTimer roundChords(options.times, "chord rule");
     chords.startRound(plans, dag.clusters, options.threads);
+    roundChords.stop();
+    StageTimer simplifying(options.times, "simplify and split");
     std::vector<GroupOutcome> outcomes =
         simplifyGroups(plans, dag.clusters, mesh.positions, chords, openEdges, options);
+    simplifying.stop();
+    StageTimer adding(options.times, "add round");
     const size_t firstProduced = dag.clusters.size();
     std::vector<uint32_t> next = addRound(dag, plans, outcomes, round);
     for (size_t g = 0; g < plans.size(); g++)
       if (outcomes[g].simplified.halved) doneWork += double(triangleCount(dag.clusters, plans[g].clusters));
+    adding.stop();
+    StageTimer newChords(options.times, "chord rule");
     chords.addClusters(dag.clusters, firstProduced, options.threads);
+    newChords.stop();
     const uint32_t producedCount = uint32_t(dag.clusters.size() - firstProduced);
     if (producedCount == 0) break;  // no group could be halved: what is left are the roots
     active = std::move(next);
     dag.levelClusters.push_back(producedCount);
     dag.levelTriangles.push_back(triangleCount(dag.clusters, active));
   }
+  StageTimer rootGroups(options.times, "root groups");
   addRootGroups(dag, active, options);
+  rootGroups.stop();
   report(1.0, "done");
   return dag;
 }

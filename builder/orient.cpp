@@ -13,11 +13,12 @@
 #include <algorithm>
 #include <numeric>
 
+#include "../common/parallel.h"
 #include "builder.h"
 
 namespace vgeo {
 
-OrientReport orientFaces(PolygonMesh& mesh) {
+OrientReport orientFaces(PolygonMesh& mesh, int threads) {
   OrientReport report;
   const size_t faceCount = mesh.faceCount();
   // Directed edges (a, b) of every face, sorted by undirected key: an edge's faces are adjacent.
@@ -33,8 +34,9 @@ OrientReport orientFaces(PolygonMesh& mesh) {
       uint32_t a = mesh.face(f)[i], b = mesh.face(f)[(i + 1) % n];
       halfEdges.push_back({uint64_t(std::min(a, b)) << 32 | std::max(a, b), uint32_t(f), a < b});
     }
-  std::sort(halfEdges.begin(), halfEdges.end(),
-            [](const HalfEdge& x, const HalfEdge& y) { return x.key != y.key ? x.key < y.key : x.face < y.face; });
+  // A face holds an undirected edge once (repair left distinct corners): (key, face) is a total order.
+  parallelSort(halfEdges, threads,
+               [](const HalfEdge& x, const HalfEdge& y) { return x.key != y.key ? x.key < y.key : x.face < y.face; });
 
   // Face adjacency through two-face edges; `same` when both faces walk the edge the same way (one of
   // them must turn for the pair to agree).

@@ -6,11 +6,11 @@
 // only when its component runs out. Because every set is cut in proportion to its part count, all
 // parts end near w / k, where greedy growing leaves half-empty leftovers. The cuts can still leave a
 // part in pieces; a last pass moves each cut-off piece into the neighbour it shares most edges with.
-// The two halves are independent, so the top of the recursion runs on several threads; a part's place
-// in the output depends only on the recursion tree, never on which thread ran it.
+// The two halves are independent, so they run as tasks of their own down to sets of kParallelNodes;
+// a part's place in the output depends only on the recursion tree, never on which thread ran it.
 #include <algorithm>
-#include <thread>
 
+#include "../common/parallel.h"
 #include "builder.h"
 
 namespace vgeo {
@@ -18,6 +18,7 @@ namespace {
 
 constexpr uint32_t kTaken = 0x80000000u;
 constexpr uint64_t kMedianSplitParts = 64;  // sets of more parts are cut at the weighted median
+constexpr uint32_t kParallelNodes = 4096;   // smaller sets are not worth a task of their own
 
 struct Bisector {
   const Graph& graph;
@@ -28,11 +29,12 @@ struct Bisector {
   std::vector<uint32_t>& order;
   std::vector<uint32_t> stamp;    // the end of the segment a node lives in; kTaken|end while being taken
   std::vector<uint8_t> partHead;  // 1 at the first position of every part
+  bool parallel = false;          // halves as tasks (inside withThreads)
 
   uint32_t load(uint32_t node) const { return __atomic_load_n(&stamp[node], __ATOMIC_RELAXED); }
   void store(uint32_t node, uint32_t value) { __atomic_store_n(&stamp[node], value, __ATOMIC_RELAXED); }
 
-  void split(uint32_t lo, uint32_t hi, int parallelDepth) {
+  void split(uint32_t lo, uint32_t hi) {
     uint64_t w = 0;
     for (uint32_t i = lo; i < hi; i++) w += weights[order[i]];
     if (hi - lo == 1 || (w <= targetWeight && (!fits || fits(&order[lo], hi - lo)))) {
@@ -64,7 +66,7 @@ struct Bisector {
       std::nth_element(order.begin() + lo, mid, order.begin() + hi, before);
       const uint32_t m = uint32_t(mid - order.begin());
       for (uint32_t i = lo; i < m; i++) store(order[i], m);
-      recurse(lo, m, m, hi, parallelDepth);
+      recurse(lo, m, hi);
       return;
     }
     const uint32_t inSet = hi, taken = hi | kTaken, queued = lo | kTaken;
@@ -136,18 +138,12 @@ struct Bisector {
     std::vector<uint32_t>().swap(sideB);
     std::vector<uint32_t>().swap(seeds);
 
-    recurse(lo, mid, mid, hi, parallelDepth);
+    recurse(lo, mid, hi);
   }
 
-  void recurse(uint32_t lo, uint32_t mid, uint32_t, uint32_t hi, int parallelDepth) {
-    if (parallelDepth > 0) {
-      std::thread other([&] { split(lo, mid, parallelDepth - 1); });
-      split(mid, hi, parallelDepth - 1);
-      other.join();
-    } else {
-      split(lo, mid, 0);
-      split(mid, hi, 0);
-    }
+  void recurse(uint32_t lo, uint32_t mid, uint32_t hi) {
+    parallelInvoke(
+        parallel && hi - lo >= kParallelNodes, [&] { split(lo, mid); }, [&] { split(mid, hi); });
   }
 };
 
@@ -253,10 +249,12 @@ Partition partitionGraph(const Graph& graph, const std::vector<uint8_t>& weights
              fits,
              result.order,
              std::vector<uint32_t>(n, n),
-             std::vector<uint8_t>(n, 0)};
-  int depth = 0;
-  while ((1 << depth) < threads) depth++;
-  b.split(0, n, depth);
+             std::vector<uint8_t>(n, 0),
+             threads > 1};
+  if (threads > 1)
+    withThreads(threads, [&] { b.split(0, n); });
+  else
+    b.split(0, n);
   for (uint32_t i = 1; i < n; i++)
     if (b.partHead[i]) result.partStart.push_back(i);
   result.partStart.push_back(n);

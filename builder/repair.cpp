@@ -15,6 +15,7 @@
 #include <cstring>
 #include <numeric>
 
+#include "../common/parallel.h"
 #include "builder.h"
 #include "union_find.h"
 
@@ -121,7 +122,8 @@ std::vector<bool> checkPositions(const PolygonMesh& mesh, const std::string& fil
 }
 
 // Weld: sorts the vertices by position bits (with -0 == +0) and maps each to the first of its equals.
-std::vector<uint32_t> weldPositions(const PolygonMesh& mesh, const std::vector<bool>& used, size_t& welded) {
+std::vector<uint32_t> weldPositions(const PolygonMesh& mesh, const std::vector<bool>& used, size_t& welded,
+                                    int threads) {
   const size_t vertexCount = mesh.positions.size();
   std::vector<uint32_t> weld(vertexCount);
   auto bits = [&](uint32_t v) {
@@ -134,7 +136,7 @@ std::vector<uint32_t> weldPositions(const PolygonMesh& mesh, const std::vector<b
   };
   std::vector<uint32_t> order(vertexCount);
   std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+  parallelSort(order, threads, [&](uint32_t a, uint32_t b) {
     auto ba = bits(a), bb = bits(b);
     return ba != bb ? ba < bb : a < b;
   });
@@ -179,7 +181,7 @@ PolygonMesh weldFaces(PolygonMesh& mesh, const std::vector<uint32_t>& weld, size
 }
 
 // Duplicates: faces with the same corner set; the first one stays. Returns how many went.
-size_t dropDuplicateFaces(PolygonMesh& faces) {
+size_t dropDuplicateFaces(PolygonMesh& faces, int threads) {
   size_t duplicates = 0;
   std::vector<uint32_t> sorted;
   const size_t n = faces.faceCount();
@@ -193,8 +195,7 @@ size_t dropDuplicateFaces(PolygonMesh& faces) {
   }
   std::vector<uint32_t> order(n);
   std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(),
-            [&](uint32_t a, uint32_t b) { return hash[a] != hash[b] ? hash[a] < hash[b] : a < b; });
+  parallelSort(order, threads, [&](uint32_t a, uint32_t b) { return hash[a] != hash[b] ? hash[a] < hash[b] : a < b; });
   std::vector<bool> drop(n, false);
   std::vector<uint32_t> sa, sb;
   for (size_t i = 0; i < n; i++) {
@@ -221,7 +222,7 @@ size_t dropDuplicateFaces(PolygonMesh& faces) {
 
 // Step 5 of the file's head: every face corner a wedge, wedges joined across manifold edges, one output
 // vertex for each fan (split copies counted in the report).
-PolygonMesh splitNonManifold(const PolygonMesh& faces, RepairReport& report) {
+PolygonMesh splitNonManifold(const PolygonMesh& faces, RepairReport& report, int threads) {
   // Edges sorted by (key, corner): every undirected edge's faces are adjacent, in face order.
   const size_t cornerCount = faces.faceVertices.size();
   std::vector<uint32_t> cornerFace(cornerCount);
@@ -236,7 +237,7 @@ PolygonMesh splitNonManifold(const PolygonMesh& faces, RepairReport& report) {
     uint32_t a = faces.faceVertices[c], b = faces.faceVertices[nextCorner(c)];
     edges[c] = {uint64_t(std::min(a, b)) << 32 | std::max(a, b), c, cornerFace[c], a < b};
   }
-  std::sort(edges.begin(), edges.end(), [](const EdgeCorner& x, const EdgeCorner& y) {
+  parallelSort(edges, threads, [](const EdgeCorner& x, const EdgeCorner& y) {
     return x.key != y.key ? x.key < y.key : x.corner < y.corner;
   });
 
@@ -336,7 +337,7 @@ size_t dropUnusedVertices(PolygonMesh& out, size_t welded) {
 }
 
 // Edges with one face.
-size_t countBoundaryEdges(const PolygonMesh& out) {
+size_t countBoundaryEdges(const PolygonMesh& out, int threads) {
   size_t boundary = 0;
   std::vector<uint64_t> keys;
   keys.reserve(out.faceVertices.size());
@@ -345,7 +346,7 @@ size_t countBoundaryEdges(const PolygonMesh& out) {
       uint32_t a = out.face(f)[i], b = out.face(f)[(i + 1) % out.faceSize(f)];
       keys.push_back(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
     }
-  std::sort(keys.begin(), keys.end());
+  parallelSort(keys, threads);
   for (size_t i = 0; i < keys.size();) {
     size_t j = i;
     while (j < keys.size() && keys[j] == keys[i]) j++;
@@ -357,22 +358,22 @@ size_t countBoundaryEdges(const PolygonMesh& out) {
 
 }  // namespace
 
-RepairReport repairMesh(PolygonMesh& mesh, const std::string& file) {
+RepairReport repairMesh(PolygonMesh& mesh, const std::string& file, int threads) {
   RepairReport report;
   const std::vector<bool> used = checkPositions(mesh, file);
-  const std::vector<uint32_t> weld = weldPositions(mesh, used, report.weldedVertices);
+  const std::vector<uint32_t> weld = weldPositions(mesh, used, report.weldedVertices, threads);
   PolygonMesh faces = weldFaces(mesh, weld, report.degenerateFaces);
-  report.duplicateFaces = dropDuplicateFaces(faces);
+  report.duplicateFaces = dropDuplicateFaces(faces, threads);
   if (faces.faceCount() == 0) throw InputError(file, "empty mesh: every face is degenerate or a duplicate");
   report.dissolvedVertices = dissolveFolds(faces, report.degenerateFaces);
   if (faces.faceCount() == 0) throw InputError(file, "empty mesh: every face is degenerate or a duplicate");
-  const OrientReport orient = orientFaces(faces);
+  const OrientReport orient = orientFaces(faces, threads);
   report.flippedFaces = orient.flippedFaces;
   report.components = orient.components;
   report.nonOrientableComponents = orient.nonOrientableComponents;
-  PolygonMesh out = splitNonManifold(faces, report);
+  PolygonMesh out = splitNonManifold(faces, report, threads);
   report.unusedVertices = dropUnusedVertices(out, report.weldedVertices);
-  report.boundaryEdges = countBoundaryEdges(out);
+  report.boundaryEdges = countBoundaryEdges(out, threads);
   mesh = std::move(out);
   return report;
 }

@@ -372,19 +372,21 @@ class Simplifier {
 SimplifiedGroup simplifyGroup(const std::vector<uint32_t>& indices, const std::vector<glm::vec3>& positions,
                               const std::function<bool(uint32_t, uint32_t)>& chordAllowed,
                               const std::vector<uint64_t>& openEdges) {
-  // Local vertex ids in order of first use.
-  thread_local std::vector<uint32_t> localOf;
-  if (localOf.size() < positions.size()) localOf.assign(positions.size(), UINT32_MAX);
+  // Local vertex ids in order of first use, through a hash table of the group's own size (an array
+  // over all vertices for each thread would cost memory in proportion to the threads).
+  size_t tableSize = 64;
+  while (tableSize < 2 * indices.size()) tableSize *= 2;
+  std::vector<uint32_t> table(tableSize, UINT32_MAX);  // local ids; globals[id] is the key
   std::vector<uint32_t> globals, local(indices.size());
   for (size_t i = 0; i < indices.size(); i++) {
-    uint32_t& slot = localOf[indices[i]];
-    if (slot == UINT32_MAX) {
-      slot = uint32_t(globals.size());
+    size_t h = size_t((uint64_t(indices[i]) * 0x9e3779b97f4a7c15ull) >> 32) & (tableSize - 1);
+    while (table[h] != UINT32_MAX && globals[table[h]] != indices[i]) h = (h + 1) & (tableSize - 1);
+    if (table[h] == UINT32_MAX) {
+      table[h] = uint32_t(globals.size());
       globals.push_back(indices[i]);
     }
-    local[i] = slot;
+    local[i] = table[h];
   }
-  for (uint32_t g : globals) localOf[g] = UINT32_MAX;
 
   // Locked: vertices on an edge with one triangle in the group that another cluster has (the group
   // border); open: vertices on edges of the surface's open boundary and on no locked edge.

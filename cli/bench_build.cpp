@@ -102,6 +102,12 @@ void runBenchBuild(const BuildBenchArgs& a) {
         r["avg_leaf_cluster_triangles"] = s["avg_leaf_cluster_triangles"];
         r["avg_cluster_triangles"] = s["avg_cluster_triangles"];
         r["worst_level_ratio"] = worstRatio;
+        r["stage_seconds"] = nlohmann::ordered_json::object();  // each step's median over the runs
+        for (const auto& [stage, seconds] : s["stage_seconds"].items()) {
+          std::vector<double> all;
+          for (const auto& run : runs) all.push_back(run["stage_seconds"].value(stage, 0.0));
+          r["stage_seconds"][stage] = median(all);
+        }
         r["relaxed_groups"] = s["relaxed_groups"];
         r["stuck_groups"] = s["stuck_groups"];
         r["cpu"] = cpuName();

@@ -60,7 +60,9 @@ void addBuildCommand(CLI::App& app, int& exitCode) {
     options.progress = [&](double f, const char* stage) { bar.update(f, stage); };
     SceneBuildStats s;
     VgeoData data = buildScene(args->input, options, s);
+    StageTimer writing(&s.stages, "write");
     writeVgeo(data, args->output);
+    writing.stop();
     bar.finish();
     double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     uint64_t rss = peakRssBytes();
@@ -106,6 +108,8 @@ void addBuildCommand(CLI::App& app, int& exitCode) {
       j["build_seconds"] = s.buildSeconds;
       j["total_seconds"] = total;
       j["peak_rss_bytes"] = rss;
+      j["stage_seconds"] = nlohmann::ordered_json::object();
+      for (const auto& [stage, seconds] : s.stages.seconds) j["stage_seconds"][stage] = seconds;
       j["threads"] = args->threads;
       writeJson(args->stats, j, 2);
     }

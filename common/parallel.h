@@ -1,54 +1,60 @@
-// parallel.h: a parallel for over indices with a fixed number of threads. Work is claimed one index at a
-// time from an atomic counter; callers write results to slot i, so output never depends on scheduling.
+// parallel.h: the builder's parallel loops and sorts on oneTBB's task scheduler (Debian libtbb-dev): one
+// pool of worker threads for the whole run, work stolen between them, and `threads` capping how many
+// take part (a task arena of that size). Results never depend on scheduling: loop bodies write to slot
+// i of their output, and sorts take orders in which no two distinguishable elements are equal, so a
+// parallel sort gives exactly std::sort's result and the output is the same whatever `threads`.
 #pragma once
 
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+#include <tbb/parallel_sort.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
-#include <atomic>
-#include <exception>
-#include <mutex>
-#include <thread>
+#include <functional>
 #include <vector>
 
 namespace vgeo {
 
+// Runs fn() with at most `threads` threads (the caller's among them) for the parallel calls inside it.
+template <class Fn>
+void withThreads(int threads, Fn&& fn) {
+  tbb::task_arena arena(std::max(threads, 1));
+  arena.execute(std::forward<Fn>(fn));
+}
+
+// fn(i) for every i in [0, count), on up to `threads` threads; an exception thrown by fn stops the
+// loop and is rethrown here.
 template <class Fn>
 void parallelFor(size_t count, int threads, Fn&& fn) {
   if (threads <= 1 || count <= 1) {
     for (size_t i = 0; i < count; i++) fn(i);
     return;
   }
-  std::atomic<size_t> next{0};
-  std::exception_ptr error;
-  std::mutex errorLock;
-  auto work = [&] {
-    try {
-      for (size_t i; (i = next.fetch_add(1)) < count;) fn(i);
-    } catch (...) {
-      std::lock_guard<std::mutex> lock(errorLock);
-      if (!error) error = std::current_exception();
-      next = count;
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads && size_t(t) < count; t++) pool.emplace_back(work);
-  work();
-  for (auto& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
+  withThreads(threads, [&] { tbb::parallel_for(size_t(0), count, [&](size_t i) { fn(i); }); });
 }
 
-// std::sort on two threads: each half sorted apart, then merged. Same result as std::sort for a strict
-// weak order on distinct-or-equal elements (equal elements are indistinguishable here).
-template <class T>
-void parallelSort(std::vector<T>& v, int threads) {
+// a() and b(), side by side when `together` (inside withThreads, on its threads), else one after the
+// other: for divide-and-conquer work whose halves are independent.
+template <class A, class B>
+void parallelInvoke(bool together, A&& a, B&& b) {
+  if (together) {
+    tbb::parallel_invoke(std::forward<A>(a), std::forward<B>(b));
+  } else {
+    a();
+    b();
+  }
+}
+
+// std::sort's result on up to `threads` threads; `less` must be a strict total order on the elements
+// that can be told apart (equal elements must be identical), or the result would depend on the schedule.
+template <class T, class Less = std::less<T>>
+void parallelSort(std::vector<T>& v, int threads, Less less = Less()) {
   if (threads <= 1 || v.size() < 65536) {
-    std::sort(v.begin(), v.end());
+    std::sort(v.begin(), v.end(), less);
     return;
   }
-  auto mid = v.begin() + long(v.size() / 2);
-  std::thread other([&] { std::sort(v.begin(), mid); });
-  std::sort(mid, v.end());
-  other.join();
-  std::inplace_merge(v.begin(), mid, v.end());
+  withThreads(threads, [&] { tbb::parallel_sort(v.begin(), v.end(), less); });
 }
 
 }  // namespace vgeo
