@@ -301,6 +301,11 @@ std::vector<BuildCluster> splitIntoClusters(const std::vector<uint32_t>& indices
                                             const std::vector<glm::vec3>& positions,
                                             const ShadingNormals* shading = nullptr);
 
+// ---- local_ids.cpp ----------------------------------------------------------------------------------
+// The distinct vertices of `indices` in order of first use (globals) and `indices` renumbered to
+// them (local[i] indexes globals); memory in proportion to the list, not to the mesh.
+void localIds(const std::vector<uint32_t>& indices, std::vector<uint32_t>& globals, std::vector<uint32_t>& local);
+
 // ---- bounds.cpp -------------------------------------------------------------------------------------
 // Smallest sphere enclosing the points (CGAL), rounded outward so that float tests agree.
 glm::vec4 sphereOfPoints(const std::vector<glm::vec3>& positions, const uint32_t* vertices, size_t count);

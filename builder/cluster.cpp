@@ -190,20 +190,10 @@ std::vector<BuildCluster> buildLeafClusters(const PolygonMesh& mesh, int threads
 std::vector<BuildCluster> splitIntoClusters(const std::vector<uint32_t>& indices,
                                             const std::vector<glm::vec3>& positions, const ShadingNormals* shading) {
   // Work on compact local vertex ids: the adjacency arrays are sized by the vertex count.
-  thread_local std::vector<uint32_t> localOf;
-  if (localOf.size() < positions.size()) localOf.assign(positions.size(), UINT32_MAX);
-  std::vector<uint32_t> globals, local(indices.size());
-  std::vector<glm::vec3> points;
-  for (size_t i = 0; i < indices.size(); i++) {
-    uint32_t& slot = localOf[indices[i]];
-    if (slot == UINT32_MAX) {
-      slot = uint32_t(globals.size());
-      globals.push_back(indices[i]);
-      points.push_back(positions[indices[i]]);
-    }
-    local[i] = slot;
-  }
-  for (uint32_t g : globals) localOf[g] = UINT32_MAX;
+  std::vector<uint32_t> globals, local;
+  localIds(indices, globals, local);
+  std::vector<glm::vec3> points(globals.size());
+  for (size_t i = 0; i < globals.size(); i++) points[i] = positions[globals[i]];
   std::vector<uint32_t> faceStart(indices.size() / 3 + 1);
   for (size_t i = 0; i < faceStart.size(); i++) faceStart[i] = uint32_t(3 * i);
   // Simplified groups have a fine border ring around coarse insides, which cuts pieces off easily:

@@ -2,19 +2,35 @@
 // records: positions, connectivity and the shading normals a face's corners name (v//vn, v/vt/vn). A
 // corner without a normal, in a file whose other corners have them, shades with its face's normal.
 // All objects and groups of the file become one mesh.
+#include <algorithm>
+
 #include "text_reader.h"
 
 namespace vgeo {
+
+namespace {
+// The line of the file's face record number `face` (0-based), for an error found after reading: lines
+// are not kept for every face, which on a large file would take more memory than the faces.
+size_t lineOfFace(const std::string& data, const std::string& path, size_t face) {
+  TextReader in(data, path);
+  for (size_t seen = 0;; in.skipLine()) {
+    in.skipWhitespaceAndComments();
+    if (in.atEnd()) return in.line();
+    if (in.token() == "f" && seen++ == face) return in.line();
+  }
+}
+}  // namespace
 
 SourceScene loadObj(const std::string& path) {
   std::string data = readWholeFile(path);
   TextReader in(data, path);
   PolygonMesh mesh;
-  std::vector<glm::vec3> normals;     // vn records
-  std::vector<int64_t> cornerNormal;  // a corner's vn index (0-based), -1 for none
+  std::vector<glm::vec3> normals;  // vn records
+  // A corner's vn index (0-based), -1 for none; empty until some corner names a normal (most large
+  // files have none, and this list would be the largest of the load).
+  std::vector<int64_t> cornerNormal;
   std::vector<uint32_t> corners;
   std::vector<int64_t> rawCorners, rawNormals;
-  std::vector<size_t> faceLines;
   while (true) {
     in.skipWhitespaceAndComments();
     if (in.atEnd()) break;
@@ -62,9 +78,10 @@ SourceScene loadObj(const std::string& path) {
         if (c > int64_t(UINT32_MAX) - 1) in.fail("face index too large for 32-bit indices");
         corners.push_back(uint32_t(c));
       }
+      const bool named = std::any_of(rawNormals.begin(), rawNormals.end(), [](int64_t n) { return n >= 0; });
+      if (named && cornerNormal.empty()) cornerNormal.assign(mesh.faceVertices.size(), -1);
       mesh.addFace(corners.data(), corners.size());
-      cornerNormal.insert(cornerNormal.end(), rawNormals.begin(), rawNormals.end());
-      faceLines.push_back(in.line());
+      if (!cornerNormal.empty()) cornerNormal.insert(cornerNormal.end(), rawNormals.begin(), rawNormals.end());
     }
     in.skipLine();
   }
@@ -72,19 +89,18 @@ SourceScene loadObj(const std::string& path) {
   for (size_t f = 0; f < mesh.faceCount(); f++)
     for (uint32_t i = 0; i < mesh.faceSize(f); i++)
       if (mesh.face(f)[i] >= mesh.positions.size())
-        throw InputError(path, "line " + std::to_string(faceLines[f]) + ": face index " +
+        throw InputError(path, "line " + std::to_string(lineOfFace(data, path, f)) + ": face index " +
                                    std::to_string(mesh.face(f)[i] + 1) + " is out of range (" +
                                    std::to_string(mesh.positions.size()) + " vertices)");
-  bool anyNormal = false;
-  for (size_t f = 0; f < mesh.faceCount(); f++)
+  for (size_t f = 0; f < mesh.faceCount() && !cornerNormal.empty(); f++)
     for (uint32_t i = 0; i < mesh.faceSize(f); i++) {
       int64_t n = cornerNormal[mesh.faceStart[f] + i];
       if (n >= int64_t(normals.size()))
-        throw InputError(path, "line " + std::to_string(faceLines[f]) + ": normal index " + std::to_string(n + 1) +
-                                   " is out of range (" + std::to_string(normals.size()) + " normals)");
-      anyNormal |= n >= 0;
+        throw InputError(path, "line " + std::to_string(lineOfFace(data, path, f)) + ": normal index " +
+                                   std::to_string(n + 1) + " is out of range (" + std::to_string(normals.size()) +
+                                   " normals)");
     }
-  if (anyNormal) {
+  if (!cornerNormal.empty()) {
     mesh.cornerNormals.resize(mesh.faceVertices.size(), glm::vec3(0.0f));  // zero: its face's normal
     for (size_t c = 0; c < mesh.faceVertices.size(); c++)
       if (cornerNormal[c] >= 0) mesh.cornerNormals[c] = normals[size_t(cornerNormal[c])];

@@ -27,13 +27,14 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads) {
     uint32_t face;
     bool forward;  // a < b in the face's order
   };
-  std::vector<HalfEdge> halfEdges;
-  halfEdges.reserve(mesh.faceVertices.size());
-  for (size_t f = 0; f < faceCount; f++)
-    for (uint32_t i = 0, n = mesh.faceSize(f); i < n; i++) {
-      uint32_t a = mesh.face(f)[i], b = mesh.face(f)[(i + 1) % n];
-      halfEdges.push_back({uint64_t(std::min(a, b)) << 32 | std::max(a, b), uint32_t(f), a < b});
-    }
+  std::vector<HalfEdge> halfEdges(mesh.faceVertices.size());  // one a corner, in corner order
+  parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {
+    for (size_t f = begin; f < end; f++)
+      for (uint32_t i = 0, n = mesh.faceSize(f); i < n; i++) {
+        uint32_t a = mesh.face(f)[i], b = mesh.face(f)[(i + 1) % n];
+        halfEdges[mesh.faceStart[f] + i] = {uint64_t(std::min(a, b)) << 32 | std::max(a, b), uint32_t(f), a < b};
+      }
+  });
   // A face holds an undirected edge once (repair left distinct corners): (key, face) is a total order.
   parallelSort(halfEdges, threads,
                [](const HalfEdge& x, const HalfEdge& y) { return x.key != y.key ? x.key < y.key : x.face < y.face; });

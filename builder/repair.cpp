@@ -25,8 +25,6 @@ namespace {
 struct EdgeCorner {
   uint64_t key;     // (min vertex, max vertex)
   uint32_t corner;  // global corner index of the edge's first vertex in its face
-  uint32_t face;
-  bool forward;  // from min to max in face order
 };
 
 // Products of three coordinates (volumes, squared lengths times a length) stay inside float.
@@ -134,16 +132,22 @@ std::vector<uint32_t> weldPositions(const PolygonMesh& mesh, const std::vector<b
     }
     return b;
   };
-  std::vector<uint32_t> order(vertexCount);
-  std::iota(order.begin(), order.end(), 0u);
-  parallelSort(order, threads, [&](uint32_t a, uint32_t b) {
-    auto ba = bits(a), bb = bits(b);
-    return ba != bb ? ba < bb : a < b;
+  // The keys themselves are sorted, not vertex ids compared through the positions: on a large mesh
+  // every such comparison missed the cache.
+  struct Key {
+    std::array<uint32_t, 3> bits;
+    uint32_t vertex;
+    bool operator<(const Key& o) const { return bits != o.bits ? bits < o.bits : vertex < o.vertex; }
+  };
+  std::vector<Key> keys(vertexCount);
+  parallelForRanges(vertexCount, threads, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; v++) keys[v] = {bits(uint32_t(v)), uint32_t(v)};
   });
-  for (size_t i = 0; i < order.size(); i++) {
-    bool same = i > 0 && bits(order[i]) == bits(order[i - 1]);
-    weld[order[i]] = same ? weld[order[i - 1]] : order[i];
-    if (same && used[order[i]]) welded++;
+  parallelSort(keys, threads);
+  for (size_t i = 0; i < keys.size(); i++) {
+    bool same = i > 0 && keys[i].bits == keys[i - 1].bits;
+    weld[keys[i].vertex] = same ? weld[keys[i - 1].vertex] : keys[i].vertex;
+    if (same && used[keys[i].vertex]) welded++;
   }
   return weld;
 }
@@ -183,31 +187,36 @@ PolygonMesh weldFaces(PolygonMesh& mesh, const std::vector<uint32_t>& weld, size
 // Duplicates: faces with the same corner set; the first one stays. Returns how many went.
 size_t dropDuplicateFaces(PolygonMesh& faces, int threads) {
   size_t duplicates = 0;
-  std::vector<uint32_t> sorted;
   const size_t n = faces.faceCount();
-  std::vector<uint64_t> hash(n);
-  for (size_t f = 0; f < n; f++) {
-    sorted.assign(faces.face(f), faces.face(f) + faces.faceSize(f));
-    std::sort(sorted.begin(), sorted.end());
-    uint64_t h = 1469598103934665603ull;
-    for (uint32_t v : sorted) h = (h ^ v) * 1099511628211ull;
-    hash[f] = h;
-  }
-  std::vector<uint32_t> order(n);
-  std::iota(order.begin(), order.end(), 0u);
-  parallelSort(order, threads, [&](uint32_t a, uint32_t b) { return hash[a] != hash[b] ? hash[a] < hash[b] : a < b; });
+  // (hash of the sorted corners, face) pairs, sorted as they are (comparing face ids through a hash
+  // array missed the cache on large meshes).
+  std::vector<std::pair<uint64_t, uint32_t>> byHash(n);
+  parallelForRanges(n, threads, [&](size_t begin, size_t end) {
+    std::vector<uint32_t> sorted;
+    for (size_t f = begin; f < end; f++) {
+      sorted.assign(faces.face(f), faces.face(f) + faces.faceSize(f));
+      std::sort(sorted.begin(), sorted.end());
+      uint64_t h = 1469598103934665603ull;
+      for (uint32_t v : sorted) h = (h ^ v) * 1099511628211ull;
+      byHash[f] = {h, uint32_t(f)};
+    }
+  });
+  parallelSort(byHash, threads);
   std::vector<bool> drop(n, false);
   std::vector<uint32_t> sa, sb;
   for (size_t i = 0; i < n; i++) {
-    for (size_t j = i + 1; j < n && hash[order[j]] == hash[order[i]]; j++) {
-      if (drop[order[j]]) continue;
-      sa.assign(faces.face(order[i]), faces.face(order[i]) + faces.faceSize(order[i]));
-      sb.assign(faces.face(order[j]), faces.face(order[j]) + faces.faceSize(order[j]));
+    const uint32_t fi = byHash[i].second;
+    for (size_t j = i + 1; j < n && byHash[j].first == byHash[i].first; j++) {
+      const uint32_t fj = byHash[j].second;
+      if (drop[fj]) continue;
+      sa.assign(faces.face(fi), faces.face(fi) + faces.faceSize(fi));
+      sb.assign(faces.face(fj), faces.face(fj) + faces.faceSize(fj));
       std::sort(sa.begin(), sa.end());
       std::sort(sb.begin(), sb.end());
-      if (sa == sb && !drop[order[i]]) drop[order[j]] = true;
+      if (sa == sb && !drop[fi]) drop[fj] = true;
     }
   }
+  std::vector<std::pair<uint64_t, uint32_t>>().swap(byHash);  // before the copy below
   PolygonMesh kept;
   kept.positions = std::move(faces.positions);
   for (size_t f = 0; f < n; f++) {
@@ -222,21 +231,28 @@ size_t dropDuplicateFaces(PolygonMesh& faces, int threads) {
 
 // Step 5 of the file's head: every face corner a wedge, wedges joined across manifold edges, one output
 // vertex for each fan (split copies counted in the report).
-PolygonMesh splitNonManifold(const PolygonMesh& faces, RepairReport& report, int threads) {
+// `singleEdges`: edges with one face, which are the boundary edges when no vertex was split.
+PolygonMesh splitNonManifold(const PolygonMesh& faces, RepairReport& report, int threads, size_t& singleEdges) {
   // Edges sorted by (key, corner): every undirected edge's faces are adjacent, in face order.
   const size_t cornerCount = faces.faceVertices.size();
   std::vector<uint32_t> cornerFace(cornerCount);
-  for (size_t f = 0; f < faces.faceCount(); f++)
-    for (uint32_t c = faces.faceStart[f]; c < faces.faceStart[f + 1]; c++) cornerFace[c] = uint32_t(f);
+  parallelForRanges(faces.faceCount(), threads, [&](size_t begin, size_t end) {
+    for (size_t f = begin; f < end; f++)
+      for (uint32_t c = faces.faceStart[f]; c < faces.faceStart[f + 1]; c++) cornerFace[c] = uint32_t(f);
+  });
   auto nextCorner = [&](uint32_t c) {
     uint32_t f = cornerFace[c];
     return c + 1 == faces.faceStart[f + 1] ? faces.faceStart[f] : c + 1;
   };
+  // From min to max in face order: the corner's vertex is the key's smaller one.
+  auto forward = [&](const EdgeCorner& e) { return faces.faceVertices[e.corner] == uint32_t(e.key >> 32); };
   std::vector<EdgeCorner> edges(cornerCount);
-  for (uint32_t c = 0; c < cornerCount; c++) {
-    uint32_t a = faces.faceVertices[c], b = faces.faceVertices[nextCorner(c)];
-    edges[c] = {uint64_t(std::min(a, b)) << 32 | std::max(a, b), c, cornerFace[c], a < b};
-  }
+  parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
+    for (uint32_t c = uint32_t(begin); c < end; c++) {
+      uint32_t a = faces.faceVertices[c], b = faces.faceVertices[nextCorner(c)];
+      edges[c] = {uint64_t(std::min(a, b)) << 32 | std::max(a, b), c};
+    }
+  });
   parallelSort(edges, threads, [](const EdgeCorner& x, const EdgeCorner& y) {
     return x.key != y.key ? x.key < y.key : x.corner < y.corner;
   });
@@ -249,12 +265,13 @@ PolygonMesh splitNonManifold(const PolygonMesh& faces, RepairReport& report, int
     while (j < edges.size() && edges[j].key == edges[i].key) j++;
     size_t count = j - i;
     if (count == 1) {
+      singleEdges++;
       i = j;
       continue;
     }
     size_t partner = SIZE_MAX;
     for (size_t k = i + 1; k < j; k++)
-      if (edges[k].forward != edges[i].forward) {
+      if (forward(edges[k]) != forward(edges[i])) {
         partner = k;
         break;
       }
@@ -371,9 +388,12 @@ RepairReport repairMesh(PolygonMesh& mesh, const std::string& file, int threads)
   report.flippedFaces = orient.flippedFaces;
   report.components = orient.components;
   report.nonOrientableComponents = orient.nonOrientableComponents;
-  PolygonMesh out = splitNonManifold(faces, report, threads);
+  size_t singleEdges = 0;
+  PolygonMesh out = splitNonManifold(faces, report, threads, singleEdges);
   report.unusedVertices = dropUnusedVertices(out, report.weldedVertices);
-  report.boundaryEdges = countBoundaryEdges(out, threads);
+  // Without a split vertex the edges are those just counted (dropping unused vertices renumbers, one
+  // to one); a split opens edges into boundaries, so they are counted again.
+  report.boundaryEdges = report.splitVertices == 0 ? singleEdges : countBoundaryEdges(out, threads);
   mesh = std::move(out);
   return report;
 }

@@ -76,10 +76,11 @@ struct Quadric {
     return a[0] * x * x + 2 * a[1] * x * y + 2 * a[2] * x * z + 2 * a[3] * x + a[4] * y * y + 2 * a[5] * y * z +
            2 * a[6] * y + a[7] * z * z + 2 * a[8] * z + a[9];
   }
-  // Mean squared distance of p to the planes of this quadric and `other` together.
-  double meanSquaredDistance(glm::dvec3 p, const Quadric& other) const {
+  // Mean squared distance of p to the planes of this quadric and `other` together, given
+  // other.evaluate(p) (a vertex's own quadric at its own position is kept, not recomputed).
+  double meanSquaredDistance(glm::dvec3 p, const Quadric& other, double otherAtP) const {
     double w = weight + other.weight;
-    return w > 0.0 ? std::max(0.0, evaluate(p) + other.evaluate(p)) / w : 0.0;
+    return w > 0.0 ? std::max(0.0, evaluate(p) + otherAtP) / w : 0.0;
   }
 };
 
@@ -150,6 +151,9 @@ class Simplifier {
         quadric_[e1].addPlane(side, -glm::dot(side, p_[e0]), weight);
       }
     }
+    selfCost_.resize(n);
+    for (uint32_t v = 0; v < n; v++) selfCost_[v] = quadric_[v].evaluate(p_[v]);
+    seen_.assign(n, 0);
     for (uint32_t u = 0; u < n; u++) pushBest(u);
   }
 
@@ -238,22 +242,25 @@ class Simplifier {
   // Live and dead triangles of v; callers skip the dead.
   const uint32_t* trianglesOf(uint32_t v) const { return &pool_[start_[v]]; }
 
-  // Pushes u's cheapest collapse. Candidates come straight from u's triangles (a neighbour seen twice
-  // costs one more quadric evaluation, cheaper than sorting the neighbours).
+  // Pushes u's cheapest collapse. Candidates come straight from u's triangles, each neighbour once
+  // (a stamp marks those seen in this call).
   void pushBest(uint32_t u) {
     if (kind_[u] == kLocked) return;
     const bool open = kind_[u] == kOpen;
     double best = INFINITY;
     uint32_t target = UINT32_MAX;
     const std::vector<uint32_t>& rejected = rejected_[u];
+    if (++stamp_ == 0) std::fill(seen_.begin(), seen_.end(), 0), stamp_ = 1;
     for (uint32_t i = 0; i < size_[u]; i++) {
       uint32_t t = trianglesOf(u)[i];
       if (!alive_[t]) continue;
       for (int k = 0; k < 3; k++) {
         uint32_t v = tri_[3 * t + k];
-        if (v == u || (!rejected.empty() && std::find(rejected.begin(), rejected.end(), v) != rejected.end())) continue;
+        if (v == u || seen_[v] == stamp_) continue;
+        seen_[v] = stamp_;
+        if (!rejected.empty() && std::find(rejected.begin(), rejected.end(), v) != rejected.end()) continue;
         if (open && !onOneTriangle(u, v)) continue;  // an open vertex moves along the boundary only
-        double cost = quadric_[u].meanSquaredDistance(p_[v], quadric_[v]);
+        double cost = quadric_[u].meanSquaredDistance(p_[v], quadric_[v], selfCost_[v]);
         if (cost < best || (cost == best && v < target)) best = cost, target = v;
       }
     }
@@ -336,6 +343,7 @@ class Simplifier {
     removed_[u] = 1;
     collapsedInto_[u] = v;
     quadric_[v].add(quadric_[u]);
+    selfCost_[v] = quadric_[v].evaluate(p_[v]);
     // All of v's candidates changed; a neighbour's only if it was aiming at u or v (its other candidates
     // keep their cost, and its collapse onto v only got dearer by v's grown quadric, or so little
     // cheaper that the order barely changes). Validity is checked again when a candidate is popped.
@@ -359,6 +367,9 @@ class Simplifier {
   size_t aliveCount_ = 0;
   std::vector<uint32_t> pool_, start_, size_, capacity_;
   std::vector<Quadric> quadric_;
+  std::vector<double> selfCost_;  // quadric_[v].evaluate(p_[v])
+  std::vector<uint32_t> seen_;    // pushBest's stamp of the neighbours it has tried
+  uint32_t stamp_ = 0;
   std::vector<uint32_t> version_;
   std::vector<uint32_t> bestTarget_;  // target of each vertex's live heap entry
   std::vector<std::vector<uint32_t>> rejected_;
@@ -372,21 +383,8 @@ class Simplifier {
 SimplifiedGroup simplifyGroup(const std::vector<uint32_t>& indices, const std::vector<glm::vec3>& positions,
                               const std::function<bool(uint32_t, uint32_t)>& chordAllowed,
                               const std::vector<uint64_t>& openEdges) {
-  // Local vertex ids in order of first use, through a hash table of the group's own size (an array
-  // over all vertices for each thread would cost memory in proportion to the threads).
-  size_t tableSize = 64;
-  while (tableSize < 2 * indices.size()) tableSize *= 2;
-  std::vector<uint32_t> table(tableSize, UINT32_MAX);  // local ids; globals[id] is the key
-  std::vector<uint32_t> globals, local(indices.size());
-  for (size_t i = 0; i < indices.size(); i++) {
-    size_t h = size_t((uint64_t(indices[i]) * 0x9e3779b97f4a7c15ull) >> 32) & (tableSize - 1);
-    while (table[h] != UINT32_MAX && globals[table[h]] != indices[i]) h = (h + 1) & (tableSize - 1);
-    if (table[h] == UINT32_MAX) {
-      table[h] = uint32_t(globals.size());
-      globals.push_back(indices[i]);
-    }
-    local[i] = table[h];
-  }
+  std::vector<uint32_t> globals, local;
+  localIds(indices, globals, local);
 
   // Locked: vertices on an edge with one triangle in the group that another cluster has (the group
   // border); open: vertices on edges of the surface's open boundary and on no locked edge.

@@ -34,6 +34,15 @@ void parallelFor(size_t count, int threads, Fn&& fn) {
   withThreads(threads, [&] { tbb::parallel_for(size_t(0), count, [&](size_t i) { fn(i); }); });
 }
 
+// fn(begin, end) over [0, count) in ranges of 65,536 on up to `threads` threads: for loops whose body
+// is too small to be a task of its own.
+template <class Fn>
+void parallelForRanges(size_t count, int threads, Fn&& fn) {
+  constexpr size_t kRange = 65536;
+  parallelFor((count + kRange - 1) / kRange, threads,
+              [&](size_t r) { fn(r * kRange, std::min(count, (r + 1) * kRange)); });
+}
+
 // a() and b(), side by side when `together` (inside withThreads, on its threads), else one after the
 // other: for divide-and-conquer work whose halves are independent.
 template <class A, class B>

@@ -50,6 +50,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"OffNotOff", "n.off", "PLY\n3 1 0\n", "not an OFF file"},
         BadCase{"ObjBadVertex", "v.obj", "v 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "vertex needs three numbers"},
         BadCase{"ObjIndexOutOfRange", "o.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", "out of range"},
+        // The line is found again after reading (lines are not kept per face): comments and blank
+        // lines count, and the face is the second one.
+        BadCase{"ObjIndexOutOfRangeLine", "ol.obj", "v 0 0 0\nv 1 0 0\n# c\n\nv 0 1 0\nf 1 2 3\nf 1 2 9\n",
+                "line 7: face index 9 is out of range (3 vertices)"},
+        BadCase{"ObjNormalOutOfRangeLine", "on.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1 2 3\nf 1//1 2//1 3//2\n",
+                "line 6: normal index 2 is out of range (1 normals)"},
         BadCase{"ObjNaN", "nan.obj", "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n", "non-finite position"},
         BadCase{"ObjInf", "inf.obj", "v 0 0 0\nv 1 inf 0\nv 0 1 0\nf 1 2 3\n", "non-finite position"},
         BadCase{"EmptyMesh", "e.obj", "v 0 0 0\nv 1 0 0\n", "empty mesh"},

@@ -1,0 +1,26 @@
+// local_ids.cpp: a group's or cluster's vertices renumbered 0..n-1 in order of first use, so that the
+// steps working on it (simplify.cpp, cluster.cpp) size their arrays by its own vertices. A hash table
+// of the list's size maps global ids to local ones: an array over all of the mesh's vertices, kept by
+// each thread, cost memory in proportion to the threads.
+#include "builder.h"
+
+namespace vgeo {
+
+void localIds(const std::vector<uint32_t>& indices, std::vector<uint32_t>& globals, std::vector<uint32_t>& local) {
+  size_t tableSize = 64;
+  while (tableSize < 2 * indices.size()) tableSize *= 2;
+  std::vector<uint32_t> table(tableSize, UINT32_MAX);  // local ids; globals[id] is the key
+  globals.clear();
+  local.resize(indices.size());
+  for (size_t i = 0; i < indices.size(); i++) {
+    size_t h = size_t((uint64_t(indices[i]) * 0x9e3779b97f4a7c15ull) >> 32) & (tableSize - 1);
+    while (table[h] != UINT32_MAX && globals[table[h]] != indices[i]) h = (h + 1) & (tableSize - 1);
+    if (table[h] == UINT32_MAX) {
+      table[h] = uint32_t(globals.size());
+      globals.push_back(indices[i]);
+    }
+    local[i] = table[h];
+  }
+}
+
+}  // namespace vgeo
