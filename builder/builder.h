@@ -96,9 +96,16 @@ struct OrientReport {
   size_t components = 0;               // faces joined through edges of exactly two faces
   size_t nonOrientableComponents = 0;  // e.g. a Moebius strip: left as they are
 };
+// An edge of a face: its key (min vertex << 32 | max vertex) and the corner it starts at in its face.
+struct CornerEdge {
+  uint64_t key;
+  uint32_t corner;
+};
 // Turns faces so that every component walks each of its two-face edges once each way, keeping the
 // orientation of the larger part (by area) of each component. Deterministic; positions are not moved.
-OrientReport orientFaces(PolygonMesh& mesh, int threads = 1);
+// `edges`, when given, receives every corner's edge of the oriented mesh sorted by (key, corner), which
+// repair's split step would otherwise sort again.
+OrientReport orientFaces(PolygonMesh& mesh, int threads = 1, std::vector<CornerEdge>* edges = nullptr);
 
 // ---- topology.cpp -----------------------------------------------------------------------------------
 struct SurfaceTopology {

@@ -18,26 +18,26 @@
 
 namespace vgeo {
 
-OrientReport orientFaces(PolygonMesh& mesh, int threads) {
+OrientReport orientFaces(PolygonMesh& mesh, int threads, std::vector<CornerEdge>* sortedEdges) {
   OrientReport report;
   const size_t faceCount = mesh.faceCount();
-  // Directed edges (a, b) of every face, sorted by undirected key: an edge's faces are adjacent.
-  struct HalfEdge {
-    uint64_t key;  // (min << 32 | max)
-    uint32_t face;
-    bool forward;  // a < b in the face's order
-  };
-  std::vector<HalfEdge> halfEdges(mesh.faceVertices.size());  // one a corner, in corner order
+  // Every corner's edge, sorted by (key, corner): an edge's faces are adjacent, in face order (a face
+  // holds an undirected edge once, as repair left its corners distinct).
+  std::vector<uint32_t> cornerFace(mesh.faceVertices.size());
+  std::vector<CornerEdge> halfEdges(mesh.faceVertices.size());
   parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {
     for (size_t f = begin; f < end; f++)
       for (uint32_t i = 0, n = mesh.faceSize(f); i < n; i++) {
         uint32_t a = mesh.face(f)[i], b = mesh.face(f)[(i + 1) % n];
-        halfEdges[mesh.faceStart[f] + i] = {uint64_t(std::min(a, b)) << 32 | std::max(a, b), uint32_t(f), a < b};
+        cornerFace[mesh.faceStart[f] + i] = uint32_t(f);
+        halfEdges[mesh.faceStart[f] + i] = {uint64_t(std::min(a, b)) << 32 | std::max(a, b), mesh.faceStart[f] + i};
       }
   });
-  // A face holds an undirected edge once (repair left distinct corners): (key, face) is a total order.
-  parallelSort(halfEdges, threads,
-               [](const HalfEdge& x, const HalfEdge& y) { return x.key != y.key ? x.key < y.key : x.face < y.face; });
+  parallelSort(halfEdges, threads, [](const CornerEdge& x, const CornerEdge& y) {
+    return x.key != y.key ? x.key < y.key : x.corner < y.corner;
+  });
+  // From min to max in face order (before any face turns).
+  auto forward = [&](const CornerEdge& e) { return mesh.faceVertices[e.corner] == uint32_t(e.key >> 32); };
 
   // Face adjacency through two-face edges; `same` when both faces walk the edge the same way (one of
   // them must turn for the pair to agree).
@@ -51,15 +51,15 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads) {
   for (size_t i = 0; i < halfEdges.size();) {
     size_t j = i;
     while (j < halfEdges.size() && halfEdges[j].key == halfEdges[i].key) j++;
-    if (j - i == 2 && halfEdges[i].face != halfEdges[i + 1].face) {
-      pairs.push_back({halfEdges[i].face, halfEdges[i + 1].face});
-      pairSame.push_back(halfEdges[i].forward == halfEdges[i + 1].forward);
-      linkStart[halfEdges[i].face + 1]++;
-      linkStart[halfEdges[i + 1].face + 1]++;
+    const uint32_t f0 = cornerFace[halfEdges[i].corner], f1 = j - i == 2 ? cornerFace[halfEdges[i + 1].corner] : f0;
+    if (j - i == 2 && f0 != f1) {
+      pairs.push_back({f0, f1});
+      pairSame.push_back(forward(halfEdges[i]) == forward(halfEdges[i + 1]));
+      linkStart[f0 + 1]++;
+      linkStart[f1 + 1]++;
     }
     i = j;
   }
-  std::vector<HalfEdge>().swap(halfEdges);
   std::partial_sum(linkStart.begin(), linkStart.end(), linkStart.begin());
   std::vector<Link> links(linkStart.back());
   {
@@ -108,6 +108,19 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads) {
     for (uint32_t f : component) (flip[f] ? turned : kept) += area(f);
     if (turned > kept)
       for (uint32_t f : component) flip[f] ^= 1u;
+  }
+  if (sortedEdges) {
+    // A turned face keeps its edges; the edge that started at corner k of n starts at n-2-k (mod n),
+    // and the order stays (key, corner), since a key's corners are in distinct faces, in face order.
+    parallelForRanges(halfEdges.size(), threads, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; i++) {
+        const uint32_t c = halfEdges[i].corner, f = cornerFace[c];
+        if (flip[f] != 1) continue;
+        const uint32_t start = mesh.faceStart[f], n = mesh.faceSize(f);
+        halfEdges[i].corner = start + (2 * n - 2 - (c - start)) % n;
+      }
+    });
+    *sortedEdges = std::move(halfEdges);
   }
   for (size_t f = 0; f < faceCount; f++)
     if (flip[f] == 1) {

@@ -22,11 +22,6 @@
 namespace vgeo {
 namespace {
 
-struct EdgeCorner {
-  uint64_t key;     // (min vertex, max vertex)
-  uint32_t corner;  // global corner index of the edge's first vertex in its face
-};
-
 // Products of three coordinates (volumes, squared lengths times a length) stay inside float.
 constexpr float kMaxCoordinate = 1e12f;
 
@@ -231,9 +226,10 @@ size_t dropDuplicateFaces(PolygonMesh& faces, int threads) {
 
 // Step 5 of the file's head: every face corner a wedge, wedges joined across manifold edges, one output
 // vertex for each fan (split copies counted in the report).
-// `singleEdges`: edges with one face, which are the boundary edges when no vertex was split.
-PolygonMesh splitNonManifold(const PolygonMesh& faces, RepairReport& report, int threads, size_t& singleEdges) {
-  // Edges sorted by (key, corner): every undirected edge's faces are adjacent, in face order.
+// `edges`: every corner's edge sorted by (key, corner) (orientFaces makes them). `singleEdges`: edges
+// with one face, which are the boundary edges when no vertex was split.
+PolygonMesh splitNonManifold(const PolygonMesh& faces, const std::vector<CornerEdge>& edges, RepairReport& report,
+                             int threads, size_t& singleEdges) {
   const size_t cornerCount = faces.faceVertices.size();
   std::vector<uint32_t> cornerFace(cornerCount);
   parallelForRanges(faces.faceCount(), threads, [&](size_t begin, size_t end) {
@@ -245,17 +241,7 @@ PolygonMesh splitNonManifold(const PolygonMesh& faces, RepairReport& report, int
     return c + 1 == faces.faceStart[f + 1] ? faces.faceStart[f] : c + 1;
   };
   // From min to max in face order: the corner's vertex is the key's smaller one.
-  auto forward = [&](const EdgeCorner& e) { return faces.faceVertices[e.corner] == uint32_t(e.key >> 32); };
-  std::vector<EdgeCorner> edges(cornerCount);
-  parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
-    for (uint32_t c = uint32_t(begin); c < end; c++) {
-      uint32_t a = faces.faceVertices[c], b = faces.faceVertices[nextCorner(c)];
-      edges[c] = {uint64_t(std::min(a, b)) << 32 | std::max(a, b), c};
-    }
-  });
-  parallelSort(edges, threads, [](const EdgeCorner& x, const EdgeCorner& y) {
-    return x.key != y.key ? x.key < y.key : x.corner < y.corner;
-  });
+  auto forward = [&](const CornerEdge& e) { return faces.faceVertices[e.corner] == uint32_t(e.key >> 32); };
 
   UnionFind wedges(cornerCount);
   std::vector<bool> isolated(cornerCount, false);    // wedges that get a vertex of their own
@@ -384,12 +370,14 @@ RepairReport repairMesh(PolygonMesh& mesh, const std::string& file, int threads)
   if (faces.faceCount() == 0) throw InputError(file, "empty mesh: every face is degenerate or a duplicate");
   report.dissolvedVertices = dissolveFolds(faces, report.degenerateFaces);
   if (faces.faceCount() == 0) throw InputError(file, "empty mesh: every face is degenerate or a duplicate");
-  const OrientReport orient = orientFaces(faces, threads);
+  std::vector<CornerEdge> edges;
+  const OrientReport orient = orientFaces(faces, threads, &edges);
   report.flippedFaces = orient.flippedFaces;
   report.components = orient.components;
   report.nonOrientableComponents = orient.nonOrientableComponents;
   size_t singleEdges = 0;
-  PolygonMesh out = splitNonManifold(faces, report, threads, singleEdges);
+  PolygonMesh out = splitNonManifold(faces, edges, report, threads, singleEdges);
+  std::vector<CornerEdge>().swap(edges);
   report.unusedVertices = dropUnusedVertices(out, report.weldedVertices);
   // Without a split vertex the edges are those just counted (dropping unused vertices renumbers, one
   // to one); a split opens edges into boundaries, so they are counted again.
