@@ -144,7 +144,7 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
       throw InputError(where, e.what());
     }
     StageTimer layout(&stats.stages, "layout");
-    appendGeometry(data, dag, leaves[m], shading, std::move(patches[m]), patchErrors[m], closed[m]);
+    appendGeometry(data, dag, leaves[m], shading, std::move(patches[m]), patchErrors[m], closed[m], options.threads);
     layout.stop();
     patches[m] = MeshPatches();  // what the layout did not move into the file
     stats.clusters += dag.clusters.size();

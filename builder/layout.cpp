@@ -5,6 +5,7 @@
 // indices: the meshlet layout, which lets a pass read any cluster without a second index buffer.
 #include <algorithm>
 
+#include "../common/parallel.h"
 #include "builder.h"
 #include "layout.h"
 
@@ -40,8 +41,23 @@ glm::vec4 normalCone(const std::vector<uint32_t>& indices, const std::vector<glm
 }  // namespace
 
 void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh, const ShadingNormals& shading,
-                    MeshPatches&& patches, const std::vector<PatchErrors>& patchErrors, bool closed) {
+                    MeshPatches&& patches, const std::vector<PatchErrors>& patchErrors, bool closed, int threads) {
   Bvh bvh = buildBvh(dag.groups);
+  // Each cluster's normal cone and the sphere of its own vertices (a leaf's is its self sphere): apart
+  // from the serial layout below, since CGAL's exact sphere is the layout's costliest step.
+  std::vector<shaderio::ClusterCone> cones(dag.clusters.size());
+  parallelFor(dag.clusters.size(), threads, [&](size_t id) {
+    const BuildCluster& c = dag.clusters[id];
+    cones[id].cone = normalCone(c.indices, leafMesh.positions);
+    if (c.level == 0) {
+      cones[id].sphere = c.selfSphere;
+      return;
+    }
+    std::vector<uint32_t> vertices, local;
+    localIds(c.wedges.empty() ? c.indices : c.wedges, vertices, local);
+    for (uint32_t& v : vertices) v = shading.wedgeVertex[v];  // the wedges' positions
+    cones[id].sphere = sphereOfPoints(leafMesh.positions, vertices.data(), vertices.size());
+  });
   const uint32_t vertexOffset = uint32_t(file.vertexCount()), clusterOffset = uint32_t(file.clusters.size()),
                  groupOffset = uint32_t(file.groups.size()), nodeOffset = uint32_t(file.nodes.size()),
                  cageOffset = uint32_t(file.cageFaces.size());
@@ -170,15 +186,7 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
       file.cageFaces.push_back(face);
       file.patches.push_back(filePatch(f));
     }
-    shaderio::ClusterCone cone;
-    cone.cone = normalCone(c.indices, leafMesh.positions);
-    if (c.level == 0) {
-      cone.sphere = c.selfSphere;
-    } else {
-      for (uint32_t& v : local) v = shading.wedgeVertex[v];  // the wedges' positions
-      cone.sphere = sphereOfPoints(leafMesh.positions, local.data(), local.size());
-    }
-    file.clusterCones.push_back(cone);
+    file.clusterCones.push_back(cones[id]);
     out.counts = shaderio::packClusterCounts(uint32_t(local.size()), uint32_t(c.indices.size() / 3), c.level,
                                              uint32_t(c.cageFaces.size()));
     file.clusters.push_back(out);

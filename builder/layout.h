@@ -12,7 +12,8 @@ namespace vgeo {
 // cage face: `patches` (buildPatches of a subdivided cage, whose leaf vertices are limit points; their
 // words and control points move to the file) with the chord errors `patchErrors` (patchChordErrors), or
 // flat ones where `patches` is empty. `closed` records whether the repaired input had no boundary edge.
+// The clusters' normal cones and spheres are made on up to `threads` threads.
 void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh, const ShadingNormals& shading,
-                    MeshPatches&& patches, const std::vector<PatchErrors>& patchErrors, bool closed);
+                    MeshPatches&& patches, const std::vector<PatchErrors>& patchErrors, bool closed, int threads = 1);
 
 }  // namespace vgeo
