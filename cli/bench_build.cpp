@@ -25,6 +25,7 @@ struct BuildBenchArgs {
   std::vector<std::string> inputs;
   std::string output, subdivs = "0,1,2,3", threads = "1,2";
   uint32_t repeat = 3;
+  double maxTriangles = 0;  // 0: no limit
 };
 
 std::string cpuName() {
@@ -67,7 +68,19 @@ void runBenchBuild(const BuildBenchArgs& a) {
   nlohmann::ordered_json records = nlohmann::json::array();
   for (const std::string& input : a.inputs) {
     if (!std::filesystem::exists(input)) throw InputError(input, "no such file");
-    for (int subdiv : parseList<int>(a.subdivs))
+    double lastLeaves = 0;  // of the last level built, for --max-triangles
+    int lastSubdiv = 0;
+    for (int subdiv : parseList<int>(a.subdivs)) {
+      if (a.maxTriangles > 0 && lastLeaves > 0) {
+        // A Catmull-Clark level makes at most 6 triangles of a triangle (3 quads) and 4 of a quad's.
+        double predicted = lastLeaves;
+        for (int l = lastSubdiv; l < subdiv; l++) predicted *= l == 0 ? 6.0 : 4.0;
+        if (predicted > a.maxTriangles) {
+          std::fprintf(stderr, "%s: --subdiv %d and deeper skipped: up to %.0f leaf triangles, over --max-triangles\n",
+                       input.c_str(), subdiv, predicted);
+          break;
+        }
+      }
       for (int threads : parseList<int>(a.threads)) {
         std::vector<nlohmann::json> runs;
         std::vector<double> dag, total;
@@ -114,6 +127,8 @@ void runBenchBuild(const BuildBenchArgs& a) {
         r["cores"] = std::thread::hardware_concurrency();
         r["repeat"] = runs.size();
         r["commit"] = VGEO_COMMIT;
+        lastLeaves = leaves;
+        lastSubdiv = subdiv;
         std::fprintf(stderr,
                      "%-16s subdiv %d threads %d: %9.0f leaf triangles, DAG %.3f s (%.2f M/s), total %.3f s, %.0f "
                      "B/triangle, %d levels, %d roots\n",
@@ -122,6 +137,7 @@ void runBenchBuild(const BuildBenchArgs& a) {
                      s["levels"].get<int>(), s["root_clusters"].get<int>());
         records.push_back(r);
       }
+    }
   }
   std::filesystem::remove_all(dir);
   writeJson(a.output, records, 1);
@@ -138,6 +154,10 @@ void addBenchBuildCommand(CLI::App& bench, int& exitCode) {
   cmd->add_option("--subdiv", a->subdivs, "Catmull-Clark levels")->capture_default_str();
   cmd->add_option("--threads", a->threads, "Thread counts")->capture_default_str();
   cmd->add_option("--repeat", a->repeat, "Builds per record (median)")->capture_default_str();
+  cmd->add_option("--max-triangles", a->maxTriangles,
+                  "Stop a mesh's --subdiv levels (in the order given) before one that could make more leaf "
+                  "triangles than this (a size sweep: --subdiv 0,1,2,3,4,5,6 --max-triangles 1e8)")
+      ->check(CLI::PositiveNumber);
   cmd->callback([a, &exitCode] {
     runBenchBuild(*a);
     exitCode = 0;

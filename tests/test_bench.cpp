@@ -126,10 +126,24 @@ TEST(BenchBuild, OneRecordPerMeshSubdivAndThreads) {
       EXPECT_TRUE(rec.contains(key)) << key;
     EXPECT_GT(rec["peak_rss_bytes"].get<uint64_t>(), 0u);
     EXPECT_LE(rec["dag_seconds"].get<double>(), rec["total_seconds"].get<double>());
+    // Each step's seconds: every step of the run, none more than the whole.
+    double steps = 0.0;
+    for (const char* stage : {"load", "repair", "leaf clusters", "grouping", "simplify and split", "layout", "write"}) {
+      ASSERT_TRUE(rec["stage_seconds"].contains(stage)) << stage;
+      steps += rec["stage_seconds"][stage].get<double>();
+    }
+    EXPECT_LE(steps, rec["total_seconds"].get<double>() * 1.1);
   }
   // Every face of a level-1 cage is a quad: 684 triangles (342 quads) -> 4 x 342 quads = 2,736 triangles.
   EXPECT_EQ(records[2]["leaf_triangles"].get<int>(), 2736);
   EXPECT_EQ(records[0]["clusters"], records[1]["clusters"]);  // the DAG does not depend on the thread count
+  // A size sweep: levels stop before one that could pass --max-triangles (684, 2,736, 10,944 leaf
+  // triangles; the next could be 43,776).
+  nlohmann::json sweep = benchRecords(
+      "build " + test::asset("horned_cube.obj") + " --subdiv 0,1,2,3,4 --threads 1 --repeat 1 --max-triangles 20000",
+      dir + "/sweep.json");
+  ASSERT_EQ(sweep.size(), 3u);
+  EXPECT_EQ(sweep[2]["leaf_triangles"].get<int>(), 10944);
   test::RunResult bad = test::runVgeo("bench build " + dir + "/missing.obj -o " + dir + "/b.json");
   EXPECT_NE(bad.exitCode, 0);
   EXPECT_NE(bad.output.find("missing.obj: "), std::string::npos) << bad.output;
