@@ -69,7 +69,7 @@ std::string unreducedReason(const SurfaceTopology& t) {
 VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, SceneBuildStats& stats) {
   auto start = std::chrono::steady_clock::now();
   StageTimer loading(&stats.stages, "load");
-  SourceScene scene = loadMeshFile(path);
+  SourceScene scene = loadMeshFile(path, options.threads);
   loading.stop();
   stats.loadSeconds = secondsSince(start);
   if (options.subdivisionLevels < 0) throw InputError(path, "--subdiv must be >= 0");

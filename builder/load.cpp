@@ -26,10 +26,10 @@ SourceScene singleMeshScene(PolygonMesh mesh) {
   return scene;
 }
 
-SourceScene loadMeshFile(const std::string& path) {
+SourceScene loadMeshFile(const std::string& path, int threads) {
   std::string ext = path.substr(path.find_last_of('.') == std::string::npos ? path.size() : path.find_last_of('.'));
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  if (ext == ".obj") return loadObj(path);
+  if (ext == ".obj") return loadObj(path, threads);
   if (ext == ".off") return loadOff(path);
   if (ext == ".ply") return loadPly(path);
   if (ext == ".gltf" || ext == ".glb") return loadGltf(path);

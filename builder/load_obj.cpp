@@ -2,8 +2,14 @@
 // records: positions, connectivity and the shading normals a face's corners name (v//vn, v/vt/vn). A
 // corner without a normal, in a file whose other corners have them, shades with its face's normal.
 // All objects and groups of the file become one mesh.
+// A record is one line, and only a negative index looks back (at the vertices or normals read so
+// far), so a large file is read in pieces of whole lines on several threads: a first pass counts each
+// piece's lines, `v` and `vn` records, and the second parses each piece knowing where it starts. The
+// first error in the file is the one reported, as a reading from the start would find it.
 #include <algorithm>
+#include <exception>
 
+#include "../common/parallel.h"
 #include "text_reader.h"
 
 namespace vgeo {
@@ -19,16 +25,46 @@ size_t lineOfFace(const std::string& data, const std::string& path, size_t face)
     if (in.token() == "f" && seen++ == face) return in.line();
   }
 }
-}  // namespace
 
-SourceScene loadObj(const std::string& path) {
-  std::string data = readWholeFile(path);
-  TextReader in(data, path);
+// What a piece of the file holds. cornerNormal: a corner's vn index (0-based, -1 for none), empty
+// until some corner names a normal (most large files have none, and this list would be the largest).
+struct ObjPiece {
   PolygonMesh mesh;
-  std::vector<glm::vec3> normals;  // vn records
-  // A corner's vn index (0-based), -1 for none; empty until some corner names a normal (most large
-  // files have none, and this list would be the largest of the load).
+  std::vector<glm::vec3> normals;
   std::vector<int64_t> cornerNormal;
+};
+
+// A piece's lines, and its `v` and `vn` records: a record's keyword is the first word of its line
+// (TextReader's words: ends at a blank, '\r' or '\n'; a line starting with '#' is a comment).
+struct PieceCounts {
+  size_t lines = 0, vertices = 0, normals = 0;
+};
+PieceCounts countPiece(std::string_view text) {
+  PieceCounts c;
+  for (size_t i = 0; i < text.size();) {
+    while (i < text.size() && (text[i] == ' ' || text[i] == '\t' || text[i] == '\r')) i++;
+    const size_t start = i;
+    while (i < text.size() && text[i] != ' ' && text[i] != '\t' && text[i] != '\r' && text[i] != '\n') i++;
+    const std::string_view word = text.substr(start, i - start);
+    if (word == "v") c.vertices++;
+    if (word == "vn") c.normals++;
+    const size_t end = text.find('\n', i);
+    if (end == std::string_view::npos) break;
+    c.lines++;
+    i = end + 1;
+  }
+  return c;
+}
+
+// Parses one piece of whole lines, which starts at line `firstLine` after `vertexBase` vertices and
+// `normalBase` normals of the file.
+ObjPiece parsePiece(std::string_view text, const std::string& path, size_t firstLine, size_t vertexBase,
+                    size_t normalBase) {
+  TextReader in(text, path, firstLine);
+  ObjPiece piece;
+  PolygonMesh& mesh = piece.mesh;
+  std::vector<glm::vec3>& normals = piece.normals;
+  std::vector<int64_t>& cornerNormal = piece.cornerNormal;
   std::vector<uint32_t> corners;
   std::vector<int64_t> rawCorners, rawNormals;
   while (true) {
@@ -59,7 +95,7 @@ SourceScene loadObj(const std::string& path) {
           auto [nend, nec] = std::from_chars(n.data(), n.data() + n.size(), value);
           if (nec != std::errc() || nend != n.data() + n.size() || value == 0)
             in.fail("bad normal index '" + std::string(n) + "'");
-          if (value < 0) value += int64_t(normals.size()) + 1;
+          if (value < 0) value += int64_t(normalBase + normals.size()) + 1;
           if (value <= 0) in.fail("normal index " + std::string(n) + " refers before the first normal");
           normalIndex = value - 1;
         }
@@ -69,7 +105,7 @@ SourceScene loadObj(const std::string& path) {
         if (ec != std::errc() || end != t.data() + t.size() || index == 0)
           in.fail("bad face index '" + std::string(t) + "'");
         // Negative indices count back from the vertices read so far.
-        if (index < 0) index += int64_t(mesh.positions.size()) + 1;
+        if (index < 0) index += int64_t(vertexBase + mesh.positions.size()) + 1;
         if (index <= 0) in.fail("face index " + std::string(t) + " refers before the first vertex");
         rawCorners.push_back(index - 1);
       }
@@ -85,6 +121,59 @@ SourceScene loadObj(const std::string& path) {
     }
     in.skipLine();
   }
+  return piece;
+}
+
+}  // namespace
+
+SourceScene loadObj(const std::string& path, int threads) {
+  const std::string data = readWholeFile(path);
+  // Pieces of at least 4 MB, ending after a newline.
+  const size_t pieceCount = std::max<size_t>(1, std::min<size_t>(size_t(std::max(threads, 1)) * 4, data.size() >> 22));
+  std::vector<size_t> bounds{0};
+  for (size_t k = 1; k < pieceCount; k++) {
+    const size_t at = data.find('\n', std::max(bounds.back(), data.size() * k / pieceCount));
+    if (at == std::string::npos) break;
+    if (at + 1 > bounds.back()) bounds.push_back(at + 1);
+  }
+  bounds.push_back(data.size());
+  const size_t pieces = bounds.size() - 1;
+  auto text = [&](size_t k) { return std::string_view(data).substr(bounds[k], bounds[k + 1] - bounds[k]); };
+  std::vector<PieceCounts> counts(pieces);
+  parallelFor(pieces, threads, [&](size_t k) { counts[k] = countPiece(text(k)); });
+  std::vector<ObjPiece> parsed(pieces);
+  std::vector<std::exception_ptr> errors(pieces);
+  std::vector<PieceCounts> before(pieces);  // of the pieces before each
+  for (size_t k = 1; k < pieces; k++)
+    before[k] = {before[k - 1].lines + counts[k - 1].lines, before[k - 1].vertices + counts[k - 1].vertices,
+                 before[k - 1].normals + counts[k - 1].normals};
+  parallelFor(pieces, threads, [&](size_t k) {
+    try {
+      parsed[k] = parsePiece(text(k), path, 1 + before[k].lines, before[k].vertices, before[k].normals);
+    } catch (...) {
+      errors[k] = std::current_exception();
+    }
+  });
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);  // the first in the file
+
+  // The pieces joined in file order.
+  PolygonMesh mesh = std::move(parsed[0].mesh);
+  std::vector<glm::vec3> normals = std::move(parsed[0].normals);
+  std::vector<int64_t> cornerNormal = std::move(parsed[0].cornerNormal);
+  for (size_t k = 1; k < pieces; k++) {
+    ObjPiece& p = parsed[k];
+    if (!p.cornerNormal.empty() && cornerNormal.empty()) cornerNormal.assign(mesh.faceVertices.size(), -1);
+    if (!cornerNormal.empty() && p.cornerNormal.empty()) p.cornerNormal.assign(p.mesh.faceVertices.size(), -1);
+    cornerNormal.insert(cornerNormal.end(), p.cornerNormal.begin(), p.cornerNormal.end());
+    const uint32_t offset = uint32_t(mesh.faceVertices.size());
+    for (size_t f = 1; f < p.mesh.faceStart.size(); f++) mesh.faceStart.push_back(offset + p.mesh.faceStart[f]);
+    mesh.faceVertices.insert(mesh.faceVertices.end(), p.mesh.faceVertices.begin(), p.mesh.faceVertices.end());
+    mesh.positions.insert(mesh.positions.end(), p.mesh.positions.begin(), p.mesh.positions.end());
+    normals.insert(normals.end(), p.normals.begin(), p.normals.end());
+    p = ObjPiece();
+  }
+
   // Positive indices may point forward, so ranges are checked once every vertex is known.
   for (size_t f = 0; f < mesh.faceCount(); f++)
     for (uint32_t i = 0; i < mesh.faceSize(f); i++)

@@ -17,7 +17,9 @@ std::string readWholeFile(const std::string& path);
 
 class TextReader {
  public:
-  TextReader(std::string_view text, const std::string& file) : text_(text), file_(file) {}
+  // `firstLine`: the line `text` starts at in the file (error messages name file lines).
+  TextReader(std::string_view text, const std::string& file, size_t firstLine = 1)
+      : text_(text), file_(file), line_(firstLine) {}
 
   bool atEnd() { return pos_ >= text_.size(); }
   size_t line() const { return line_; }
@@ -88,7 +90,7 @@ class TextReader {
   std::string_view text_;
   std::string file_;
   size_t pos_ = 0;
-  size_t line_ = 1;
+  size_t line_;
 };
 
 }  // namespace vgeo

@@ -111,5 +111,40 @@ TEST(BadVgeo, CheckRejectsAFileThatIsNotVgeo) {
   EXPECT_EQ(r.output, path + ": not a .vgeo file (bad magic)\n");
 }
 
+// A file of more than 8 MB is read in pieces on several threads: the mesh is the one one thread reads,
+// negative (relative) indices and normals looking back across the pieces' starts included, and the
+// error reported is the first in the file, on its line.
+TEST(ObjInPieces, TheMeshAndTheFirstErrorOfOneThread) {
+  const std::string dir = test::tempDir();
+  std::string text;
+  for (int i = 0; text.size() < (12u << 20); i++) {
+    text += "v " + std::to_string(i) + " 0 0\nv " + std::to_string(i) + " 1 0.5\nvn 0 0 1\n";
+    if (i > 0) text += "f -4//-1 -2//-1 -1//-2 -3//-1\n";
+    if (i % 7 == 0) text += "# a comment\n\n";
+  }
+  const std::string path = test::writeFile(dir, "strip.obj", text);
+  const SourceScene one = loadObj(path, 1), four = loadObj(path, 4);
+  EXPECT_GT(one.meshes[0].faceCount(), 100000u);
+  EXPECT_TRUE(one.meshes[0].positions == four.meshes[0].positions);
+  EXPECT_TRUE(one.meshes[0].faceStart == four.meshes[0].faceStart);
+  EXPECT_TRUE(one.meshes[0].faceVertices == four.meshes[0].faceVertices);
+  EXPECT_TRUE(one.meshes[0].cornerNormals == four.meshes[0].cornerNormals);
+  // Two bad lines, at 60% and 90% of the file: the first is reported.
+  std::string bad = text;
+  const size_t late = bad.find('\n', bad.size() * 9 / 10) + 1, early = bad.find('\n', bad.size() * 6 / 10) + 1;
+  bad.insert(late, "v 1 2\n");
+  bad.insert(early, "f 1 2 zz\n");
+  const size_t line = 1 + size_t(std::count(bad.begin(), bad.begin() + long(early), '\n'));
+  const std::string badPath = test::writeFile(dir, "bad.obj", bad);
+  for (int threads : {1, 4}) {
+    try {
+      loadObj(badPath, threads);
+      ADD_FAILURE() << "no error with " << threads << " threads";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()), badPath + ": line " + std::to_string(line) + ": bad face index 'zz'");
+    }
+  }
+}
+
 }  // namespace
 }  // namespace vgeo
