@@ -155,7 +155,7 @@ TEST_F(Viewer, ThePanelIsItsRectangleOverThePicture) {
                  std::to_string(x1) + "," + std::to_string(y1));
     EXPECT_LE(x0, 10);
     EXPECT_LE(y0, 10);
-    EXPECT_LT(x1, 8 + 460);
+    EXPECT_LT(x1, 8 + 490);
     EXPECT_LT(y1, window.height - 8);
     uint64_t differ = 0;
     for (int y = y0; y <= y1; y++)

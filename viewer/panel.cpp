@@ -50,7 +50,8 @@ void drawFrozenFrustum(const View& frozen, const View& draw, float farDistance) 
 void drawPanel(ViewState& s, const ViewStats& stats) {
   if (!s.panel) return;
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(440, 0), ImGuiCond_FirstUseEver);
+  // Its height follows what it holds, every frame (a view's legend or the pyramid's slider come and go).
+  ImGui::SetNextWindowSize(ImVec2(480, 0), ImGuiCond_Always);
   ImGui::Begin("vgeo");
   const FrameResult& f = stats.frame;
   const auto& c = f.counters;
