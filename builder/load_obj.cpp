@@ -26,12 +26,14 @@ size_t lineOfFace(const std::string& data, const std::string& path, size_t face)
   }
 }
 
-// What a piece of the file holds. cornerNormal: a corner's vn index (0-based, -1 for none), empty
-// until some corner names a normal (most large files have none, and this list would be the largest).
+// What a piece of the file holds. cornerNormal: a corner's vn index (0-based, -1 for none), kept only
+// from the first face that names a normal on (`named`; most large files have none, and this list
+// would be the largest), with -1 for the corners before.
 struct ObjPiece {
   PolygonMesh mesh;
   std::vector<glm::vec3> normals;
   std::vector<int64_t> cornerNormal;
+  bool named = false;
 };
 
 // A piece's lines, and its `v` and `vn` records: a record's keyword is the first word of its line
@@ -115,9 +117,12 @@ ObjPiece parsePiece(std::string_view text, const std::string& path, size_t first
         corners.push_back(uint32_t(c));
       }
       const bool named = std::any_of(rawNormals.begin(), rawNormals.end(), [](int64_t n) { return n >= 0; });
-      if (named && cornerNormal.empty()) cornerNormal.assign(mesh.faceVertices.size(), -1);
+      if (named && !piece.named) {
+        cornerNormal.assign(mesh.faceVertices.size(), -1);
+        piece.named = true;
+      }
       mesh.addFace(corners.data(), corners.size());
-      if (!cornerNormal.empty()) cornerNormal.insert(cornerNormal.end(), rawNormals.begin(), rawNormals.end());
+      if (piece.named) cornerNormal.insert(cornerNormal.end(), rawNormals.begin(), rawNormals.end());
     }
     in.skipLine();
   }
@@ -161,11 +166,13 @@ SourceScene loadObj(const std::string& path, int threads) {
   PolygonMesh mesh = std::move(parsed[0].mesh);
   std::vector<glm::vec3> normals = std::move(parsed[0].normals);
   std::vector<int64_t> cornerNormal = std::move(parsed[0].cornerNormal);
+  bool named = parsed[0].named;
   for (size_t k = 1; k < pieces; k++) {
     ObjPiece& p = parsed[k];
-    if (!p.cornerNormal.empty() && cornerNormal.empty()) cornerNormal.assign(mesh.faceVertices.size(), -1);
-    if (!cornerNormal.empty() && p.cornerNormal.empty()) p.cornerNormal.assign(p.mesh.faceVertices.size(), -1);
-    cornerNormal.insert(cornerNormal.end(), p.cornerNormal.begin(), p.cornerNormal.end());
+    if (p.named && !named) cornerNormal.assign(mesh.faceVertices.size(), -1);
+    if (named && !p.named) p.cornerNormal.assign(p.mesh.faceVertices.size(), -1);
+    named = named || p.named;
+    if (named) cornerNormal.insert(cornerNormal.end(), p.cornerNormal.begin(), p.cornerNormal.end());
     const uint32_t offset = uint32_t(mesh.faceVertices.size());
     for (size_t f = 1; f < p.mesh.faceStart.size(); f++) mesh.faceStart.push_back(offset + p.mesh.faceStart[f]);
     mesh.faceVertices.insert(mesh.faceVertices.end(), p.mesh.faceVertices.begin(), p.mesh.faceVertices.end());
@@ -181,7 +188,7 @@ SourceScene loadObj(const std::string& path, int threads) {
         throw InputError(path, "line " + std::to_string(lineOfFace(data, path, f)) + ": face index " +
                                    std::to_string(mesh.face(f)[i] + 1) + " is out of range (" +
                                    std::to_string(mesh.positions.size()) + " vertices)");
-  for (size_t f = 0; f < mesh.faceCount() && !cornerNormal.empty(); f++)
+  for (size_t f = 0; f < mesh.faceCount() && named; f++)
     for (uint32_t i = 0; i < mesh.faceSize(f); i++) {
       int64_t n = cornerNormal[mesh.faceStart[f] + i];
       if (n >= int64_t(normals.size()))
@@ -189,7 +196,7 @@ SourceScene loadObj(const std::string& path, int threads) {
                                    std::to_string(n + 1) + " is out of range (" + std::to_string(normals.size()) +
                                    " normals)");
     }
-  if (!cornerNormal.empty()) {
+  if (named) {
     mesh.cornerNormals.resize(mesh.faceVertices.size(), glm::vec3(0.0f));  // zero: its face's normal
     for (size_t c = 0; c < mesh.faceVertices.size(); c++)
       if (cornerNormal[c] >= 0) mesh.cornerNormals[c] = normals[size_t(cornerNormal[c])];

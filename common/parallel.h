@@ -5,6 +5,7 @@
 // parallel sort gives exactly std::sort's result and the output is the same whatever `threads`.
 #pragma once
 
+#include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 #include <tbb/parallel_sort.h>
@@ -16,10 +17,12 @@
 
 namespace vgeo {
 
-// Runs fn() with at most `threads` threads (the caller's among them) for the parallel calls inside it.
+// Runs fn() with at most `threads` threads (the caller's among them) for the parallel calls inside it;
+// no more than the machine has (oneTBB warns on stderr when asked for more, and results do not depend
+// on the count).
 template <class Fn>
 void withThreads(int threads, Fn&& fn) {
-  tbb::task_arena arena(std::max(threads, 1));
+  tbb::task_arena arena(std::clamp(threads, 1, std::max(tbb::info::default_concurrency(), 1)));
   arena.execute(std::forward<Fn>(fn));
 }
 

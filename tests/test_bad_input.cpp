@@ -111,6 +111,20 @@ TEST(BadVgeo, CheckRejectsAFileThatIsNotVgeo) {
   EXPECT_EQ(r.output, path + ": not a .vgeo file (bad magic)\n");
 }
 
+// Normals named from the first face on are kept for every corner; a face without them shades flat
+// (zero: its face's normal).
+TEST(GoodInput, ObjCornerNormalsFromTheFirstFace) {
+  const std::string dir = test::tempDir();
+  const std::string path = test::writeFile(
+      dir, "n.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvn 0 0 1\nvn 0 1 0\nf 1//1 2//2 3//1\nf 2 4 3\n");
+  const PolygonMesh mesh = loadObj(path).meshes[0];
+  ASSERT_EQ(mesh.cornerNormals.size(), 6u);
+  EXPECT_EQ(mesh.cornerNormals[0], glm::vec3(0, 0, 1));
+  EXPECT_EQ(mesh.cornerNormals[1], glm::vec3(0, 1, 0));
+  EXPECT_EQ(mesh.cornerNormals[2], glm::vec3(0, 0, 1));
+  EXPECT_EQ(mesh.cornerNormals[3], glm::vec3(0.0f));
+}
+
 // A file of more than 8 MB is read in pieces on several threads: the mesh is the one one thread reads,
 // negative (relative) indices and normals looking back across the pieces' starts included, and the
 // error reported is the first in the file, on its line.
