@@ -97,16 +97,24 @@ struct OrientReport {
   size_t components = 0;               // faces joined through edges of exactly two faces
   size_t nonOrientableComponents = 0;  // e.g. a Moebius strip: left as they are
 };
-// An edge of a face: its key (min vertex << 32 | max vertex) and the corner it starts at in its face.
+// An edge of a face: its vertices, the smaller first, and the corner it starts at in its face. Twelve
+// bytes, no padding: repair sorts one for every corner of the mesh.
 struct CornerEdge {
-  uint64_t key;
-  uint32_t corner;
+  uint32_t first, second, corner;
+  uint64_t key() const { return uint64_t(first) << 32 | second; }
+  bool operator<(const CornerEdge& o) const {
+    return first != o.first ? first < o.first : second != o.second ? second < o.second : corner < o.corner;
+  }
+};
+// What orientation leaves for repair's split step, which would otherwise make both again: every corner's
+// edge of the oriented mesh sorted by (first, second, corner), and each corner's face.
+struct OrientedEdges {
+  std::vector<CornerEdge> edges;
+  std::vector<uint32_t> cornerFace;
 };
 // Turns faces so that every component walks each of its two-face edges once each way, keeping the
 // orientation of the larger part (by area) of each component. Deterministic; positions are not moved.
-// `edges`, when given, receives every corner's edge of the oriented mesh sorted by (key, corner), which
-// repair's split step would otherwise sort again.
-OrientReport orientFaces(PolygonMesh& mesh, int threads = 1, std::vector<CornerEdge>* edges = nullptr);
+OrientReport orientFaces(PolygonMesh& mesh, int threads = 1, OrientedEdges* edges = nullptr);
 
 // ---- topology.cpp -----------------------------------------------------------------------------------
 struct SurfaceTopology {

@@ -18,7 +18,7 @@
 
 namespace vgeo {
 
-OrientReport orientFaces(PolygonMesh& mesh, int threads, std::vector<CornerEdge>* sortedEdges) {
+OrientReport orientFaces(PolygonMesh& mesh, int threads, OrientedEdges* oriented) {
   OrientReport report;
   const size_t faceCount = mesh.faceCount();
   // Every corner's edge, sorted by (key, corner): an edge's faces are adjacent, in face order (a face
@@ -30,45 +30,25 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads, std::vector<CornerEdge>
       for (uint32_t i = 0, n = mesh.faceSize(f); i < n; i++) {
         uint32_t a = mesh.face(f)[i], b = mesh.face(f)[(i + 1) % n];
         cornerFace[mesh.faceStart[f] + i] = uint32_t(f);
-        halfEdges[mesh.faceStart[f] + i] = {uint64_t(std::min(a, b)) << 32 | std::max(a, b), mesh.faceStart[f] + i};
+        halfEdges[mesh.faceStart[f] + i] = {std::min(a, b), std::max(a, b), mesh.faceStart[f] + i};
       }
   });
-  parallelSort(halfEdges, threads, [](const CornerEdge& x, const CornerEdge& y) {
-    return x.key != y.key ? x.key < y.key : x.corner < y.corner;
-  });
-  // From min to max in face order (before any face turns).
-  auto forward = [&](const CornerEdge& e) { return mesh.faceVertices[e.corner] == uint32_t(e.key >> 32); };
-
-  // Face adjacency through two-face edges; `same` when both faces walk the edge the same way (one of
-  // them must turn for the pair to agree).
-  struct Link {
-    uint32_t other;
-    bool same;
-  };
-  std::vector<uint32_t> linkStart(faceCount + 1, 0);
-  std::vector<std::array<uint32_t, 2>> pairs;
-  std::vector<bool> pairSame;
+  parallelSort(halfEdges, threads);
+  // Across each two-face edge, the corner of the other face that starts it: a face's neighbours are
+  // its corners' partners, visited in the order of their edges' keys.
+  std::vector<uint32_t> partner(mesh.faceVertices.size(), UINT32_MAX);
   for (size_t i = 0; i < halfEdges.size();) {
     size_t j = i;
-    while (j < halfEdges.size() && halfEdges[j].key == halfEdges[i].key) j++;
-    const uint32_t f0 = cornerFace[halfEdges[i].corner], f1 = j - i == 2 ? cornerFace[halfEdges[i + 1].corner] : f0;
-    if (j - i == 2 && f0 != f1) {
-      pairs.push_back({f0, f1});
-      pairSame.push_back(forward(halfEdges[i]) == forward(halfEdges[i + 1]));
-      linkStart[f0 + 1]++;
-      linkStart[f1 + 1]++;
-    }
+    while (j < halfEdges.size() && halfEdges[j].key() == halfEdges[i].key()) j++;
+    const uint32_t c0 = halfEdges[i].corner, c1 = j - i == 2 ? halfEdges[i + 1].corner : c0;
+    if (j - i == 2 && cornerFace[c0] != cornerFace[c1]) partner[c0] = c1, partner[c1] = c0;
     i = j;
   }
-  std::partial_sum(linkStart.begin(), linkStart.end(), linkStart.begin());
-  std::vector<Link> links(linkStart.back());
-  {
-    std::vector<uint32_t> fill(linkStart.begin(), linkStart.end() - 1);
-    for (size_t p = 0; p < pairs.size(); p++) {
-      links[fill[pairs[p][0]]++] = {pairs[p][1], pairSame[p]};
-      links[fill[pairs[p][1]]++] = {pairs[p][0], pairSame[p]};
-    }
-  }
+  auto edgeKey = [&](uint32_t c) {
+    const uint32_t f = cornerFace[c], next = c + 1 == mesh.faceStart[f + 1] ? mesh.faceStart[f] : c + 1;
+    const uint32_t a = mesh.faceVertices[c], b = mesh.faceVertices[next];
+    return uint64_t(std::min(a, b)) << 32 | std::max(a, b);
+  };
 
   auto area = [&](size_t f) {
     const uint32_t* c = mesh.face(f);
@@ -81,6 +61,7 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads, std::vector<CornerEdge>
   constexpr uint8_t kUnseen = 2;
   std::vector<uint8_t> flip(faceCount, kUnseen);
   std::vector<uint32_t> component, stack;
+  std::vector<std::pair<uint64_t, uint32_t>> neighbours;  // (edge key, corner) of the face being visited
   for (size_t seed = 0; seed < faceCount; seed++) {
     if (flip[seed] != kUnseen) continue;
     report.components++;
@@ -92,9 +73,15 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads, std::vector<CornerEdge>
       uint32_t f = stack.back();
       stack.pop_back();
       component.push_back(f);
-      for (uint32_t l = linkStart[f]; l < linkStart[f + 1]; l++) {
-        uint8_t want = uint8_t(flip[f] ^ uint8_t(links[l].same));
-        uint32_t g = links[l].other;
+      neighbours.clear();
+      for (uint32_t c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; c++)
+        if (partner[c] != UINT32_MAX) neighbours.push_back({edgeKey(c), c});
+      std::sort(neighbours.begin(), neighbours.end());
+      for (const auto& [key, c] : neighbours) {
+        // Both faces walk the edge the same way when their corners on it start at the same vertex.
+        const bool same = mesh.faceVertices[c] == mesh.faceVertices[partner[c]];
+        uint8_t want = uint8_t(flip[f] ^ uint8_t(same));
+        uint32_t g = cornerFace[partner[c]];
         if (flip[g] == kUnseen) {
           flip[g] = want;
           stack.push_back(g);
@@ -109,7 +96,8 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads, std::vector<CornerEdge>
     if (turned > kept)
       for (uint32_t f : component) flip[f] ^= 1u;
   }
-  if (sortedEdges) {
+  std::vector<uint32_t>().swap(partner);
+  if (oriented) {
     // A turned face keeps its edges; the edge that started at corner k of n starts at n-2-k (mod n),
     // and the order stays (key, corner), since a key's corners are in distinct faces, in face order.
     parallelForRanges(halfEdges.size(), threads, [&](size_t begin, size_t end) {
@@ -120,7 +108,8 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads, std::vector<CornerEdge>
         halfEdges[i].corner = start + (2 * n - 2 - (c - start)) % n;
       }
     });
-    *sortedEdges = std::move(halfEdges);
+    oriented->edges = std::move(halfEdges);
+    oriented->cornerFace = std::move(cornerFace);  // a face's corners stay its own when it turns
   }
   for (size_t f = 0; f < faceCount; f++)
     if (flip[f] == 1) {

@@ -226,29 +226,25 @@ size_t dropDuplicateFaces(PolygonMesh& faces, int threads) {
 
 // Step 5 of the file's head: every face corner a wedge, wedges joined across manifold edges, one output
 // vertex for each fan (split copies counted in the report).
-// `edges`: every corner's edge sorted by (key, corner) (orientFaces makes them). `singleEdges`: edges
-// with one face, which are the boundary edges when no vertex was split.
-PolygonMesh splitNonManifold(const PolygonMesh& faces, const std::vector<CornerEdge>& edges, RepairReport& report,
-                             int threads, size_t& singleEdges) {
+// `oriented`: orientFaces' sorted corner edges and corner faces, freed as soon as they are used (this
+// step sets repair's peak memory). `singleEdges`: edges with one face, which are the boundary edges when
+// no vertex was split. Takes the positions from `faces`.
+PolygonMesh splitNonManifold(PolygonMesh& faces, OrientedEdges&& oriented, RepairReport& report, size_t& singleEdges) {
   const size_t cornerCount = faces.faceVertices.size();
-  std::vector<uint32_t> cornerFace(cornerCount);
-  parallelForRanges(faces.faceCount(), threads, [&](size_t begin, size_t end) {
-    for (size_t f = begin; f < end; f++)
-      for (uint32_t c = faces.faceStart[f]; c < faces.faceStart[f + 1]; c++) cornerFace[c] = uint32_t(f);
-  });
+  const std::vector<CornerEdge>& edges = oriented.edges;
+  const std::vector<uint32_t>& cornerFace = oriented.cornerFace;
   auto nextCorner = [&](uint32_t c) {
     uint32_t f = cornerFace[c];
     return c + 1 == faces.faceStart[f + 1] ? faces.faceStart[f] : c + 1;
   };
   // From min to max in face order: the corner's vertex is the key's smaller one.
-  auto forward = [&](const CornerEdge& e) { return faces.faceVertices[e.corner] == uint32_t(e.key >> 32); };
+  auto forward = [&](const CornerEdge& e) { return faces.faceVertices[e.corner] == e.first; };
 
-  UnionFind wedges(cornerCount);
   std::vector<bool> isolated(cornerCount, false);    // wedges that get a vertex of their own
   std::vector<std::pair<uint32_t, uint32_t>> pairs;  // the two corners of each manifold edge
   for (size_t i = 0; i < edges.size();) {
     size_t j = i;
-    while (j < edges.size() && edges[j].key == edges[i].key) j++;
+    while (j < edges.size() && edges[j].key() == edges[i].key()) j++;
     size_t count = j - i;
     if (count == 1) {
       singleEdges++;
@@ -270,6 +266,8 @@ PolygonMesh splitNonManifold(const PolygonMesh& faces, const std::vector<CornerE
     if (partner != SIZE_MAX) pairs.push_back({edges[i].corner, edges[partner].corner});
     i = j;
   }
+  std::vector<CornerEdge>().swap(oriented.edges);
+  UnionFind wedges(cornerCount);
   // Join the wedges across manifold edges; c0 runs a->b in its face, c1 b->a in its. An isolated wedge
   // (at an endpoint of an edge where its face was detached) joins nothing: it gets a vertex of its own,
   // which opens its face's other edge at that corner into a boundary. Such an edge joins nothing at
@@ -280,44 +278,46 @@ PolygonMesh splitNonManifold(const PolygonMesh& faces, const std::vector<CornerE
     wedges.unite(c0, nextCorner(c1));
     wedges.unite(nextCorner(c0), c1);
   }
-  std::vector<uint32_t> root(cornerCount);
-  for (uint32_t c = 0; c < cornerCount; c++) root[c] = wedges.find(c);
-  for (uint32_t c = 0; c < cornerCount; c++)
-    if (isolated[c]) root[c] = UINT32_MAX;  // decided below, per wedge
+  std::vector<std::pair<uint32_t, uint32_t>>().swap(pairs);
+  std::vector<uint32_t>().swap(oriented.cornerFace);
 
-  // Output vertices: the first class of each vertex keeps the vertex; others become copies.
+  // Output vertices: the first class of each vertex keeps the vertex; others become copies. An
+  // isolated wedge is a class of its own.
   std::vector<uint32_t> rootVertex(cornerCount, UINT32_MAX);
   std::vector<uint32_t> firstRoot(faces.positions.size(), UINT32_MAX);
   std::vector<uint32_t> newCorner(cornerCount);
   PolygonMesh out;
-  out.positions = faces.positions;
+  out.positions = std::move(faces.positions);
   for (uint32_t c = 0; c < cornerCount; c++) {
     uint32_t v = faces.faceVertices[c];
-    if (root[c] == UINT32_MAX) {
+    if (isolated[c]) {
       if (firstRoot[v] == UINT32_MAX)
         firstRoot[v] = cornerCount;  // the vertex itself is taken
       else {
-        out.positions.push_back(faces.positions[v]);
+        const glm::vec3 p = out.positions[v];  // copied: push_back may move the array
+        out.positions.push_back(p);
         v = uint32_t(out.positions.size() - 1);
         report.splitVertices++;
       }
       newCorner[c] = v;
       continue;
     }
-    if (rootVertex[root[c]] == UINT32_MAX) {
+    const uint32_t root = wedges.find(c);
+    if (rootVertex[root] == UINT32_MAX) {
       if (firstRoot[v] == UINT32_MAX) {
-        firstRoot[v] = root[c];
-        rootVertex[root[c]] = v;
+        firstRoot[v] = root;
+        rootVertex[root] = v;
       } else {
-        out.positions.push_back(faces.positions[v]);
-        rootVertex[root[c]] = uint32_t(out.positions.size() - 1);
+        const glm::vec3 p = out.positions[v];
+        out.positions.push_back(p);
+        rootVertex[root] = uint32_t(out.positions.size() - 1);
         report.splitVertices++;
       }
     }
-    newCorner[c] = rootVertex[root[c]];
+    newCorner[c] = rootVertex[root];
   }
-  out.faceStart = faces.faceStart;
-  out.faceVertices = newCorner;
+  out.faceStart = std::move(faces.faceStart);
+  out.faceVertices = std::move(newCorner);
   out.cornerNormals = std::move(faces.cornerNormals);
   return out;
 }
@@ -363,21 +363,25 @@ size_t countBoundaryEdges(const PolygonMesh& out, int threads) {
 
 RepairReport repairMesh(PolygonMesh& mesh, const std::string& file, int threads) {
   RepairReport report;
-  const std::vector<bool> used = checkPositions(mesh, file);
-  const std::vector<uint32_t> weld = weldPositions(mesh, used, report.weldedVertices, threads);
-  PolygonMesh faces = weldFaces(mesh, weld, report.degenerateFaces);
+  PolygonMesh faces;
+  {
+    const std::vector<bool> used = checkPositions(mesh, file);
+    const std::vector<uint32_t> weld = weldPositions(mesh, used, report.weldedVertices, threads);
+    faces = weldFaces(mesh, weld, report.degenerateFaces);
+    mesh = PolygonMesh();  // its positions moved to `faces`; its faces are not needed again
+  }
   report.duplicateFaces = dropDuplicateFaces(faces, threads);
   if (faces.faceCount() == 0) throw InputError(file, "empty mesh: every face is degenerate or a duplicate");
   report.dissolvedVertices = dissolveFolds(faces, report.degenerateFaces);
   if (faces.faceCount() == 0) throw InputError(file, "empty mesh: every face is degenerate or a duplicate");
-  std::vector<CornerEdge> edges;
+  OrientedEdges edges;
   const OrientReport orient = orientFaces(faces, threads, &edges);
   report.flippedFaces = orient.flippedFaces;
   report.components = orient.components;
   report.nonOrientableComponents = orient.nonOrientableComponents;
   size_t singleEdges = 0;
-  PolygonMesh out = splitNonManifold(faces, edges, report, threads, singleEdges);
-  std::vector<CornerEdge>().swap(edges);
+  PolygonMesh out = splitNonManifold(faces, std::move(edges), report, singleEdges);
+  faces = PolygonMesh();
   report.unusedVertices = dropUnusedVertices(out, report.weldedVertices);
   // Without a split vertex the edges are those just counted (dropping unused vertices renumbers, one
   // to one); a split opens edges into boundaries, so they are counted again.
