@@ -120,23 +120,31 @@ std::vector<BuildCluster> clustersFromFaces(const std::vector<uint32_t>& faceSta
                                             const std::vector<glm::vec3>& positions, int threads, bool keepFaces,
                                             uint32_t targetTriangles, const std::vector<uint32_t>* wedges) {
   const size_t faceCount = faceStart.size() - 1;
-  Graph graph = dualGraph(faceStart, faceVertices, threads);
-  std::vector<uint8_t> weights(faceCount);
-  std::vector<glm::vec3> centroids(faceCount);
-  for (size_t f = 0; f < faceCount; f++) {
-    uint32_t n = faceStart[f + 1] - faceStart[f];
-    weights[f] = uint8_t(n - 2);
-    glm::vec3 sum(0.0f);
-    for (uint32_t c = faceStart[f]; c < faceStart[f + 1]; c++) sum += positions[faceVertices[c]];
-    centroids[f] = sum / float(n);
+  Partition parts;
+  {  // the graph and its node data are freed before the clusters are made
+    Graph graph = dualGraph(faceStart, faceVertices, threads);
+    std::vector<uint8_t> weights(faceCount);
+    std::vector<glm::vec3> centroids(faceCount);
+    for (size_t f = 0; f < faceCount; f++) {
+      uint32_t n = faceStart[f + 1] - faceStart[f];
+      weights[f] = uint8_t(n - 2);
+      glm::vec3 sum(0.0f);
+      for (uint32_t c = faceStart[f]; c < faceStart[f + 1]; c++) sum += positions[faceVertices[c]];
+      centroids[f] = sum / float(n);
+    }
+    const std::vector<uint32_t>& limited = wedges ? *wedges : faceVertices;
+    auto fits = [&](const uint32_t* faces, size_t count) { return fitsVertexLimit(faceStart, limited, faces, count); };
+    parts = partitionGraph(graph, weights, centroids, VGEO_MAX_CLUSTER_TRIANGLES, targetTriangles, threads, fits);
   }
-  const std::vector<uint32_t>& limited = wedges ? *wedges : faceVertices;
-  auto fits = [&](const uint32_t* faces, size_t count) { return fitsVertexLimit(faceStart, limited, faces, count); };
-  Partition parts =
-      partitionGraph(graph, weights, centroids, VGEO_MAX_CLUSTER_TRIANGLES, targetTriangles, threads, fits);
   std::vector<BuildCluster> clusters(parts.partCount());
   for (size_t p = 0; p < parts.partCount(); p++) {
     BuildCluster& c = clusters[p];
+    size_t corners = 0;  // of the part's triangles: its arrays are allocated once, at their size
+    for (uint32_t i = parts.partStart[p]; i < parts.partStart[p + 1]; i++)
+      corners += 3 * (faceStart[parts.order[i] + 1] - faceStart[parts.order[i]] - 2);
+    c.indices.reserve(corners);
+    if (keepFaces) c.cageFaces.reserve(parts.partStart[p + 1] - parts.partStart[p]);
+    if (wedges) c.wedges.reserve(corners);
     for (uint32_t i = parts.partStart[p]; i < parts.partStart[p + 1]; i++) {
       uint32_t f = parts.order[i];
       const size_t first = c.indices.size();

@@ -6,10 +6,10 @@
 // the group's (error, sphere) as their self pair.
 #include <algorithm>
 #include <cmath>
-#include <memory>
 
 #include "../common/parallel.h"
 #include "builder.h"
+#include "chord_rule.h"
 
 namespace vgeo {
 namespace {
@@ -47,62 +47,6 @@ BuildGroup makeGroup(std::vector<BuildCluster>& clusters, const std::vector<uint
   return g;
 }
 
-// Every undirected edge of every cluster made so far, as an open-addressing hash set of (min << 32 | max).
-// Threads insert with compare-and-swap (being a set, its contents do not depend on the order); before
-// each batch, reserve() grows it so that it stays at most two thirds full (half full took twice the
-// memory, 77 bytes a leaf triangle, for chord checks no faster). (A home slot following the
-// smaller vertex id was tried for cache locality: vertices that survive many levels gather dozens of
-// edges, and linear probing then took 100x longer.)
-class EdgeSet {
- public:
-  bool contains(uint64_t key) const {
-    for (size_t i = hash(key) & mask_;; i = (i + 1) & mask_) {
-      uint64_t slot = __atomic_load_n(&slots_[i], __ATOMIC_RELAXED);
-      if (slot == key) return true;
-      if (slot == kEmpty) return false;
-    }
-  }
-  // Makes room for `triangles` more triangles' edges; not thread-safe.
-  void reserve(size_t triangles) {
-    size_t needed = (count_ + 3 * triangles) * 3 / 2;
-    if (needed <= capacity_) return;
-    size_t capacity = std::max<size_t>(capacity_, 1024);
-    while (capacity < needed) capacity *= 2;
-    std::unique_ptr<uint64_t[]> old = std::move(slots_);
-    size_t oldCapacity = capacity_;
-    slots_.reset(new uint64_t[capacity]);
-    std::fill(slots_.get(), slots_.get() + capacity, kEmpty);
-    capacity_ = capacity;
-    mask_ = capacity - 1;
-    for (size_t i = 0; i < oldCapacity; i++)
-      if (old[i] != kEmpty) insert(old[i]);
-  }
-  void insertTriangles(const std::vector<uint32_t>& indices) {
-    size_t added = 0;  // counted here, added once: one counter shared by every thread's inserts would not scale
-    for (size_t t = 0; t + 2 < indices.size(); t += 3)
-      for (int k = 0; k < 3; k++) {
-        uint32_t a = indices[t + size_t(k)], b = indices[t + size_t((k + 1) % 3)];
-        added += insert(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
-      }
-    __atomic_fetch_add(&count_, added, __ATOMIC_RELAXED);
-  }
-
- private:
-  static constexpr uint64_t kEmpty = ~uint64_t(0);
-  static size_t hash(uint64_t k) { return size_t((k * 0x9e3779b97f4a7c15ull) >> 20); }
-  // Whether the key was new.
-  bool insert(uint64_t key) {
-    for (size_t i = hash(key) & mask_;; i = (i + 1) & mask_) {
-      uint64_t expected = kEmpty;
-      if (__atomic_compare_exchange_n(&slots_[i], &expected, key, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED))
-        return true;
-      if (expected == key) return false;
-    }
-  }
-  std::unique_ptr<uint64_t[]> slots_;
-  size_t capacity_ = 0, mask_ = 0, count_ = 0;
-};
-
 // Repair leaves every edge with at most two faces of opposite orientation, but a face's triangulation
 // may still fold onto a neighbour (a quad's diagonal running along another face's edge, faces meeting
 // at a sliver): a directed edge held by two leaf triangles could never be covered once by a cut.
@@ -123,66 +67,6 @@ void checkNoFold(const std::vector<BuildCluster>& clusters, const std::vector<gl
       throw SurfaceError(text);
     }
 }
-
-// The chord rule of a round: a new edge between two border vertices (a chord) is made by at most one
-// group of the round, and never where some cluster already has that edge. The set of edges made so far
-// grows a round at a time, after the round: its chords were checked against earlier rounds only.
-class ChordRule {
- public:
-  ChordRule(size_t vertices, uint64_t leafTriangles) : holders_(vertices * kHolders, UINT32_MAX) {
-    // Leaves and every level above (which halves each time): about twice the leaf triangles, 1.5 edges each.
-    edges_.reserve(leafTriangles);
-  }
-  // Adds clusters [first, end) of `clusters` to the set of edges made so far.
-  void addClusters(const std::vector<BuildCluster>& clusters, size_t first, int threads) {
-    uint64_t triangles = 0;
-    for (size_t i = first; i < clusters.size(); i++) triangles += clusters[i].indices.size() / 3;
-    edges_.reserve(triangles);
-    parallelFor(clusters.size() - first, threads,
-                [&](size_t i) { edges_.insertTriangles(clusters[first + i].indices); });
-  }
-  // Records which of this round's groups hold each vertex (up to kHolders; a vertex of more groups
-  // takes no chord).
-  void startRound(const std::vector<GroupPlan>& plans, const std::vector<BuildCluster>& clusters, int threads) {
-    const size_t vertices = holders_.size() / kHolders;
-    holderCount_.assign(vertices, 0);
-    round_ += roundGroups_;  // this round's groups hold ids round_ + g: entries of earlier rounds are below
-    roundGroups_ = uint32_t(plans.size());
-    parallelFor(plans.size(), threads, [&](size_t g) {
-      // A group's vertex is counted once: a group runs on one thread, so it sees its own earlier
-      // entry; one beyond kHolders is not stored, but then the vertex takes no chord anyway.
-      const uint32_t id = round_ + uint32_t(g);
-      for (uint32_t m : plans[g].clusters)
-        for (uint32_t v : clusters[m].indices) {
-          uint32_t* held = &holders_[size_t(v) * kHolders];
-          bool seen = false;
-          for (uint32_t i = 0; i < kHolders && !seen; i++) seen = __atomic_load_n(&held[i], __ATOMIC_RELAXED) == id;
-          if (seen) continue;
-          uint8_t slot = __atomic_fetch_add(&holderCount_[v], uint8_t(1), __ATOMIC_RELAXED);
-          if (slot < kHolders) __atomic_store_n(&held[slot], id, __ATOMIC_RELAXED);
-        }
-    });
-  }
-  // Whether group g of this round may make the chord (a, b).
-  bool allowed(uint32_t g, uint32_t a, uint32_t b) const {
-    if (edges_.contains(uint64_t(std::min(a, b)) << 32 | std::max(a, b))) return false;
-    if (holderCount_[a] > kHolders || holderCount_[b] > kHolders) return false;
-    // Of the groups holding both ends, only the first may make the chord this round.
-    for (uint32_t i = 0; i < holderCount_[a]; i++)
-      for (uint32_t j = 0; j < holderCount_[b]; j++)
-        if (holders_[size_t(a) * kHolders + i] == holders_[size_t(b) * kHolders + j] &&
-            holders_[size_t(a) * kHolders + i] < round_ + g)
-          return false;
-    return true;
-  }
-
- private:
-  static constexpr uint32_t kHolders = 4;
-  EdgeSet edges_;
-  std::vector<uint8_t> holderCount_;
-  std::vector<uint32_t> holders_;
-  uint32_t round_ = 0, roundGroups_ = 0;  // the first id of this round's groups, and how many
-};
 
 // Leaf clusters of the mesh, with their own spheres and (from the limit surface, when given) errors.
 std::vector<BuildCluster> makeLeafClusters(const PolygonMesh& mesh, const BuildOptions& options) {
@@ -215,6 +99,7 @@ std::vector<GroupOutcome> simplifyGroups(const std::vector<GroupPlan>& plans, co
     outcomes[g].simplified = simplifyGroup(indices, positions, chordAllowed, openEdges);
     if (outcomes[g].simplified.halved)
       outcomes[g].produced = splitIntoClusters(outcomes[g].simplified.indices, positions, options.shading);
+    std::vector<uint32_t>().swap(outcomes[g].simplified.indices);  // held as the clusters now
   });
   return outcomes;
 }
@@ -284,8 +169,8 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
   dag.clusters = makeLeafClusters(mesh, options);
   leaves.stop();
   StageTimer firstChords(options.times, "chord rule");
-  ChordRule chords(mesh.positions.size(), mesh.triangleCount());
-  chords.addClusters(dag.clusters, 0, options.threads);
+  ChordRule chords(mesh.positions.size());
+  chords.addClusters(dag.clusters, 0, nullptr, options.threads);
   firstChords.stop();
   std::vector<uint32_t> active(dag.clusters.size());
   for (uint32_t i = 0; i < active.size(); i++) active[i] = i;
@@ -319,7 +204,7 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
       if (outcomes[g].simplified.halved) doneWork += double(triangleCount(dag.clusters, plans[g].clusters));
     adding.stop();
     StageTimer newChords(options.times, "chord rule");
-    chords.addClusters(dag.clusters, firstProduced, options.threads);
+    chords.addClusters(dag.clusters, firstProduced, &next, options.threads);
     newChords.stop();
     const uint32_t producedCount = uint32_t(dag.clusters.size() - firstProduced);
     if (producedCount == 0) break;  // no group could be halved: what is left are the roots

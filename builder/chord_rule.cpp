@@ -1,0 +1,141 @@
+// chord_rule.cpp: the edges made so far and the groups holding each vertex in a round (chord_rule.h).
+// Nanite locks group borders so that neighbouring groups simplify independently; a border vertex may
+// still gain an edge to another border vertex of its group (a chord), which a neighbouring group could
+// make too, or which an earlier cluster may already hold. The set of made edges answers the second;
+// each vertex's holders this round the first.
+#include "chord_rule.h"
+
+#include <algorithm>
+
+#include "../common/parallel.h"
+
+namespace vgeo {
+
+bool EdgeSet::contains(uint64_t key) const {
+  if (capacity_ == 0) return false;
+  for (size_t i = home(key);; i = next(i)) {
+    uint64_t slot = __atomic_load_n(&slots_[i], __ATOMIC_RELAXED);
+    if (slot == key) return true;
+    if (slot == kEmpty) return false;
+  }
+}
+
+bool EdgeSet::insert(uint64_t key) {
+  for (size_t i = home(key);; i = next(i)) {
+    uint64_t expected = kEmpty;
+    if (__atomic_compare_exchange_n(&slots_[i], &expected, key, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED))
+      return true;
+    if (expected == key) return false;
+  }
+}
+
+bool EdgeSet::insertTriangles(const std::vector<uint32_t>& indices) {
+  // Up to 3 new edges a triangle are promised first, so that the table never fills: linear probing
+  // would not end in a full one.
+  const size_t promise = indices.size();
+  if (__atomic_add_fetch(&promised_, promise, __ATOMIC_RELAXED) > limit_) {
+    __atomic_sub_fetch(&promised_, promise, __ATOMIC_RELAXED);
+    return false;
+  }
+  size_t added = 0;  // counted here, added once: one counter shared by every thread's inserts would not scale
+  for (size_t t = 0; t + 2 < indices.size(); t += 3)
+    for (int k = 0; k < 3; k++) {
+      uint32_t a = indices[t + size_t(k)], b = indices[t + size_t((k + 1) % 3)];
+      added += insert(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
+    }
+  __atomic_add_fetch(&count_, added, __ATOMIC_RELAXED);
+  __atomic_sub_fetch(&promised_, promise - added, __ATOMIC_RELAXED);
+  return true;
+}
+
+template <class Keep>
+void EdgeSet::retainAndReserve(Keep&& keep, size_t edges, int threads) {
+  // The edges kept, gathered a range of slots at a time, then the table made again at its new size
+  // (the old one freed first: the two are never held at once).
+  constexpr size_t kRange = 65536;
+  std::vector<std::vector<uint64_t>> kept((capacity_ + kRange - 1) / kRange);
+  parallelFor(kept.size(), threads, [&](size_t r) {
+    for (size_t i = r * kRange; i < std::min(capacity_, (r + 1) * kRange); i++)
+      if (slots_[i] != kEmpty && keep(slots_[i])) kept[r].push_back(slots_[i]);
+  });
+  slots_.reset();
+  std::vector<uint64_t> keys;
+  size_t total = 0;
+  for (const auto& k : kept) total += k.size();
+  keys.reserve(total);
+  for (auto& k : kept) {
+    keys.insert(keys.end(), k.begin(), k.end());
+    std::vector<uint64_t>().swap(k);
+  }
+  capacity_ = std::max<size_t>((keys.size() + edges) * 3 / 2 + 1, 1024);
+  limit_ = capacity_ - capacity_ / 10;
+  slots_.reset(new uint64_t[capacity_]);
+  parallelForRanges(capacity_, threads,
+                    [&](size_t begin, size_t end) { std::fill(&slots_[begin], &slots_[end], kEmpty); });
+  parallelForRanges(keys.size(), threads, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; i++) insert(keys[i]);
+  });
+  count_ = promised_ = keys.size();
+}
+
+void ChordRule::addClusters(const std::vector<BuildCluster>& clusters, size_t first,
+                            const std::vector<uint32_t>* active, int threads) {
+  // Room for about 1.6 edges a new triangle (a surface's 1.5 and the clusters' borders); inserting
+  // stops short of a full table when that was too few (a triangle soup has 3), and then the batch,
+  // a set's insertion being idempotent, runs again with room for 3 a triangle.
+  uint64_t triangles = 0;
+  for (size_t i = first; i < clusters.size(); i++) triangles += clusters[i].indices.size() / 3;
+  size_t room = size_t(triangles * 8 / 5);
+  if (active) {
+    std::vector<uint8_t> held(holders_.size() / kHolders, 0);
+    parallelFor(active->size(), threads, [&](size_t i) {
+      for (uint32_t v : clusters[(*active)[i]].indices) __atomic_store_n(&held[v], uint8_t(1), __ATOMIC_RELAXED);
+    });
+    edges_.retainAndReserve([&](uint64_t key) { return held[key >> 32] && held[key & 0xffffffffu]; }, room, threads);
+  }
+  for (;;) {
+    if (!edges_.hasRoomFor(room)) edges_.retainAndReserve([](uint64_t) { return true; }, room, threads);
+    bool full = false;
+    parallelFor(clusters.size() - first, threads, [&](size_t i) {
+      if (!edges_.insertTriangles(clusters[first + i].indices)) __atomic_store_n(&full, true, __ATOMIC_RELAXED);
+    });
+    if (!full) break;
+    room = size_t(triangles * 3);
+  }
+}
+
+void ChordRule::startRound(const std::vector<GroupPlan>& plans, const std::vector<BuildCluster>& clusters,
+                           int threads) {
+  const size_t vertices = holders_.size() / kHolders;
+  holderCount_.assign(vertices, 0);
+  round_ += roundGroups_;  // this round's groups hold ids round_ + g: entries of earlier rounds are below
+  roundGroups_ = uint32_t(plans.size());
+  parallelFor(plans.size(), threads, [&](size_t g) {
+    // A group's vertex is counted once: a group runs on one thread, so it sees its own earlier
+    // entry; one beyond kHolders is not stored, but then the vertex takes no chord anyway.
+    const uint32_t id = round_ + uint32_t(g);
+    for (uint32_t m : plans[g].clusters)
+      for (uint32_t v : clusters[m].indices) {
+        uint32_t* held = &holders_[size_t(v) * kHolders];
+        bool seen = false;
+        for (uint32_t i = 0; i < kHolders && !seen; i++) seen = __atomic_load_n(&held[i], __ATOMIC_RELAXED) == id;
+        if (seen) continue;
+        uint8_t slot = __atomic_fetch_add(&holderCount_[v], uint8_t(1), __ATOMIC_RELAXED);
+        if (slot < kHolders) __atomic_store_n(&held[slot], id, __ATOMIC_RELAXED);
+      }
+  });
+}
+
+bool ChordRule::allowed(uint32_t g, uint32_t a, uint32_t b) const {
+  if (edges_.contains(uint64_t(std::min(a, b)) << 32 | std::max(a, b))) return false;
+  if (holderCount_[a] > kHolders || holderCount_[b] > kHolders) return false;
+  // Of the groups holding both ends, only the first may make the chord this round.
+  for (uint32_t i = 0; i < holderCount_[a]; i++)
+    for (uint32_t j = 0; j < holderCount_[b]; j++)
+      if (holders_[size_t(a) * kHolders + i] == holders_[size_t(b) * kHolders + j] &&
+          holders_[size_t(a) * kHolders + i] < round_ + g)
+        return false;
+  return true;
+}
+
+}  // namespace vgeo
