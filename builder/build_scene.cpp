@@ -66,7 +66,7 @@ std::string unreducedReason(const SurfaceTopology& t) {
 
 }  // namespace
 
-VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, SceneBuildStats& stats) {
+void buildScene(const std::string& path, const SceneBuildOptions& options, SceneBuildStats& stats, SectionSink& data) {
   auto start = std::chrono::steady_clock::now();
   StageTimer loading(&stats.stages, "load");
   SourceScene scene = loadMeshFile(path, options.threads);
@@ -74,10 +74,6 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
   stats.loadSeconds = secondsSince(start);
   if (options.subdivisionLevels < 0) throw InputError(path, "--subdiv must be >= 0");
 
-  std::vector<PolygonMesh> leaves(scene.meshes.size());
-  std::vector<std::vector<glm::vec3>> leafNormals(scene.meshes.size());    // limit normals of subdivided cages
-  std::vector<MeshPatches> patches(scene.meshes.size());                   // and their limit-surface patches
-  std::vector<std::vector<PatchErrors>> patchErrors(scene.meshes.size());  // chord errors of their faces
   std::vector<bool> closed(scene.meshes.size());
   for (size_t m = 0; m < scene.meshes.size(); m++) {
     PolygonMesh& mesh = scene.meshes[m];
@@ -100,53 +96,59 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
                                   std::to_string(uint64_t(triangles)) + " triangles over " +
                                   std::to_string(uint64_t(vertices)) + " vertices (limit about 1 billion triangles)");
   }
-  auto subdivideStart = std::chrono::steady_clock::now();
-  StageTimer subdividing(&stats.stages, "subdivide and limit");
+  // One mesh at a time, from subdivision to layout, each array freed once used: the build's peak memory
+  // is one mesh's.
   for (size_t m = 0; m < scene.meshes.size(); m++) {
-    leaves[m] = std::move(scene.meshes[m]);
+    auto subdivideStart = std::chrono::steady_clock::now();
+    StageTimer subdividing(&stats.stages, "subdivide and limit");
+    PolygonMesh leaves = std::move(scene.meshes[m]);
+    std::vector<glm::vec3> leafNormals;    // limit normals of a subdivided cage
+    MeshPatches patches;                   // and its limit-surface patches
+    std::vector<PatchErrors> patchErrors;  // with the chord errors of their faces
     for (int l = 0; l < options.subdivisionLevels; l++) {
-      if (options.progress) options.progress(0.0, "subdividing");
-      leaves[m] = subdivideCatmullClark(leaves[m]);
+      if (options.progress) options.progress(double(m) / double(scene.meshes.size()), "subdividing");
+      leaves = subdivideCatmullClark(leaves);
     }
     // A subdivided cage's leaves sample the limit surface: limit positions and normals (limit.cpp).
     if (options.subdivisionLevels >= 1) {
       const uint32_t threads = uint32_t(std::max(options.threads, 1));
-      patches[m] = buildPatches(leaves[m], leaves[m].positions, threads);
-      moveToLimit(leaves[m], leafNormals[m]);
-      patchErrors[m] = patchChordErrors(leaves[m], patches[m], threads);
+      patches = buildPatches(leaves, leaves.positions, threads);
+      moveToLimit(leaves, leafNormals);
+      patchErrors = patchChordErrors(leaves, patches, threads);
     }
-    fanLargeFaces(leaves[m]);
-    stats.leafTriangles += leaves[m].triangleCount();
-  }
-  subdividing.stop();
-  stats.subdivideSeconds = secondsSince(subdivideStart);
+    fanLargeFaces(leaves);
+    stats.leafTriangles += leaves.triangleCount();
+    subdividing.stop();
+    stats.subdivideSeconds += secondsSince(subdivideStart);
 
-  auto buildStart = std::chrono::steady_clock::now();
-  VgeoData data;
-  for (size_t m = 0; m < leaves.size(); m++) {
+    auto buildStart = std::chrono::steady_clock::now();
+    // The patches' words and control points go to the file now: nothing before the layout reads them.
+    StageTimer patchLayout(&stats.stages, "layout");
+    const PatchBases patchBases = appendPatchPoints(data, patches);
+    patchLayout.stop();
     BuildOptions bo;
     bo.threads = options.threads;
-    bo.leafFaceErrors = &patchErrors[m];
+    bo.leafFaceErrors = &patchErrors;
     bo.times = &stats.stages;
     if (options.progress)
       bo.progress = [&, m](double f, const char* stage) {
-        options.progress((double(m) + f) / double(leaves.size()), stage);
+        options.progress((double(m) + f) / double(scene.meshes.size()), stage);
       };
     StageTimer normals(&stats.stages, "shading normals");
-    const ShadingNormals shading = shadingNormals(leaves[m], leafNormals[m], options.creaseAngleDegrees);
+    const ShadingNormals shading = shadingNormals(leaves, leafNormals, options.creaseAngleDegrees);
     normals.stop();
+    std::vector<glm::vec3>().swap(leafNormals);
     bo.shading = &shading;
     const std::string where = scene.meshes.size() > 1 ? path + " (mesh '" + scene.meshNames[m] + "')" : path;
     Dag dag;
     try {
-      dag = buildDag(leaves[m], bo);
+      dag = buildDag(leaves, bo);
     } catch (const SurfaceError& e) {
       throw InputError(where, e.what());
     }
     StageTimer layout(&stats.stages, "layout");
-    appendGeometry(data, dag, leaves[m], shading, std::move(patches[m]), patchErrors[m], closed[m], options.threads);
+    appendGeometry(data, dag, leaves, shading, patches, patchBases, patchErrors, closed[m], options.threads);
     layout.stop();
-    patches[m] = MeshPatches();  // what the layout did not move into the file
     stats.clusters += dag.clusters.size();
     stats.leafClusters += dag.levelClusters[0];
     for (const auto& c : dag.clusters) stats.clusterTriangles += c.indices.size() / 3;
@@ -163,17 +165,21 @@ VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, S
                                  unreducedReason(dag.roots)});
     stats.relaxedGroups += dag.relaxedGroups;
     stats.stuckGroups += dag.stuckGroups;
-    patchErrors[m] = {};
-    leaves[m] = PolygonMesh();  // free as we go: peak memory is one mesh's build
+    stats.buildSeconds += secondsSince(buildStart);
   }
-  stats.buildSeconds = secondsSince(buildStart);
   for (const SourceInstance& inst : scene.instances) {
     shaderio::Instance out = makeInstance(inst.transform, inst.mesh, closed[inst.mesh]);
     if (out.maxScale > 0.0f && std::isfinite(out.maxScale))
-      data.instances.push_back(out);  // a zero scale shows nothing
+      data.append(Section::Instances, &out, 1);  // a zero scale shows nothing
   }
-  stats.geometries = uint32_t(data.geometries.size());
-  stats.instances = uint32_t(data.instances.size());
+  stats.geometries = uint32_t(data.count(Section::Geometries));
+  stats.instances = uint32_t(data.count(Section::Instances));
+}
+
+VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, SceneBuildStats& stats) {
+  VgeoData data;
+  VgeoDataSink sink(data);
+  buildScene(path, options, stats, sink);
   return data;
 }
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "../common/vgeo_file.h"
+#include "../common/section_sink.h"
 #include "builder.h"
 
 namespace vgeo {
@@ -47,8 +47,10 @@ struct SceneBuildStats {
   StageTimes stages;  // every step's seconds, the DAG's own steps among them
 };
 
-// Loads, repairs, subdivides and builds every mesh of `path`; throws InputError for bad input (nothing
-// is written by this function).
+// Loads, repairs, subdivides and builds every mesh of `path` into the sections of `out` (a
+// VgeoFileSink writes nothing until its commit); throws InputError for bad input.
+void buildScene(const std::string& path, const SceneBuildOptions& options, SceneBuildStats& stats, SectionSink& out);
+// The same, into memory.
 VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, SceneBuildStats& stats);
 
 }  // namespace vgeo

@@ -1,4 +1,4 @@
-// layout.cpp: lays a DAG out as the renderer's buffers (a geometry of a VgeoData).
+// layout.cpp: lays a DAG out as the renderer's buffers (a geometry of a .vgeo), written as they are made.
 // Groups are stored in BVH leaf order, so a leaf node's groups are one run; clusters in group order, so a
 // group's members are one run; leaf clusters' cage faces in cluster order, so a leaf's faces are one run.
 // Each cluster lists its distinct vertices once (absolute indices) and its triangles as 8-bit local
@@ -8,8 +8,6 @@
 #include "../common/parallel.h"
 #include "builder.h"
 #include "layout.h"
-
-#include <memory>
 
 namespace vgeo {
 namespace {
@@ -38,10 +36,43 @@ glm::vec4 normalCone(const std::vector<uint32_t>& indices, const std::vector<glm
   return glm::vec4(glm::vec3(axis), float(std::min(1.0, sine * 1.0001 + 1e-6)));
 }
 
+// Elements of one section, handed to the sink a batch at a time; flush() hands over the rest.
+template <class T>
+class SectionWriter {
+ public:
+  SectionWriter(SectionSink& sink, Section section) : sink_(sink), section_(section) { buffer_.reserve(kBatch); }
+  void push(const T& v) {
+    buffer_.push_back(v);
+    if (buffer_.size() == kBatch) flush();
+  }
+  // Elements of the section so far, the index of the next one.
+  uint32_t count() const { return uint32_t(sink_.count(section_) + buffer_.size()); }
+  void flush() {
+    sink_.append(section_, buffer_);
+    buffer_.clear();
+  }
+
+ private:
+  static constexpr size_t kBatch = 16384;
+  SectionSink& sink_;
+  Section section_;
+  std::vector<T> buffer_;
+};
+
 }  // namespace
 
-void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh, const ShadingNormals& shading,
-                    MeshPatches&& patches, const std::vector<PatchErrors>& patchErrors, bool closed, int threads) {
+PatchBases appendPatchPoints(SectionSink& file, MeshPatches& patches) {
+  PatchBases bases{uint32_t(file.count(Section::ControlPoints)), uint32_t(file.count(Section::PatchPoints))};
+  file.append(Section::ControlPoints, patches.points);
+  std::vector<glm::vec3>().swap(patches.points);
+  file.append(Section::PatchPoints, patches.words);
+  std::vector<uint32_t>().swap(patches.words);
+  return bases;
+}
+
+void appendGeometry(SectionSink& file, const Dag& dag, const PolygonMesh& leafMesh, const ShadingNormals& shading,
+                    const MeshPatches& patches, PatchBases bases, const std::vector<PatchErrors>& patchErrors,
+                    bool closed, int threads) {
   Bvh bvh = buildBvh(dag.groups);
   // Each cluster's normal cone and the sphere of its own vertices (a leaf's is its self sphere): apart
   // from the serial layout below, since CGAL's exact sphere is the layout's costliest step.
@@ -58,9 +89,11 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
     for (uint32_t& v : vertices) v = shading.wedgeVertex[v];  // the wedges' positions
     cones[id].sphere = sphereOfPoints(leafMesh.positions, vertices.data(), vertices.size());
   });
-  const uint32_t vertexOffset = uint32_t(file.vertexCount()), clusterOffset = uint32_t(file.clusters.size()),
-                 groupOffset = uint32_t(file.groups.size()), nodeOffset = uint32_t(file.nodes.size()),
-                 cageOffset = uint32_t(file.cageFaces.size());
+  const uint32_t vertexOffset = uint32_t(file.count(Section::Positions)),
+                 clusterOffset = uint32_t(file.count(Section::Clusters)),
+                 groupOffset = uint32_t(file.count(Section::Groups)),
+                 nodeOffset = uint32_t(file.count(Section::BvhNodes)),
+                 cageOffset = uint32_t(file.count(Section::CageFaces));
 
   std::vector<uint32_t> groupIndex(dag.groups.size());
   for (uint32_t i = 0; i < bvh.groupOrder.size(); i++) groupIndex[bvh.groupOrder[i]] = groupOffset + i;
@@ -72,65 +105,45 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
     }
   if (clusterOrder.size() != dag.clusters.size())
     throw std::logic_error("appendGeometry: a cluster belongs to no group");
-  // Exact room up front: growth by doubling left up to twice the largest arrays allocated at once, the
-  // build's peak memory.
-  size_t triangles = 0, faces = 0;
-  for (const BuildCluster& c : dag.clusters) triangles += c.indices.size() / 3, faces += c.cageFaces.size();
-  const size_t vertices = shading.wedgeVertex.size();
-  file.positions.reserve(file.positions.size() + 3 * vertices);
-  file.controlPoints.reserve(file.controlPoints.size() + 3 * patches.points.size());
-  file.normals.reserve(file.normals.size() + vertices);
-  file.clusterTriangles.reserve(file.clusterTriangles.size() + triangles);
-  file.clusterVertices.reserve(file.clusterVertices.size() + 3 * triangles / 2 + 2 * dag.clusters.size());
-  file.clusters.reserve(file.clusters.size() + dag.clusters.size());
-  file.clusterCones.reserve(file.clusterCones.size() + dag.clusters.size());
-  file.cageFaces.reserve(file.cageFaces.size() + faces);
-  file.patches.reserve(file.patches.size() + faces);
-  file.cageFaceVertices.reserve(file.cageFaceVertices.size() + 4 * faces);
+  const bool patched = patches.info.size() == leafMesh.faceCount() && leafMesh.faceCount() > 0;
 
   // Vertices: one a wedge (shading_normals.cpp), which is one a leaf vertex unless the mesh has hard edges.
-  for (size_t w = 0; w < vertices; w++) {
-    const glm::vec3& p = leafMesh.positions[shading.wedgeVertex[w]];
-    file.positions.insert(file.positions.end(), {p.x, p.y, p.z});
-    file.normals.push_back(encodeNormal(shading.wedgeNormal[w]));
+  const size_t vertices = shading.wedgeVertex.size();
+  {
+    SectionWriter<glm::vec3> positions(file, Section::Positions);
+    SectionWriter<uint32_t> normals(file, Section::Normals);
+    for (size_t w = 0; w < vertices; w++) {
+      positions.push(leafMesh.positions[shading.wedgeVertex[w]]);
+      normals.push(encodeNormal(shading.wedgeNormal[w]));
+    }
+    positions.flush(), normals.flush();
   }
 
-  // One patch per face of the cage (its words verbatim: control-point indices relative to the
+  // One patch per face of a subdivided cage (its words verbatim: control-point indices relative to the
   // geometry's first control point). Neighbours name faces by their index in the file, whose order
   // (cluster order) is known first; an edge is locked at factor 1 where the face on its other side
   // belongs to another level-0 group (which may be drawn coarser) or is flat.
-  const uint32_t pointBase = uint32_t(file.controlPoints.size() / 3);
-  for (const glm::vec3& p : patches.points) file.controlPoints.insert(file.controlPoints.end(), {p.x, p.y, p.z});
-  std::vector<glm::vec3>().swap(patches.points);
-  // The words keep the mesh's face order (a patch names its first word): moved, not copied, into an
-  // empty file, so the layout's peak memory holds them once.
-  const uint32_t wordBase = uint32_t(file.patchPoints.size());
-  if (file.patchPoints.empty()) {
-    file.patchPoints = std::move(patches.words);
-  } else {
-    file.patchPoints.insert(file.patchPoints.end(), patches.words.begin(), patches.words.end());
-    std::vector<uint32_t>().swap(patches.words);
-  }
-  const bool patched = patches.info.size() == leafMesh.faceCount();
-  std::vector<uint32_t> fileFace(leafMesh.faceCount(), UINT32_MAX), faceGroup(leafMesh.faceCount(), UINT32_MAX);
+  const uint32_t pointBase = bases.point, wordBase = bases.word;
+  std::vector<uint32_t> fileFace(patched ? leafMesh.faceCount() : 0, UINT32_MAX),
+      faceGroup(patched ? leafMesh.faceCount() : 0, UINT32_MAX);
   uint32_t nextFace = cageOffset;
-  for (uint32_t id : clusterOrder)
-    for (uint32_t f : dag.clusters[id].cageFaces) {
-      fileFace[f] = nextFace++;
-      faceGroup[f] = dag.clusters[id].group;
-    }
-  auto flat = [&](uint32_t f) { return !patched || !patches.patched(f) || f >= patchErrors.size(); };
+  if (patched)
+    for (uint32_t id : clusterOrder)
+      for (uint32_t f : dag.clusters[id].cageFaces) {
+        fileFace[f] = nextFace++;
+        faceGroup[f] = dag.clusters[id].group;
+      }
+  auto flat = [&](uint32_t f) { return !patches.patched(f) || f >= patchErrors.size(); };
   auto filePatch = [&](uint32_t f) {
     shaderio::Patch out{};
     out.pointBase = pointBase;
     for (uint32_t& n : out.neighbours) n = VGEO_INVALID;
     if (flat(f)) {
       out.info = 0xfu << 16;  // VGEO_PATCH_NONE, every edge locked
-      if (patched)
-        for (uint32_t k = 0; k < 4; k++) {
-          uint32_t n = patches.neighbours[f][k];
-          if (n != UINT32_MAX && fileFace[n >> 2] != UINT32_MAX) out.neighbours[k] = fileFace[n >> 2] << 2 | (n & 3u);
-        }
+      for (uint32_t k = 0; k < 4; k++) {
+        uint32_t n = patches.neighbours[f][k];
+        if (n != UINT32_MAX && fileFace[n >> 2] != UINT32_MAX) out.neighbours[k] = fileFace[n >> 2] << 2 | (n & 3u);
+      }
       return out;
     }
     uint32_t locked = 0;
@@ -147,6 +160,16 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
         glm::vec4(patchErrors[f].edge[0], patchErrors[f].edge[1], patchErrors[f].edge[2], patchErrors[f].edge[3]);
     return out;
   };
+
+  // Clusters in cluster order, each with its vertices, triangles, normal cone and (leaves of a
+  // subdivided cage) faces with their patches.
+  SectionWriter<shaderio::Cluster> clusters(file, Section::Clusters);
+  SectionWriter<uint32_t> clusterVertices(file, Section::ClusterVertices),
+      clusterTriangles(file, Section::ClusterTriangles);
+  SectionWriter<shaderio::CageFace> cageFaces(file, Section::CageFaces);
+  SectionWriter<uint32_t> cageFaceVertices(file, Section::CageFaceVertices);
+  SectionWriter<shaderio::ClusterCone> clusterCones(file, Section::ClusterCones);
+  SectionWriter<shaderio::Patch> filePatches(file, Section::Patches);
   std::vector<uint32_t> local;
   std::vector<uint32_t> slotOf(vertices, UINT32_MAX);  // wedge -> local index, reset per cluster
   for (uint32_t id : clusterOrder) {
@@ -159,8 +182,8 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
     out.parentError = parent.error;
     out.group = groupIndex[c.group];
     out.producer = c.producer == VGEO_NO_GROUP ? VGEO_NO_GROUP : groupIndex[c.producer];
-    out.vertexOffset = uint32_t(file.clusterVertices.size());
-    out.triangleOffset = uint32_t(file.clusterTriangles.size());
+    out.vertexOffset = clusterVertices.count();
+    out.triangleOffset = clusterTriangles.count();
     local.clear();
     const std::vector<uint32_t>& corners = c.wedges.empty() ? c.indices : c.wedges;
     for (uint32_t v : corners)
@@ -168,43 +191,52 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
         slotOf[v] = uint32_t(local.size());
         local.push_back(v);
       }
-    for (uint32_t v : local) file.clusterVertices.push_back(vertexOffset + v);
+    for (uint32_t v : local) clusterVertices.push(vertexOffset + v);
     for (size_t t = 0; t + 2 < corners.size(); t += 3)
-      file.clusterTriangles.push_back(slotOf[corners[t]] | slotOf[corners[t + 1]] << 8 | slotOf[corners[t + 2]] << 16);
+      clusterTriangles.push(slotOf[corners[t]] | slotOf[corners[t + 1]] << 8 | slotOf[corners[t + 2]] << 16);
     for (uint32_t v : local) slotOf[v] = UINT32_MAX;
-    out.cageFaceOffset = uint32_t(file.cageFaces.size());
+    out.cageFaceOffset = cageFaces.count();
     uint32_t firstTriangle = 0;
-    for (uint32_t f : c.cageFaces) {
+    const uint32_t faceCount = patched ? uint32_t(c.cageFaces.size()) : 0u;
+    for (uint32_t i = 0; i < faceCount; i++) {
+      const uint32_t f = c.cageFaces[i];
       shaderio::CageFace face{};
-      face.firstVertex = uint32_t(file.cageFaceVertices.size());
+      face.firstVertex = cageFaceVertices.count();
       face.vertexCount = leafMesh.faceSize(f);
       face.leafCluster = clusterIndex[id];
       face.firstTriangle = firstTriangle;
       firstTriangle += face.vertexCount - 2;
       for (uint32_t k = 0; k < face.vertexCount; k++)
-        file.cageFaceVertices.push_back(vertexOffset + shading.wedgeOfCorner(leafMesh, leafMesh.faceStart[f] + k));
-      file.cageFaces.push_back(face);
-      file.patches.push_back(filePatch(f));
+        cageFaceVertices.push(vertexOffset + shading.wedgeOfCorner(leafMesh, leafMesh.faceStart[f] + k));
+      cageFaces.push(face);
+      filePatches.push(filePatch(f));
     }
-    file.clusterCones.push_back(cones[id]);
-    out.counts = shaderio::packClusterCounts(uint32_t(local.size()), uint32_t(c.indices.size() / 3), c.level,
-                                             uint32_t(c.cageFaces.size()));
-    file.clusters.push_back(out);
+    clusterCones.push(cones[id]);
+    out.counts =
+        shaderio::packClusterCounts(uint32_t(local.size()), uint32_t(c.indices.size() / 3), c.level, faceCount);
+    clusters.push(out);
   }
+  clusters.flush(), clusterVertices.flush(), clusterTriangles.flush(), cageFaces.flush();
+  cageFaceVertices.flush(), clusterCones.flush(), filePatches.flush();
 
-  for (uint32_t g : bvh.groupOrder) {
-    const BuildGroup& src = dag.groups[g];
-    shaderio::Group out{};
-    out.sphere = src.sphere;
-    out.error = src.error;
-    out.clusterOffset = clusterIndex[src.members.front()];
-    out.clusterCount = uint32_t(src.members.size());
-    out.level = src.level;
-    file.groups.push_back(out);
-  }
-  for (shaderio::BvhNode node : bvh.nodes) {
-    node.childOffset += (node.childCountAndFlags & VGEO_NODE_LEAF_BIT) ? groupOffset : nodeOffset;
-    file.nodes.push_back(node);
+  {
+    SectionWriter<shaderio::Group> groups(file, Section::Groups);
+    for (uint32_t g : bvh.groupOrder) {
+      const BuildGroup& src = dag.groups[g];
+      shaderio::Group out{};
+      out.sphere = src.sphere;
+      out.error = src.error;
+      out.clusterOffset = clusterIndex[src.members.front()];
+      out.clusterCount = uint32_t(src.members.size());
+      out.level = src.level;
+      groups.push(out);
+    }
+    SectionWriter<shaderio::BvhNode> nodes(file, Section::BvhNodes);
+    for (shaderio::BvhNode node : bvh.nodes) {
+      node.childOffset += (node.childCountAndFlags & VGEO_NODE_LEAF_BIT) ? groupOffset : nodeOffset;
+      nodes.push(node);
+    }
+    groups.flush(), nodes.flush();
   }
 
   shaderio::Geometry geometry{};
@@ -218,10 +250,10 @@ void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh,
   geometry.vertexOffset = vertexOffset;
   geometry.vertexCount = uint32_t(vertices);
   geometry.cageFaceOffset = cageOffset;
-  geometry.cageFaceCount = uint32_t(file.cageFaces.size() - cageOffset);
+  geometry.cageFaceCount = uint32_t(file.count(Section::CageFaces) - cageOffset);
   geometry.levelCount = uint32_t(dag.levelClusters.size());
   geometry.flags = closed ? VGEO_GEOMETRY_CLOSED : 0u;
-  file.geometries.push_back(geometry);
+  file.append(Section::Geometries, &geometry, 1);
 }
 
 }  // namespace vgeo

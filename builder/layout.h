@@ -1,19 +1,30 @@
 // layout.h: from a built DAG to the .vgeo arrays (layout.cpp).
 #pragma once
 
-#include "../common/vgeo_file.h"
+#include "../common/section_sink.h"
 #include "builder.h"
 
 namespace vgeo {
 
-// Appends one geometry: the DAG of `leafMesh` (the mesh its leaves were built from, whose faces are the
-// level-N cage) with its BVH: a vertex a wedge of `shading` (its position and shading normal; one a leaf
-// vertex unless the mesh has hard edges), its clusters, groups and BVH, its cage faces and a patch per
-// cage face: `patches` (buildPatches of a subdivided cage, whose leaf vertices are limit points; their
-// words and control points move to the file) with the chord errors `patchErrors` (patchChordErrors), or
-// flat ones where `patches` is empty. `closed` records whether the repaired input had no boundary edge.
-// The clusters' normal cones and spheres are made on up to `threads` threads.
-void appendGeometry(VgeoData& file, const Dag& dag, const PolygonMesh& leafMesh, const ShadingNormals& shading,
-                    MeshPatches&& patches, const std::vector<PatchErrors>& patchErrors, bool closed, int threads = 1);
+// Where a geometry's patch words and control points start in the file's sections.
+struct PatchBases {
+  uint32_t point = 0, word = 0;
+};
+// Appends the words and control points of `patches` (buildPatches of a subdivided cage) to the file and
+// frees them: written before the geometry's DAG is built, they are not held through it.
+PatchBases appendPatchPoints(SectionSink& file, MeshPatches& patches);
+
+// Appends one geometry to the file's sections: the DAG of `leafMesh` (the mesh its leaves were built
+// from, whose faces are the level-N cage) with its BVH: a vertex a wedge of `shading` (its position and
+// shading normal; one a leaf vertex unless the mesh has hard edges), its clusters, groups and BVH, and,
+// for a subdivided cage, its cage faces and a patch per cage face: `patches` (buildPatches, whose leaf
+// vertices are limit points; its words and control points already in the file at `bases`) with the
+// chord errors `patchErrors` (patchChordErrors). Where `patches` is empty (a mesh not subdivided) there
+// is no surface below the leaves and the geometry has no cage faces: they would be three quarters of
+// its file, never read. `closed` records whether the repaired input had no boundary edge. The clusters'
+// normal cones and spheres are made on up to `threads` threads.
+void appendGeometry(SectionSink& file, const Dag& dag, const PolygonMesh& leafMesh, const ShadingNormals& shading,
+                    const MeshPatches& patches, PatchBases bases, const std::vector<PatchErrors>& patchErrors,
+                    bool closed, int threads = 1);
 
 }  // namespace vgeo

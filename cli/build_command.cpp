@@ -59,9 +59,10 @@ void addBuildCommand(CLI::App& app, int& exitCode) {
     options.creaseAngleDegrees = args->creaseAngle;
     options.progress = [&](double f, const char* stage) { bar.update(f, stage); };
     SceneBuildStats s;
-    VgeoData data = buildScene(args->input, options, s);
+    VgeoFileSink file(args->output);
+    buildScene(args->input, options, s, file);
     StageTimer writing(&s.stages, "write");
-    writeVgeo(data, args->output);
+    file.commit();
     writing.stop();
     bar.finish();
     double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -8,6 +8,7 @@
 
 #include <cerrno>
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 
@@ -62,6 +63,24 @@ AtomicFile::~AtomicFile() {
 void AtomicFile::write(const void* data, size_t size) {
   if (error_ || size == 0) return;
   if (std::fwrite(data, 1, size, file_) != size) error_ = errno ? errno : EIO;
+}
+
+void AtomicFile::writeAt(uint64_t offset, const void* data, size_t size) {
+  if (error_ || size == 0) return;
+  if (std::fflush(file_) != 0) {
+    error_ = errno ? errno : EIO;
+    return;
+  }
+  const uint8_t* p = static_cast<const uint8_t*>(data);
+  while (size > 0) {
+    const ssize_t n = ::pwrite(::fileno(file_), p, size, off_t(offset));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      error_ = n < 0 ? errno : EIO;
+      return;
+    }
+    p += n, size -= size_t(n), offset += uint64_t(n);
+  }
 }
 
 void AtomicFile::commit() {

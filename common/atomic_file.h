@@ -1,6 +1,7 @@
 // atomic_file.h: output files that are either whole or absent (atomic_file.cpp).
 #pragma once
 
+#include <cstdint>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
@@ -23,6 +24,8 @@ class AtomicFile {
   AtomicFile& operator=(const AtomicFile&) = delete;
 
   void write(const void* data, size_t size);
+  // Overwrites bytes already written, at `offset`; later writes still append.
+  void writeAt(uint64_t offset, const void* data, size_t size);
   void commit();
 
  private:

@@ -12,40 +12,11 @@
 
 #include "atomic_file.h"
 #include "input_error.h"
+#include "vgeo_head.h"
 
 namespace vgeo {
 namespace {
 
-constexpr char kMagic[8] = {'V', 'G', 'E', 'O', 'F', 'I', 'L', 'E'};
-constexpr size_t kHeaderSize = 32, kEntrySize = 32;
-
-struct Entry {
-  uint32_t id, elementSize;
-  uint64_t offset, count, checksum;
-};
-
-// Multiply-xor over 64-bit words: each step is a bijection of the word, so any change to one word
-// changes the sum; the length is mixed in so that truncation to a word boundary is caught too.
-uint64_t checksum(const uint8_t* p, size_t n) {
-  uint64_t h = 0x9e3779b97f4a7c15ull ^ n;
-  size_t i = 0;
-  for (; i + 8 <= n; i += 8) {
-    uint64_t w;
-    std::memcpy(&w, p + i, 8);
-    h = (h ^ w) * 0x100000001b3ull;
-    h ^= h >> 31;
-  }
-  uint64_t tail = 0;
-  if (n > i) std::memcpy(&tail, p + i, n - i);  // never with a null p (an empty section)
-  h = (h ^ tail) * 0x100000001b3ull;
-  return h ^ (h >> 29);
-}
-
-template <class T>
-void put(std::vector<uint8_t>& out, const T& v) {
-  const uint8_t* b = reinterpret_cast<const uint8_t*>(&v);
-  out.insert(out.end(), b, b + sizeof(T));
-}
 template <class T>
 T get(const uint8_t* p) {
   T v;
@@ -84,35 +55,18 @@ namespace {
 template <class Sink>
 void emitVgeo(const VgeoData& data, Sink&& sink) {
   auto sections = views(data);
-  const uint32_t count = uint32_t(sections.size());
-  std::vector<Entry> entries(count);
-  uint64_t position = kHeaderSize + uint64_t(kEntrySize) * count;
-  for (uint32_t i = 0; i < count; i++) {
-    position = (position + 15) / 16 * 16;
-    size_t bytes = size_t(sections[i].count) * sections[i].elementSize;
-    entries[i] = {i + 1, sections[i].elementSize, position, sections[i].count,
-                  checksum(static_cast<const uint8_t*>(sections[i].data), bytes)};
-    position += bytes;
+  std::vector<VgeoEntry> entries(sections.size());
+  for (uint32_t i = 0; i < entries.size(); i++) {
+    entries[i] = {i + 1, sections[i].elementSize, 0, sections[i].count, 0};
+    entries[i].checksum = vgeoChecksum(static_cast<const uint8_t*>(sections[i].data),
+                                       size_t(sections[i].count) * sections[i].elementSize);
   }
-  std::vector<uint8_t> head;
-  head.insert(head.end(), kMagic, kMagic + 8);
-  put(head, kVgeoVersion);
-  put(head, count);
-  put(head, position);
-  put(head, uint64_t(0));
-  for (const Entry& e : entries) {
-    put(head, e.id);
-    put(head, e.elementSize);
-    put(head, e.offset);
-    put(head, e.count);
-    put(head, e.checksum);
-  }
-  uint64_t tableSum = checksum(head.data(), head.size());
-  std::memcpy(head.data() + 24, &tableSum, 8);
+  const uint64_t fileSize = placeVgeoSections(entries);
+  std::vector<uint8_t> head = vgeoHead(entries, fileSize);
   sink(head.data(), head.size());
   uint64_t written = head.size();
   static const uint8_t zeros[16] = {};
-  for (uint32_t i = 0; i < count; i++) {
+  for (uint32_t i = 0; i < entries.size(); i++) {
     if (entries[i].offset > written) sink(zeros, size_t(entries[i].offset - written));
     size_t bytes = size_t(sections[i].count) * sections[i].elementSize;
     if (bytes) sink(static_cast<const uint8_t*>(sections[i].data), bytes);
@@ -141,8 +95,8 @@ bool within(uint64_t offset, uint64_t n, uint64_t size) { return offset <= size 
 
 // The header, the section table and each known section's bytes (checksums, sizes, bounds).
 VgeoData readSections(const uint8_t* bytes, size_t size, const Fail& fail) {
-  if (size < kHeaderSize) fail("truncated: " + std::to_string(size) + " bytes is smaller than a .vgeo header");
-  if (std::memcmp(bytes, kMagic, 8) != 0) fail("not a .vgeo file (bad magic)");
+  if (size < kVgeoHeaderSize) fail("truncated: " + std::to_string(size) + " bytes is smaller than a .vgeo header");
+  if (std::memcmp(bytes, kVgeoMagic, 8) != 0) fail("not a .vgeo file (bad magic)");
   uint32_t version = get<uint32_t>(bytes + 8);
   if (version != kVgeoVersion)
     fail("unsupported .vgeo version " + std::to_string(version) + " (this build reads version " +
@@ -152,19 +106,20 @@ VgeoData readSections(const uint8_t* bytes, size_t size, const Fail& fail) {
   if (fileSize != size)
     fail("truncated or padded: the header says " + std::to_string(fileSize) + " bytes, the file has " +
          std::to_string(size));
-  if (count > 64 || kHeaderSize + uint64_t(count) * kEntrySize > size)
+  if (count > 64 || kVgeoHeaderSize + uint64_t(count) * kVgeoEntrySize > size)
     fail("corrupt section table (" + std::to_string(count) + " sections)");
-  std::vector<uint8_t> head(bytes, bytes + kHeaderSize + count * kEntrySize);
+  std::vector<uint8_t> head(bytes, bytes + kVgeoHeaderSize + count * kVgeoEntrySize);
   uint64_t stored = get<uint64_t>(bytes + 24);
   std::memset(head.data() + 24, 0, 8);
-  if (checksum(head.data(), head.size()) != stored) fail("corrupt header or section table (checksum mismatch)");
+  if (vgeoChecksum(head.data(), head.size()) != stored) fail("corrupt header or section table (checksum mismatch)");
 
   VgeoData data;
   auto sections = views(data);  // element sizes only
   std::vector<bool> seen(sections.size(), false);
   for (uint32_t i = 0; i < count; i++) {
-    const uint8_t* p = bytes + kHeaderSize + i * kEntrySize;
-    Entry e{get<uint32_t>(p), get<uint32_t>(p + 4), get<uint64_t>(p + 8), get<uint64_t>(p + 16), get<uint64_t>(p + 24)};
+    const uint8_t* p = bytes + kVgeoHeaderSize + i * kVgeoEntrySize;
+    VgeoEntry e{get<uint32_t>(p), get<uint32_t>(p + 4), get<uint64_t>(p + 8), get<uint64_t>(p + 16),
+                get<uint64_t>(p + 24)};
     if (e.id == 0 || e.id >= uint32_t(Section::Count_)) continue;  // unknown sections of later minor versions
     const char* sname = sectionName(Section(e.id));
     if (seen[e.id - 1]) fail(std::string("section '") + sname + "' appears twice");
@@ -175,7 +130,7 @@ VgeoData readSections(const uint8_t* bytes, size_t size, const Fail& fail) {
       fail(std::string("section '") + sname + "' lies outside the file");
     const uint8_t* src = bytes + e.offset;
     size_t n = size_t(e.count * e.elementSize);
-    if (checksum(src, n) != e.checksum) fail(std::string("section '") + sname + "' is corrupt (checksum mismatch)");
+    if (vgeoChecksum(src, n) != e.checksum) fail(std::string("section '") + sname + "' is corrupt (checksum mismatch)");
     auto copy = [&](auto& vec, size_t elements) {
       vec.resize(elements);
       if (n) std::memcpy(vec.data(), src, n);

@@ -31,7 +31,7 @@ constexpr uint32_t kVgeoVersion =
 //   normals          octahedral unit normal a vertex, 2 x snorm16 (encodeNormal)
 //   clusterVertices  absolute vertex index a cluster vertex
 //   clusterTriangles 3 x 8-bit local vertex index a triangle (bits 0-7, 8-15, 16-23)
-//   cageFaceVertices absolute vertex index a cage face corner
+//   cageFaceVertices absolute vertex index a cage face corner (cage faces: subdivided geometries only)
 //   clusterCones     normal cone and tight sphere a cluster
 //   controlPoints    float x, y, z: each subdivided geometry's level-N cage, then its phantom and tree points
 //   patches          a patch a cage face; patchPoints their words (shaderio.h, Patch)

@@ -109,6 +109,45 @@ TEST(DagBuild, LeafClustersHoldWholeCageFaces) {
   }
 }
 
+TEST(DagBuild, OnlySubdividedCagesKeepCageFaces) {
+  // A mesh built without subdivision has no surface below its leaves: no cage face, patch or patch
+  // word is written (they were three quarters of such a file), and its clusters name none.
+  VgeoData flat = test::build(test::cgalMesh("cow.off"), 0);
+  EXPECT_TRUE(flat.cageFaces.empty() && flat.cageFaceVertices.empty() && flat.patches.empty());
+  EXPECT_TRUE(flat.patchPoints.empty() && flat.controlPoints.empty());
+  EXPECT_EQ(flat.geometries[0].cageFaceCount, 0u);
+  for (const auto& c : flat.clusters) EXPECT_EQ(shaderio::clusterCageFaceCount(c.counts), 0u);
+  // Subdivided once, every leaf triangle belongs to one of its leaf cluster's cage faces.
+  VgeoData subdivided = test::build(test::cgalMesh("cow.off"), 1);
+  EXPECT_EQ(subdivided.patches.size(), subdivided.cageFaces.size());
+  for (const auto& c : subdivided.clusters) {
+    if (c.producer != VGEO_NO_GROUP) continue;
+    uint32_t triangles = 0;
+    for (uint32_t k = 0; k < shaderio::clusterCageFaceCount(c.counts); k++)
+      triangles += subdivided.cageFaces[c.cageFaceOffset + k].vertexCount - 2;
+    EXPECT_EQ(triangles, shaderio::clusterTriangleCount(c.counts));
+  }
+}
+
+TEST(DagBuild, ATriangleSoupBuildsTheSameOnAnyThreadCount) {
+  // 3,000 triangles sharing no vertex: three new edges a triangle, past the room the chord rule's edge
+  // set makes at first (about 1.6), so its insertion stops and runs again with more.
+  std::string obj;
+  for (int i = 0; i < 3000; i++) {
+    const float x = float(i % 60), y = float(i / 60);
+    obj += "v " + std::to_string(x) + " " + std::to_string(y) + " 0\nv " + std::to_string(x + 0.5f) + " " +
+           std::to_string(y) + " 0\nv " + std::to_string(x) + " " + std::to_string(y + 0.5f) + " 0.25\n";
+    obj += "f " + std::to_string(3 * i + 1) + " " + std::to_string(3 * i + 2) + " " + std::to_string(3 * i + 3) + "\n";
+  }
+  const std::string path = test::writeFile(test::tempDir(), "soup.obj", obj);
+  SceneBuildStats stats;
+  VgeoData one = test::build(path, 0, 1, &stats), two = test::build(path, 0, 2);
+  EXPECT_EQ(stats.leafTriangles, 3000u);
+  EXPECT_EQ(serializeVgeo(one), serializeVgeo(two));
+  CheckResult result = checkVgeo(one, {8, 7});
+  EXPECT_TRUE(result.ok) << result.firstViolation;
+}
+
 TEST(DagBuild, BvhRootHoldsOneSubtreePerLevel) {
   // The traversal's chain starts at the root's children (instance culling tests them): they must be the
   // simplification levels' subtrees, one each, even past 8 levels; every other node has at most 8.

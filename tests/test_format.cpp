@@ -1,5 +1,6 @@
 // test_format.cpp: .vgeo round trip, and rejection (never a crash) of truncated or damaged files.
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -169,6 +170,32 @@ TEST(Format, MalformedPatchWordsAreRejected) {
   data.patchPoints[child] = VGEO_PATCH_RING | 40u << 8;
   rejected(data, "has malformed words");
   EXPECT_NO_THROW(parseVgeo(serializeVgeo(good).data(), serializeVgeo(good).size(), "good.vgeo"));
+}
+
+TEST(Format, TheFileWrittenAsItIsBuiltIsTheOneBuiltInMemory) {
+  // `vgeo build` spools each section to disk as the layout makes it (VgeoFileSink) and assembles the file
+  // at the end: the same bytes as the in-memory build writes, for a subdivided cage (patches), a flat
+  // mesh, and a glTF of many meshes (each section holds every geometry's part, in order); the spools
+  // leave nothing behind.
+  const std::string dir = test::tempDir();
+  for (const auto& [path, subdiv] : std::vector<std::pair<std::string, int>>{
+           {test::asset("horned_cube.obj"), 2},
+           {test::cgalMesh("cow.off"), 0},
+           {test::assimpModel("2CylinderEngine-glTF-Binary/2CylinderEngine.glb"), 0}}) {
+    SCOPED_TRACE(path);
+    SceneBuildOptions options;
+    options.subdivisionLevels = subdiv;
+    options.threads = 2;
+    SceneBuildStats stats;
+    {
+      VgeoFileSink file(dir + "/spooled.vgeo");
+      buildScene(path, options, stats, file);
+      file.commit();
+    }
+    const std::vector<uint8_t> expected = serializeVgeo(test::build(path, subdiv));
+    EXPECT_EQ(test::readFile(dir + "/spooled.vgeo"), std::string(expected.begin(), expected.end()));
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()), 1);
+  }
 }
 
 TEST(Format, OutputIsTheSameForAnyThreadCount) {
