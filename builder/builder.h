@@ -335,11 +335,16 @@ struct GroupPlan {
 };
 // Partitions the `active` clusters into groups of about `targetSize` neighbours: METIS on the graph
 // of clusters sharing an edge, edges weighted by the shared edge count, so that groups have short
-// borders (the locked part of the next simplification). Deterministic (fixed METIS seed). `openEdges`,
-// when given, receives the edges (min << 32 | max, ascending) on the border of one cluster only: the
-// open boundary of the surface, which is no group's shared border.
+// borders (the locked part of the next simplification). A level of more than kGroupingPiece * 2
+// clusters is first cut into compact pieces of about kGroupingPiece (partitionGraph, by the clusters'
+// centroids over `positions`), each partitioned by METIS on its own (the pieces' graphs made side by
+// side). Deterministic (fixed METIS seed) for any thread count. `openEdges`, when given, receives the
+// edges (min << 32 | max, ascending) on the border of one cluster only: the open boundary of the
+// surface, which is no group's shared border.
+constexpr uint32_t kGroupingPiece = 2048;
 std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, const std::vector<uint32_t>& active,
-                                     uint32_t targetSize, int threads, std::vector<uint64_t>* openEdges = nullptr);
+                                     const std::vector<glm::vec3>& positions, uint32_t targetSize, int threads,
+                                     std::vector<uint64_t>* openEdges = nullptr);
 
 // ---- simplify.cpp -----------------------------------------------------------------------------------
 struct SimplifiedGroup {

@@ -23,8 +23,7 @@ bool EdgeSet::contains(uint64_t key) const {
 bool EdgeSet::insert(uint64_t key) {
   for (size_t i = home(key);; i = next(i)) {
     uint64_t expected = kEmpty;
-    if (__atomic_compare_exchange_n(&slots_[i], &expected, key, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED))
-      return true;
+    if (__atomic_compare_exchange_n(&slots_[i], &expected, key, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) return true;
     if (expected == key) return false;
   }
 }

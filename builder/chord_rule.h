@@ -30,9 +30,7 @@ class EdgeSet {
 
  private:
   static constexpr uint64_t kEmpty = ~uint64_t(0);
-  size_t home(uint64_t key) const {
-    return size_t((unsigned __int128)(key * 0x9e3779b97f4a7c15ull) * capacity_ >> 64);
-  }
+  size_t home(uint64_t key) const { return size_t((unsigned __int128)(key * 0x9e3779b97f4a7c15ull) * capacity_ >> 64); }
   size_t next(size_t i) const { return i + 1 == capacity_ ? 0 : i + 1; }
   bool insert(uint64_t key);  // whether the key was new
   std::unique_ptr<uint64_t[]> slots_;

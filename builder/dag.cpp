@@ -136,7 +136,8 @@ std::vector<uint32_t> addRound(Dag& dag, const std::vector<GroupPlan>& plans, st
 
 // Root groups: the clusters left at the end, with parent error +inf so that they are always drawn when
 // nothing finer is needed.
-void addRootGroups(Dag& dag, const std::vector<uint32_t>& active, const BuildOptions& options) {
+void addRootGroups(Dag& dag, const std::vector<uint32_t>& active, const std::vector<glm::vec3>& positions,
+                   const BuildOptions& options) {
   dag.rootClusters = uint32_t(active.size());
   std::vector<uint32_t> rootIndices;
   for (uint32_t c : active)
@@ -146,7 +147,7 @@ void addRootGroups(Dag& dag, const std::vector<uint32_t>& active, const BuildOpt
   if (active.size() <= 32)
     roots.push_back({active, true});
   else
-    roots = groupClusters(dag.clusters, active, options.groupSize, options.threads);
+    roots = groupClusters(dag.clusters, active, positions, options.groupSize, options.threads);
   for (const GroupPlan& plan : roots) {
     uint32_t groupId = uint32_t(dag.groups.size());
     dag.groups.push_back(makeGroup(dag.clusters, plan.clusters, groupId, 0.0f, uint32_t(dag.levelClusters.size() - 1)));
@@ -188,7 +189,7 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
     std::vector<uint64_t> openEdges;
     StageTimer grouping(options.times, "grouping");
     const std::vector<GroupPlan> plans =
-        groupClusters(dag.clusters, active, options.groupSize, options.threads, &openEdges);
+        groupClusters(dag.clusters, active, mesh.positions, options.groupSize, options.threads, &openEdges);
     grouping.stop();
     StageTimer roundChords(options.times, "chord rule");
     chords.startRound(plans, dag.clusters, options.threads);
@@ -213,7 +214,7 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
     dag.levelTriangles.push_back(triangleCount(dag.clusters, active));
   }
   StageTimer rootGroups(options.times, "root groups");
-  addRootGroups(dag, active, options);
+  addRootGroups(dag, active, mesh.positions, options);
   rootGroups.stop();
   report(1.0, "done");
   return dag;

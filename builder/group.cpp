@@ -5,6 +5,7 @@
 #include <metis.h>
 
 #include <algorithm>
+#include <mutex>
 
 #include "../common/parallel.h"
 
@@ -13,7 +14,8 @@
 namespace vgeo {
 
 std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, const std::vector<uint32_t>& active,
-                                     uint32_t targetSize, int threads, std::vector<uint64_t>* openEdges) {
+                                     const std::vector<glm::vec3>& positions, uint32_t targetSize, int threads,
+                                     std::vector<uint64_t>* openEdges) {
   const size_t n = active.size();
   // Border edges of each cluster (edges used once inside it), tagged with the cluster's slot.
   std::vector<std::vector<uint64_t>> clusterBorders(n);
@@ -63,29 +65,74 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
     i = j;
   }
 
-  std::vector<idx_t> part(n, 0);
-  idx_t nparts = idx_t((n + targetSize - 1) / targetSize);
-  if (nparts > 1) {
-    std::vector<idx_t> xadj{0}, adjncy, adjwgt;
+  // The pieces METIS partitions one at a time: the whole level, or compact pieces of a large one.
+  Partition pieces;
+  if (n > 2 * size_t(kGroupingPiece)) {
+    Graph graph;
     for (size_t i = 0; i < n; i++) {
-      for (auto [j, w] : neighbours[i]) {
-        adjncy.push_back(idx_t(j));
-        adjwgt.push_back(idx_t(w));
-      }
-      xadj.push_back(idx_t(adjncy.size()));
+      for (auto [j, w] : neighbours[i]) graph.adjacency.push_back(j);
+      graph.offsets.push_back(uint32_t(graph.adjacency.size()));
     }
-    idx_t nvtxs = idx_t(n), ncon = 1, objval = 0;
-    idx_t options[METIS_NOPTIONS];
-    METIS_SetDefaultOptions(options);
-    options[METIS_OPTION_SEED] = 1;
-    options[METIS_OPTION_NUMBERING] = 0;
-    // Recursive bisection rather than k-way: with ~16 clusters a part, k-way cannot coarsen the graph and
-    // was 6x slower; recursive bisection also gave shorter borders (armadillo, --subdiv 2).
-    int status = METIS_PartGraphRecursive(&nvtxs, &ncon, xadj.data(), adjncy.data(), nullptr, nullptr, adjwgt.data(),
-                                          &nparts, nullptr, nullptr, options, &objval, part.data());
-    if (status != METIS_OK)
-      throw std::runtime_error("METIS_PartGraphRecursive failed with status " + std::to_string(status));
+    std::vector<glm::vec3> centroids(n);
+    parallelFor(n, threads, [&](size_t slot) {
+      glm::dvec3 sum(0.0);
+      const auto& idx = clusters[active[slot]].indices;
+      for (uint32_t v : idx) sum += glm::dvec3(positions[v]);
+      centroids[slot] = glm::vec3(sum / double(std::max<size_t>(idx.size(), 1)));
+    });
+    pieces = partitionGraph(graph, std::vector<uint8_t>(n, 1), centroids, kGroupingPiece + kGroupingPiece / 4,
+                            kGroupingPiece, threads);
+  } else {
+    pieces.order.resize(n);
+    for (uint32_t i = 0; i < n; i++) pieces.order[i] = i;
+    pieces.partStart.push_back(uint32_t(n));
   }
+  // Each piece's groups are numbered after the earlier pieces'.
+  std::vector<idx_t> partBase(pieces.partCount() + 1, 0);
+  for (size_t p = 0; p < pieces.partCount(); p++)
+    partBase[p + 1] =
+        partBase[p] + idx_t((pieces.partStart[p + 1] - pieces.partStart[p] + targetSize - 1) / targetSize);
+  const idx_t nparts = partBase.back();
+  std::vector<idx_t> part(n, 0);
+  std::vector<uint32_t> localOf(n);
+  for (size_t p = 0; p < pieces.partCount(); p++)
+    for (uint32_t k = pieces.partStart[p]; k < pieces.partStart[p + 1]; k++)
+      localOf[pieces.order[k]] = k - pieces.partStart[p];
+  parallelFor(pieces.partCount(), threads, [&](size_t p) {
+    const uint32_t* slots = &pieces.order[pieces.partStart[p]];
+    const idx_t count = idx_t(pieces.partStart[p + 1] - pieces.partStart[p]);
+    idx_t pieceParts = partBase[p + 1] - partBase[p];
+    std::vector<idx_t> local(size_t(count), 0);
+    if (pieceParts > 1) {
+      // The piece's own graph: its clusters and the edges between them.
+      std::vector<idx_t> xadj{0}, adjncy, adjwgt;
+      for (idx_t k = 0; k < count; k++) {
+        for (auto [j, w] : neighbours[slots[k]]) {
+          const uint32_t at = localOf[j];
+          if (at >= uint32_t(count) || pieces.order[pieces.partStart[p] + at] != j) continue;  // in another piece
+          adjncy.push_back(idx_t(at));
+          adjwgt.push_back(idx_t(w));
+        }
+        xadj.push_back(idx_t(adjncy.size()));
+      }
+      idx_t nvtxs = count, ncon = 1, objval = 0;
+      idx_t options[METIS_NOPTIONS];
+      METIS_SetDefaultOptions(options);
+      options[METIS_OPTION_SEED] = 1;
+      options[METIS_OPTION_NUMBERING] = 0;
+      // Recursive bisection rather than k-way: with ~16 clusters a part, k-way cannot coarsen the graph
+      // and was 6x slower; recursive bisection also gave shorter borders (armadillo, --subdiv 2).
+      // One METIS call at a time: its random numbers come from one global generator, seeded by each
+      // call (calls side by side drew from each other's and gave a different partition each run).
+      static std::mutex metis;
+      std::lock_guard<std::mutex> lock(metis);
+      int status = METIS_PartGraphRecursive(&nvtxs, &ncon, xadj.data(), adjncy.data(), nullptr, nullptr, adjwgt.data(),
+                                            &pieceParts, nullptr, nullptr, options, &objval, local.data());
+      if (status != METIS_OK)
+        throw std::runtime_error("METIS_PartGraphRecursive failed with status " + std::to_string(status));
+    }
+    for (idx_t k = 0; k < count; k++) part[slots[k]] = partBase[p] + local[size_t(k)];
+  });
   std::vector<GroupPlan> groups(size_t(std::max<idx_t>(nparts, 1)));
   std::vector<bool> touchesOther(groups.size(), false);
   for (size_t i = 0; i < n; i++) {

@@ -42,14 +42,15 @@ uint32_t sectionElementSize(Section s) {
 }
 
 VgeoDataSink::VgeoDataSink(VgeoData& data) : data_(data) {
-#define VGEO_SECTION_COUNT(id, member, type, values, name) counts_[uint32_t(Section::id) - 1] = data.member.size() / values;
+#define VGEO_SECTION_COUNT(id, member, type, values, name) \
+  counts_[uint32_t(Section::id) - 1] = data.member.size() / values;
   VGEO_SECTIONS(VGEO_SECTION_COUNT)
 #undef VGEO_SECTION_COUNT
 }
 
 void VgeoDataSink::write(Section s, const void* data, uint64_t count) {
   switch (s) {
-#define VGEO_SECTION_APPEND(id, member, type, values, name)                    \
+#define VGEO_SECTION_APPEND(id, member, type, values, name)                   \
   case Section::id: {                                                         \
     const type* p = static_cast<const type*>(data);                           \
     data_.member.insert(data_.member.end(), p, p + size_t(count) * (values)); \
@@ -118,9 +119,11 @@ void VgeoFileSink::commit() {
     const uint64_t bytes = entries[i].count * entries[i].elementSize;
     VgeoChecksum sum(bytes);
     for (uint64_t at = 0; at < bytes;) {
-      const ssize_t n = ::pread(spools_[i].fd, chunk.data(), size_t(std::min<uint64_t>(kCopyChunk, bytes - at)), off_t(at));
+      const ssize_t n =
+          ::pread(spools_[i].fd, chunk.data(), size_t(std::min<uint64_t>(kCopyChunk, bytes - at)), off_t(at));
       if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) throw OutputError(path_, std::string("cannot read back a section: ") + std::strerror(n < 0 ? errno : EIO));
+      if (n <= 0)
+        throw OutputError(path_, std::string("cannot read back a section: ") + std::strerror(n < 0 ? errno : EIO));
       sum.add(chunk.data(), size_t(n));
       out.write(chunk.data(), size_t(n));
       at += uint64_t(n);
