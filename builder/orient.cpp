@@ -1,15 +1,16 @@
 // orient.cpp: consistent face orientation, one connected component at a time.
 // Meshes from scanners and CAD exports often have faces wound the wrong way round. Repair treats an
 // edge walked the same way by both of its faces as non-manifold and cuts the surface there, and the
-// simplifier cannot reduce across a cut, so such a mesh got no LOD at all. This step is the usual
-// breadth-first propagation (as in CGAL's Polygon Mesh Processing, orient_polygon_soup): faces are
-// joined through edges that have exactly two faces; walking from a seed, a neighbour that walks the
-// shared edge the same way as its already-oriented face is flipped. An edge with more than two faces
-// joins nothing (which pairs belong together is not known). Of the two orientations a component can
-// take, the one that keeps more of the input's face area as it was is chosen, so a mostly right mesh
-// changes little and the result does not depend on the seed. A component where propagation meets
-// itself with the opposite sign (a Moebius strip) cannot be oriented; it is counted and left to
-// repair, which cuts it at the edges that disagree.
+// simplifier cannot reduce across a cut, so such a mesh got no LOD at all. Faces are joined through
+// edges that have exactly two faces, as in CGAL's Polygon Mesh Processing (orient_polygon_soup); two
+// faces that walk their shared edge the same way must differ in whether they turn, others agree. Those
+// relations go into a union-find that keeps each face's turn relative to its set (built on all threads
+// at once); an edge with more than two faces joins nothing (which pairs belong together is not known).
+// Of the two orientations a component can take, the one that keeps more of the input's face area as
+// it was is chosen, so a mostly right mesh changes little and the result does not depend on an order. A
+// component whose relations contradict each other (a Moebius strip) cannot be oriented: it is counted,
+// takes the turns of a breadth-first walk from its first face, and is left to repair, which cuts it at
+// the edges that disagree.
 #include <algorithm>
 #include <numeric>
 
@@ -17,6 +18,55 @@
 #include "builder.h"
 
 namespace vgeo {
+namespace {
+
+// Disjoint sets of faces with, for each face, whether it turns relative to its set's representative
+// (the set's smallest face). A word a face: its parent << 1 | its turn relative to the parent. unite()
+// and find() may run on many threads at once: parents change by compare-and-swap, every change keeps the
+// relation it states true, and a root is linked under the smaller one, so the representatives and
+// turns come out the same whatever the order of the unions.
+class ParityUnionFind {
+ public:
+  explicit ParityUnionFind(size_t n) : words_(n) {
+    for (size_t i = 0; i < n; i++) words_[i] = uint32_t(i) << 1;
+  }
+  // The representative of x's set and x's turn relative to it.
+  std::pair<uint32_t, uint8_t> find(uint32_t x) {
+    uint8_t parity = 0;
+    for (;;) {
+      uint32_t w = load(x), parent = w >> 1;
+      if (parent == x) return {x, parity};
+      uint32_t up = load(parent), grand = up >> 1;
+      uint32_t expected = w;
+      if (grand != parent)  // path halving: x's relation to its grandparent holds as well
+        __atomic_compare_exchange_n(&words_[x], &expected, grand << 1 | ((w ^ up) & 1u), false, __ATOMIC_RELAXED,
+                                    __ATOMIC_RELAXED);
+      parity ^= uint8_t(w & 1u);
+      x = parent;
+    }
+  }
+  // Joins the sets of a and b with a's turn differing from b's when `differ`; false when they were
+  // joined already with the opposite relation.
+  bool unite(uint32_t a, uint32_t b, bool differ) {
+    for (;;) {
+      auto [ra, pa] = find(a);
+      auto [rb, pb] = find(b);
+      const uint32_t relation = uint32_t(differ) ^ pa ^ pb;  // turn of ra relative to rb
+      if (ra == rb) return relation == 0;
+      const uint32_t high = std::max(ra, rb), low = std::min(ra, rb);
+      uint32_t expected = high << 1;  // still a root
+      if (__atomic_compare_exchange_n(&words_[high], &expected, low << 1 | relation, false, __ATOMIC_RELAXED,
+                                      __ATOMIC_RELAXED))
+        return true;
+    }
+  }
+
+ private:
+  uint32_t load(uint32_t x) const { return __atomic_load_n(&words_[x], __ATOMIC_RELAXED); }
+  std::vector<uint32_t> words_;
+};
+
+}  // namespace
 
 OrientReport orientFaces(PolygonMesh& mesh, int threads, OrientedEdges* oriented) {
   OrientReport report;
@@ -37,13 +87,12 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads, OrientedEdges* oriented
   // Across each two-face edge, the corner of the other face that starts it: a face's neighbours are
   // its corners' partners, visited in the order of their edges' keys.
   std::vector<uint32_t> partner(mesh.faceVertices.size(), UINT32_MAX);
-  for (size_t i = 0; i < halfEdges.size();) {
-    size_t j = i;
-    while (j < halfEdges.size() && halfEdges[j].key() == halfEdges[i].key()) j++;
-    const uint32_t c0 = halfEdges[i].corner, c1 = j - i == 2 ? halfEdges[i + 1].corner : c0;
-    if (j - i == 2 && cornerFace[c0] != cornerFace[c1]) partner[c0] = c1, partner[c1] = c0;
-    i = j;
-  }
+  parallelForRuns(
+      halfEdges.size(), threads, [&](size_t i, size_t j) { return halfEdges[i].key() == halfEdges[j].key(); },
+      [&](size_t i, size_t j) {
+        const uint32_t c0 = halfEdges[i].corner, c1 = j - i == 2 ? halfEdges[i + 1].corner : c0;
+        if (j - i == 2 && cornerFace[c0] != cornerFace[c1]) partner[c0] = c1, partner[c1] = c0;
+      });
   auto edgeKey = [&](uint32_t c) {
     const uint32_t f = cornerFace[c], next = c + 1 == mesh.faceStart[f + 1] ? mesh.faceStart[f] : c + 1;
     const uint32_t a = mesh.faceVertices[c], b = mesh.faceVertices[next];
@@ -58,17 +107,61 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads, OrientedEdges* oriented
     return glm::length(n);
   };
 
+  // Each face's turn relative to its component's first face, from the parity union-find over the
+  // two-face edges (faces walking an edge the same way must differ, else agree).
+  ParityUnionFind faces(faceCount);
+  std::vector<uint8_t> conflict(faceCount, 0);  // a face where the relations met with opposite signs
+  parallelForRanges(partner.size(), threads, [&](size_t begin, size_t end) {
+    for (size_t c = begin; c < end; c++) {
+      const uint32_t p = partner[c];
+      if (p == UINT32_MAX || p < c) continue;  // each edge once
+      // Both faces walk the edge the same way when their corners on it start at the same vertex.
+      const bool same = mesh.faceVertices[c] == mesh.faceVertices[p];
+      if (!faces.unite(cornerFace[c], cornerFace[p], same)) conflict[cornerFace[c]] = 1;
+    }
+  });
+  std::vector<uint32_t> root(faceCount);
+  std::vector<uint8_t> flip(faceCount);
+  parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {
+    for (size_t f = begin; f < end; f++) {
+      const auto [r, parity] = faces.find(uint32_t(f));
+      root[f] = r, flip[f] = parity;
+    }
+  });
+  faces = ParityUnionFind(0);
+  // Which way each component keeps more of its area: kept minus turned, summed into the component's
+  // first face in face order (so the sums do not depend on the thread count).
+  std::vector<double> keptMinusTurned(faceCount);
+  parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {
+    for (size_t f = begin; f < end; f++) keptMinusTurned[f] = flip[f] ? -area(f) : area(f);
+  });
+  std::vector<uint8_t> nonOrientable(faceCount, 0);
+  for (size_t f = 0; f < faceCount; f++) {
+    if (root[f] == f)
+      report.components++;
+    else
+      keptMinusTurned[root[f]] += keptMinusTurned[f];
+    if (conflict[f]) nonOrientable[root[f]] = 1;
+  }
+  std::vector<uint8_t>().swap(conflict);
+  parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {
+    for (size_t f = begin; f < end; f++)
+      if (!nonOrientable[root[f]] && keptMinusTurned[root[f]] < 0.0) flip[f] ^= 1u;
+  });
+  std::vector<double>().swap(keptMinusTurned);
+  // A component that cannot be oriented (a Moebius strip) takes the turns of a walk from its first face,
+  // breadth first by edge key: where the walk meets itself with the other sign, repair cuts it.
   constexpr uint8_t kUnseen = 2;
-  std::vector<uint8_t> flip(faceCount, kUnseen);
   std::vector<uint32_t> component, stack;
   std::vector<std::pair<uint64_t, uint32_t>> neighbours;  // (edge key, corner) of the face being visited
+  for (size_t f = 0; f < faceCount; f++)
+    if (nonOrientable[root[f]]) flip[f] = kUnseen;
   for (size_t seed = 0; seed < faceCount; seed++) {
-    if (flip[seed] != kUnseen) continue;
-    report.components++;
+    if (root[seed] != seed || !nonOrientable[seed]) continue;
+    report.nonOrientableComponents++;
     component.clear();
     stack.assign(1, uint32_t(seed));
     flip[seed] = 0;
-    bool orientable = true;
     while (!stack.empty()) {
       uint32_t f = stack.back();
       stack.pop_back();
@@ -78,19 +171,14 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads, OrientedEdges* oriented
         if (partner[c] != UINT32_MAX) neighbours.push_back({edgeKey(c), c});
       std::sort(neighbours.begin(), neighbours.end());
       for (const auto& [key, c] : neighbours) {
-        // Both faces walk the edge the same way when their corners on it start at the same vertex.
         const bool same = mesh.faceVertices[c] == mesh.faceVertices[partner[c]];
-        uint8_t want = uint8_t(flip[f] ^ uint8_t(same));
         uint32_t g = cornerFace[partner[c]];
         if (flip[g] == kUnseen) {
-          flip[g] = want;
+          flip[g] = uint8_t(flip[f] ^ uint8_t(same));
           stack.push_back(g);
-        } else if (flip[g] != want) {
-          orientable = false;
         }
       }
     }
-    if (!orientable) report.nonOrientableComponents++;
     double kept = 0.0, turned = 0.0;
     for (uint32_t f : component) (flip[f] ? turned : kept) += area(f);
     if (turned > kept)
@@ -111,14 +199,20 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads, OrientedEdges* oriented
     oriented->edges = std::move(halfEdges);
     oriented->cornerFace = std::move(cornerFace);  // a face's corners stay its own when it turns
   }
-  for (size_t f = 0; f < faceCount; f++)
-    if (flip[f] == 1) {
-      std::reverse(mesh.faceVertices.begin() + mesh.faceStart[f], mesh.faceVertices.begin() + mesh.faceStart[f + 1]);
-      if (!mesh.cornerNormals.empty())
-        std::reverse(mesh.cornerNormals.begin() + mesh.faceStart[f],
-                     mesh.cornerNormals.begin() + mesh.faceStart[f + 1]);
-      report.flippedFaces++;
-    }
+  size_t flipped = 0;
+  parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {
+    size_t turned = 0;
+    for (size_t f = begin; f < end; f++)
+      if (flip[f] == 1) {
+        std::reverse(mesh.faceVertices.begin() + mesh.faceStart[f], mesh.faceVertices.begin() + mesh.faceStart[f + 1]);
+        if (!mesh.cornerNormals.empty())
+          std::reverse(mesh.cornerNormals.begin() + mesh.faceStart[f],
+                       mesh.cornerNormals.begin() + mesh.faceStart[f + 1]);
+        turned++;
+      }
+    __atomic_fetch_add(&flipped, turned, __ATOMIC_RELAXED);
+  });
+  report.flippedFaces = flipped;
   return report;
 }
 

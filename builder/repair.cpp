@@ -229,7 +229,8 @@ size_t dropDuplicateFaces(PolygonMesh& faces, int threads) {
 // `oriented`: orientFaces' sorted corner edges and corner faces, freed as soon as they are used (this
 // step sets repair's peak memory). `singleEdges`: edges with one face, which are the boundary edges when
 // no vertex was split. Takes the positions from `faces`.
-PolygonMesh splitNonManifold(PolygonMesh& faces, OrientedEdges&& oriented, RepairReport& report, size_t& singleEdges) {
+PolygonMesh splitNonManifold(PolygonMesh& faces, OrientedEdges&& oriented, RepairReport& report, int threads,
+                             size_t& singleEdges) {
   const size_t cornerCount = faces.faceVertices.size();
   const std::vector<CornerEdge>& edges = oriented.edges;
   const std::vector<uint32_t>& cornerFace = oriented.cornerFace;
@@ -240,45 +241,47 @@ PolygonMesh splitNonManifold(PolygonMesh& faces, OrientedEdges&& oriented, Repai
   // From min to max in face order: the corner's vertex is the key's smaller one.
   auto forward = [&](const CornerEdge& e) { return faces.faceVertices[e.corner] == e.first; };
 
-  std::vector<bool> isolated(cornerCount, false);    // wedges that get a vertex of their own
-  std::vector<std::pair<uint32_t, uint32_t>> pairs;  // the two corners of each manifold edge
-  for (size_t i = 0; i < edges.size();) {
-    size_t j = i;
-    while (j < edges.size() && edges[j].key() == edges[i].key()) j++;
-    size_t count = j - i;
-    if (count == 1) {
-      singleEdges++;
-      i = j;
-      continue;
-    }
-    size_t partner = SIZE_MAX;
+  // A key's corners are one run of the sorted edges. Wedges that get a vertex of their own are
+  // marked first (by any thread: the flag only goes from 0 to 1), then the manifold edges join theirs.
+  std::vector<uint8_t> isolated(cornerCount, 0);
+  auto sameKey = [&](size_t i, size_t j) { return edges[i].key() == edges[j].key(); };
+  // The run's edge that joins its first (its partner), or SIZE_MAX when none does.
+  auto partnerOf = [&](size_t i, size_t j) {
     for (size_t k = i + 1; k < j; k++)
-      if (forward(edges[k]) != forward(edges[i])) {
-        partner = k;
-        break;
-      }
-    if (count > 2 || partner == SIZE_MAX) report.nonManifoldEdges++;
-    for (size_t k = i; k < j; k++) {
-      if (k == i || k == partner) continue;
-      isolated[edges[k].corner] = true;
-      isolated[nextCorner(edges[k].corner)] = true;
+      if (forward(edges[k]) != forward(edges[i])) return k;
+    return SIZE_MAX;
+  };
+  size_t single = 0, nonManifold = 0;
+  parallelForRuns(edges.size(), threads, sameKey, [&](size_t i, size_t j) {
+    if (j - i == 1) {
+      __atomic_fetch_add(&single, size_t(1), __ATOMIC_RELAXED);
+      return;
     }
-    if (partner != SIZE_MAX) pairs.push_back({edges[i].corner, edges[partner].corner});
-    i = j;
-  }
-  std::vector<CornerEdge>().swap(oriented.edges);
-  UnionFind wedges(cornerCount);
+    const size_t partner = partnerOf(i, j);
+    if (j - i > 2 || partner == SIZE_MAX) __atomic_fetch_add(&nonManifold, size_t(1), __ATOMIC_RELAXED);
+    for (size_t k = i + 1; k < j; k++) {
+      if (k == partner) continue;
+      __atomic_store_n(&isolated[edges[k].corner], uint8_t(1), __ATOMIC_RELAXED);
+      __atomic_store_n(&isolated[nextCorner(edges[k].corner)], uint8_t(1), __ATOMIC_RELAXED);
+    }
+  });
+  singleEdges += single;
+  report.nonManifoldEdges += nonManifold;
   // Join the wedges across manifold edges; c0 runs a->b in its face, c1 b->a in its. An isolated wedge
   // (at an endpoint of an edge where its face was detached) joins nothing: it gets a vertex of its own,
   // which opens its face's other edge at that corner into a boundary. Such an edge joins nothing at
   // either end: joined at its other end only, the two faces would meet at a vertex without an edge
   // (a bowtie the fuzzer found: a face on a three-face edge that also shared a good edge).
-  for (auto [c0, c1] : pairs) {
-    if (isolated[c0] || isolated[nextCorner(c0)] || isolated[c1] || isolated[nextCorner(c1)]) continue;
+  UnionFind wedges(cornerCount);
+  parallelForRuns(edges.size(), threads, sameKey, [&](size_t i, size_t j) {
+    const size_t partner = j - i > 1 ? partnerOf(i, j) : SIZE_MAX;
+    if (partner == SIZE_MAX) return;
+    const uint32_t c0 = edges[i].corner, c1 = edges[partner].corner;
+    if (isolated[c0] || isolated[nextCorner(c0)] || isolated[c1] || isolated[nextCorner(c1)]) return;
     wedges.unite(c0, nextCorner(c1));
     wedges.unite(nextCorner(c0), c1);
-  }
-  std::vector<std::pair<uint32_t, uint32_t>>().swap(pairs);
+  });
+  std::vector<CornerEdge>().swap(oriented.edges);
   std::vector<uint32_t>().swap(oriented.cornerFace);
 
   // Output vertices: the first class of each vertex keeps the vertex; others become copies. An
@@ -380,7 +383,7 @@ RepairReport repairMesh(PolygonMesh& mesh, const std::string& file, int threads)
   report.components = orient.components;
   report.nonOrientableComponents = orient.nonOrientableComponents;
   size_t singleEdges = 0;
-  PolygonMesh out = splitNonManifold(faces, std::move(edges), report, singleEdges);
+  PolygonMesh out = splitNonManifold(faces, std::move(edges), report, threads, singleEdges);
   faces = PolygonMesh();
   report.unusedVertices = dropUnusedVertices(out, report.weldedVertices);
   // Without a split vertex the edges are those just counted (dropping unused vertices renumbers, one

@@ -46,6 +46,22 @@ void parallelForRanges(size_t count, int threads, Fn&& fn) {
               [&](size_t r) { fn(r * kRange, std::min(count, (r + 1) * kRange)); });
 }
 
+// fn(begin, end) for each run [begin, end) of [0, count) whose neighbours are alike (same(i - 1, i)),
+// on up to `threads` threads: for passes over sorted records, a key's records handled together.
+template <class Same, class Fn>
+void parallelForRuns(size_t count, int threads, Same&& same, Fn&& fn) {
+  parallelForRanges(count, threads, [&](size_t begin, size_t end) {
+    size_t i = begin;  // the runs that start in [begin, end), read to their ends
+    while (i > 0 && i < end && same(i - 1, i)) i++;
+    while (i < end) {
+      size_t j = i + 1;
+      while (j < count && same(j - 1, j)) j++;
+      fn(i, j);
+      i = j;
+    }
+  });
+}
+
 // a() and b(), side by side when `together` (inside withThreads, on its threads), else one after the
 // other: for divide-and-conquer work whose halves are independent.
 template <class A, class B>

@@ -113,6 +113,70 @@ TEST(Repair, AMoebiusStripIsCountedAndCutWhereItDisagrees) {
   expectManifold(m);
 }
 
+TEST(Repair, AMessyMeshRepairsTheSameOnAnyThreadCount) {
+  // Orientation's union-find and the split's passes run on many threads: a grid of 180,000 triangles
+  // with a third of them turned, a fin on every 997th triangle (an edge of three faces), every 1,009th
+  // face repeated, and 40 Moebius strips, repaired on 1 and 4 threads, must give the same mesh and report.
+  PolygonMesh m;
+  const uint32_t n = 300;
+  for (uint32_t y = 0; y <= n; y++)
+    for (uint32_t x = 0; x <= n; x++) m.positions.push_back({float(x), float(y), 0.1f * float((x * 7 + y * 3) % 5)});
+  for (uint32_t y = 0; y < n; y++)
+    for (uint32_t x = 0; x < n; x++) {
+      const uint32_t a = y * (n + 1) + x, b = a + 1, c = a + n + 2, d = a + n + 1;
+      uint32_t t[2][3] = {{a, b, c}, {a, c, d}};
+      for (auto& tri : t) {
+        const size_t f = m.faceCount();
+        if ((f * 2654435761u >> 7) % 3 == 0) std::swap(tri[1], tri[2]);
+        m.addFace(tri, 3);
+        if (f % 1009 == 0) m.addFace(tri, 3);
+        if (f % 997 == 0) {
+          m.positions.push_back(m.positions[tri[0]] + glm::vec3(0.3f, 0.3f, 1.0f));
+          uint32_t fin[3] = {tri[0], tri[1], uint32_t(m.positions.size() - 1)};
+          m.addFace(fin, 3);
+        }
+      }
+    }
+  for (int strip = 0; strip < 40; strip++) {
+    const uint32_t base = uint32_t(m.positions.size());
+    for (int i = 0; i < 8; i++) {
+      float a = 6.2831853f * float(i) / 8.0f, twist = a / 2.0f;
+      glm::vec3 centre(400.0f + 3.0f * float(strip) + std::cos(a), std::sin(a), 0.0f);
+      glm::vec3 d =
+          0.3f * (std::cos(twist) * glm::vec3(0, 0, 1) + std::sin(twist) * glm::vec3(std::cos(a), std::sin(a), 0));
+      m.positions.push_back(centre + d);
+      m.positions.push_back(centre - d);
+    }
+    for (uint32_t i = 0; i < 8; i++) {
+      uint32_t a0 = base + 2 * i, a1 = a0 + 1, b0 = base + 2 * ((i + 1) % 8), b1 = b0 + 1;
+      if (i == 7) std::swap(b0, b1);
+      uint32_t q[4] = {a0, a1, b1, b0};
+      m.addFace(q, 4);
+    }
+  }
+  PolygonMesh one = m, four = m;
+  RepairReport r1 = repairMesh(one, "messy", 1), r4 = repairMesh(four, "messy", 4);
+  EXPECT_EQ(r1.nonOrientableComponents, 40u);
+  EXPECT_GT(r1.flippedFaces, 50000u);
+  EXPECT_GT(r1.nonManifoldEdges, 180u);
+  EXPECT_GT(r1.duplicateFaces, 170u);
+  for (auto [a, b] : {std::pair{r1.weldedVertices, r4.weldedVertices},
+                      {r1.degenerateFaces, r4.degenerateFaces},
+                      {r1.duplicateFaces, r4.duplicateFaces},
+                      {r1.nonManifoldEdges, r4.nonManifoldEdges},
+                      {r1.splitVertices, r4.splitVertices},
+                      {r1.boundaryEdges, r4.boundaryEdges},
+                      {r1.unusedVertices, r4.unusedVertices},
+                      {r1.flippedFaces, r4.flippedFaces},
+                      {r1.components, r4.components},
+                      {r1.nonOrientableComponents, r4.nonOrientableComponents}})
+    EXPECT_EQ(a, b);
+  EXPECT_EQ(one.faceVertices, four.faceVertices);
+  EXPECT_EQ(one.faceStart, four.faceStart);
+  EXPECT_TRUE(one.positions == four.positions);
+  expectManifold(one);
+}
+
 TEST(Repair, RejectsNonFinitePositions) {
   PolygonMesh m;
   m.positions = {{0, 0, 0}, {1, 0, 0}, {0, NAN, 0}};
