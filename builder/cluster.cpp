@@ -125,19 +125,21 @@ std::vector<BuildCluster> clustersFromFaces(const std::vector<uint32_t>& faceSta
     Graph graph = dualGraph(faceStart, faceVertices, threads);
     std::vector<uint8_t> weights(faceCount);
     std::vector<glm::vec3> centroids(faceCount);
-    for (size_t f = 0; f < faceCount; f++) {
-      uint32_t n = faceStart[f + 1] - faceStart[f];
-      weights[f] = uint8_t(n - 2);
-      glm::vec3 sum(0.0f);
-      for (uint32_t c = faceStart[f]; c < faceStart[f + 1]; c++) sum += positions[faceVertices[c]];
-      centroids[f] = sum / float(n);
-    }
+    parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {
+      for (size_t f = begin; f < end; f++) {
+        uint32_t n = faceStart[f + 1] - faceStart[f];
+        weights[f] = uint8_t(n - 2);
+        glm::vec3 sum(0.0f);
+        for (uint32_t c = faceStart[f]; c < faceStart[f + 1]; c++) sum += positions[faceVertices[c]];
+        centroids[f] = sum / float(n);
+      }
+    });
     const std::vector<uint32_t>& limited = wedges ? *wedges : faceVertices;
     auto fits = [&](const uint32_t* faces, size_t count) { return fitsVertexLimit(faceStart, limited, faces, count); };
     parts = partitionGraph(graph, weights, centroids, VGEO_MAX_CLUSTER_TRIANGLES, targetTriangles, threads, fits);
   }
   std::vector<BuildCluster> clusters(parts.partCount());
-  for (size_t p = 0; p < parts.partCount(); p++) {
+  parallelFor(parts.partCount(), threads, [&](size_t p) {
     BuildCluster& c = clusters[p];
     size_t corners = 0;  // of the part's triangles: its arrays are allocated once, at their size
     for (uint32_t i = parts.partStart[p]; i < parts.partStart[p + 1]; i++)
@@ -157,7 +159,7 @@ std::vector<BuildCluster> clustersFromFaces(const std::vector<uint32_t>& faceSta
         c.wedges.push_back((*wedges)[corner]);
       }
     }
-  }
+  });
   return clusters;
 }
 

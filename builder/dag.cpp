@@ -51,21 +51,33 @@ BuildGroup makeGroup(std::vector<BuildCluster>& clusters, const std::vector<uint
 // may still fold onto a neighbour (a quad's diagonal running along another face's edge, faces meeting
 // at a sliver): a directed edge held by two leaf triangles could never be covered once by a cut.
 void checkNoFold(const std::vector<BuildCluster>& clusters, const std::vector<glm::vec3>& positions, int threads) {
-  std::vector<uint64_t> directed;
-  for (const BuildCluster& c : clusters)
-    for (size_t t = 0; t + 2 < c.indices.size(); t += 3)
-      for (size_t k = 0; k < 3; k++) directed.push_back(uint64_t(c.indices[t + k]) << 32 | c.indices[t + (k + 1) % 3]);
+  std::vector<size_t> start(clusters.size() + 1, 0);  // each cluster's first directed edge
+  for (size_t i = 0; i < clusters.size(); i++) start[i + 1] = start[i] + clusters[i].indices.size() / 3 * 3;
+  std::vector<uint64_t> directed(start.back());
+  parallelFor(clusters.size(), threads, [&](size_t i) {
+    const std::vector<uint32_t>& idx = clusters[i].indices;
+    for (size_t t = 0; t + 2 < idx.size(); t += 3)
+      for (size_t k = 0; k < 3; k++) directed[start[i] + t + k] = uint64_t(idx[t + k]) << 32 | idx[t + (k + 1) % 3];
+  });
   parallelSort(directed, threads);
-  for (size_t i = 1; i < directed.size(); i++)
-    if (directed[i] == directed[i - 1]) {
-      const glm::vec3 a = positions[directed[i] >> 32], b = positions[directed[i] & 0xffffffffu];
-      char text[320];
-      std::snprintf(
-          text, sizeof text,
-          "the surface folds onto itself: two triangles run the same way along the edge (%g, %g, %g)-(%g, %g, %g)",
-          double(a.x), double(a.y), double(a.z), double(b.x), double(b.y), double(b.z));
-      throw SurfaceError(text);
-    }
+  size_t first = SIZE_MAX;  // the first edge held twice, in sorted order (the same message on any thread count)
+  parallelForRanges(directed.size(), threads, [&](size_t begin, size_t end) {
+    for (size_t i = std::max<size_t>(begin, 1); i < end; i++)
+      if (directed[i] == directed[i - 1]) {
+        size_t seen = __atomic_load_n(&first, __ATOMIC_RELAXED);
+        while (i < seen && !__atomic_compare_exchange_n(&first, &seen, i, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) {
+        }
+        return;
+      }
+  });
+  if (first == SIZE_MAX) return;
+  const glm::vec3 a = positions[directed[first] >> 32], b = positions[directed[first] & 0xffffffffu];
+  char text[320];
+  std::snprintf(
+      text, sizeof text,
+      "the surface folds onto itself: two triangles run the same way along the edge (%g, %g, %g)-(%g, %g, %g)",
+      double(a.x), double(a.y), double(a.z), double(b.x), double(b.y), double(b.z));
+  throw SurfaceError(text);
 }
 
 // Leaf clusters of the mesh, with their own spheres and (from the limit surface, when given) errors.

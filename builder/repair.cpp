@@ -284,41 +284,39 @@ PolygonMesh splitNonManifold(PolygonMesh& faces, OrientedEdges&& oriented, Repai
   std::vector<CornerEdge>().swap(oriented.edges);
   std::vector<uint32_t>().swap(oriented.cornerFace);
 
-  // Output vertices: the first class of each vertex keeps the vertex; others become copies. An
-  // isolated wedge is a class of its own.
-  std::vector<uint32_t> rootVertex(cornerCount, UINT32_MAX);
-  std::vector<uint32_t> firstRoot(faces.positions.size(), UINT32_MAX);
-  std::vector<uint32_t> newCorner(cornerCount);
+  // Output vertices: the class of a vertex's first corner keeps the vertex; every other class (a fan
+  // of wedges, or an isolated wedge alone) gets a copy, numbered in the order of its first corner,
+  // which is its union-find root (the smaller root wins every union; isolated wedges join nothing).
+  const size_t vertexCount = faces.positions.size();
+  std::vector<uint32_t> firstCorner(vertexCount, UINT32_MAX);
+  std::vector<uint32_t> newCorner(cornerCount);  // each corner's class first, then its output vertex
+  parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
+    for (size_t c = begin; c < end; c++) {
+      newCorner[c] = wedges.find(uint32_t(c));
+      uint32_t* first = &firstCorner[faces.faceVertices[c]];
+      uint32_t seen = __atomic_load_n(first, __ATOMIC_RELAXED);
+      while (c < seen &&
+             !__atomic_compare_exchange_n(first, &seen, uint32_t(c), false, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) {
+      }
+    }
+  });
+  wedges = UnionFind(0);
+  std::vector<uint32_t> copyId(cornerCount);
   PolygonMesh out;
   out.positions = std::move(faces.positions);
-  for (uint32_t c = 0; c < cornerCount; c++) {
-    uint32_t v = faces.faceVertices[c];
-    if (isolated[c]) {
-      if (firstRoot[v] == UINT32_MAX)
-        firstRoot[v] = cornerCount;  // the vertex itself is taken
-      else {
-        const glm::vec3 p = out.positions[v];  // copied: push_back may move the array
-        out.positions.push_back(p);
-        v = uint32_t(out.positions.size() - 1);
-        report.splitVertices++;
-      }
-      newCorner[c] = v;
-      continue;
+  report.splitVertices += parallelNumber(
+      cornerCount, threads, [&](size_t c) { return newCorner[c] == c && firstCorner[faces.faceVertices[c]] != c; },
+      [&](size_t copies) { out.positions.resize(vertexCount + copies); },
+      [&](size_t c, size_t n) {
+        copyId[c] = uint32_t(vertexCount + n);
+        out.positions[vertexCount + n] = out.positions[faces.faceVertices[c]];
+      });
+  parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
+    for (size_t c = begin; c < end; c++) {
+      const uint32_t v = faces.faceVertices[c], cls = newCorner[c];
+      newCorner[c] = firstCorner[v] == cls ? v : copyId[cls];
     }
-    const uint32_t root = wedges.find(c);
-    if (rootVertex[root] == UINT32_MAX) {
-      if (firstRoot[v] == UINT32_MAX) {
-        firstRoot[v] = root;
-        rootVertex[root] = v;
-      } else {
-        const glm::vec3 p = out.positions[v];
-        out.positions.push_back(p);
-        rootVertex[root] = uint32_t(out.positions.size() - 1);
-        report.splitVertices++;
-      }
-    }
-    newCorner[c] = rootVertex[root];
-  }
+  });
   out.faceStart = std::move(faces.faceStart);
   out.faceVertices = std::move(newCorner);
   out.cornerNormals = std::move(faces.cornerNormals);
@@ -326,18 +324,23 @@ PolygonMesh splitNonManifold(PolygonMesh& faces, OrientedEdges&& oriented, Repai
 }
 
 // Drops the vertices no face uses, keeping order; returns how many (welded ones not counted again).
-size_t dropUnusedVertices(PolygonMesh& out, size_t welded) {
+size_t dropUnusedVertices(PolygonMesh& out, size_t welded, int threads) {
   std::vector<uint32_t> remap(out.positions.size(), UINT32_MAX);
-  for (uint32_t v : out.faceVertices) remap[v] = 0;
+  parallelForRanges(out.faceVertices.size(), threads, [&](size_t begin, size_t end) {
+    for (size_t c = begin; c < end; c++) __atomic_store_n(&remap[out.faceVertices[c]], 0u, __ATOMIC_RELAXED);
+  });
   std::vector<glm::vec3> compact;
-  for (size_t v = 0; v < out.positions.size(); v++)
-    if (remap[v] == 0) {
-      remap[v] = uint32_t(compact.size());
-      compact.push_back(out.positions[v]);
-    }
+  const size_t kept = parallelNumber(
+      out.positions.size(), threads, [&](size_t v) { return remap[v] == 0; }, [&](size_t n) { compact.resize(n); },
+      [&](size_t v, size_t n) {
+        remap[v] = uint32_t(n);
+        compact[n] = out.positions[v];
+      });
   // Vertices welded into another are not referenced any more either; count only the others.
-  const size_t unused = out.positions.size() - compact.size() - welded;
-  for (uint32_t& v : out.faceVertices) v = remap[v];
+  const size_t unused = out.positions.size() - kept - welded;
+  parallelForRanges(out.faceVertices.size(), threads, [&](size_t begin, size_t end) {
+    for (size_t c = begin; c < end; c++) out.faceVertices[c] = remap[out.faceVertices[c]];
+  });
   out.positions = std::move(compact);
   return unused;
 }
@@ -385,7 +388,7 @@ RepairReport repairMesh(PolygonMesh& mesh, const std::string& file, int threads)
   size_t singleEdges = 0;
   PolygonMesh out = splitNonManifold(faces, std::move(edges), report, threads, singleEdges);
   faces = PolygonMesh();
-  report.unusedVertices = dropUnusedVertices(out, report.weldedVertices);
+  report.unusedVertices = dropUnusedVertices(out, report.weldedVertices, threads);
   // Without a split vertex the edges are those just counted (dropping unused vertices renumbers, one
   // to one); a split opens edges into boundaries, so they are counted again.
   report.boundaryEdges = report.splitVertices == 0 ? singleEdges : countBoundaryEdges(out, threads);

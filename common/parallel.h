@@ -62,6 +62,27 @@ void parallelForRuns(size_t count, int threads, Same&& same, Fn&& fn) {
   });
 }
 
+// Numbers the elements of [0, count) for which pick(i) holds, in order, on up to `threads` threads:
+// counted a block at a time, then sized(total) is called, then number(i, n) for each picked i with its
+// number n (0, 1, ...). Returns the total.
+template <class Pick, class Sized, class Number>
+size_t parallelNumber(size_t count, int threads, Pick&& pick, Sized&& sized, Number&& number) {
+  constexpr size_t kBlock = 65536;
+  const size_t blocks = (count + kBlock - 1) / kBlock;
+  std::vector<size_t> base(blocks + 1, 0);
+  parallelFor(blocks, threads, [&](size_t k) {
+    for (size_t i = k * kBlock; i < std::min(count, (k + 1) * kBlock); i++) base[k + 1] += pick(i) ? 1 : 0;
+  });
+  for (size_t k = 0; k < blocks; k++) base[k + 1] += base[k];
+  sized(base[blocks]);
+  parallelFor(blocks, threads, [&](size_t k) {
+    size_t n = base[k];
+    for (size_t i = k * kBlock; i < std::min(count, (k + 1) * kBlock); i++)
+      if (pick(i)) number(i, n++);
+  });
+  return base[blocks];
+}
+
 // a() and b(), side by side when `together` (inside withThreads, on its threads), else one after the
 // other: for divide-and-conquer work whose halves are independent.
 template <class A, class B>
