@@ -25,11 +25,54 @@ namespace {
 // Products of three coordinates (volumes, squared lengths times a length) stay inside float.
 constexpr float kMaxCoordinate = 1e12f;
 
+// The faces of `mesh` that keep(f, corners, normals) keeps, with the corners (and, where the mesh has
+// them, normals) it leaves in those arrays, in face order, made on up to `threads` threads: sized in a
+// first pass, filled in a second (keep runs twice a face). Takes the positions from `mesh`.
+template <class Keep>
+PolygonMesh keptFaces(PolygonMesh& mesh, int threads, Keep&& keep) {
+  const size_t n = mesh.faceCount();
+  const bool withNormals = !mesh.cornerNormals.empty();
+  std::vector<uint32_t> size(n);
+  parallelForRanges(n, threads, [&](size_t begin, size_t end) {
+    std::vector<uint32_t> corners;
+    std::vector<glm::vec3> normals;
+    for (size_t f = begin; f < end; f++) {
+      corners.clear(), normals.clear();
+      size[f] = keep(f, corners, normals) ? uint32_t(corners.size()) : 0u;
+    }
+  });
+  PolygonMesh kept;
+  kept.positions = std::move(mesh.positions);
+  std::vector<uint32_t> faceIndex(n);  // a kept face's index in `kept`
+  size_t corners = 0;
+  for (size_t f = 0; f < n; f++)
+    if (size[f]) {
+      faceIndex[f] = uint32_t(kept.faceCount());
+      corners += size[f];
+      kept.faceStart.push_back(uint32_t(corners));
+    }
+  kept.faceVertices.resize(corners);
+  if (withNormals) kept.cornerNormals.resize(corners);
+  parallelForRanges(n, threads, [&](size_t begin, size_t end) {
+    std::vector<uint32_t> corners;
+    std::vector<glm::vec3> normals;
+    for (size_t f = begin; f < end; f++) {
+      if (!size[f]) continue;
+      corners.clear(), normals.clear();
+      keep(f, corners, normals);
+      const uint32_t at = kept.faceStart[faceIndex[f]];
+      std::copy(corners.begin(), corners.end(), kept.faceVertices.begin() + at);
+      if (withNormals) std::copy(normals.begin(), normals.end(), kept.cornerNormals.begin() + at);
+    }
+  });
+  return kept;
+}
+
 // A vertex with two faces that share both of its edges (valence 2, nothing between the faces there)
 // folds the surface: both faces run through it, and once triangulated or subdivided they hold the same
 // triangle edge twice. Such a vertex is taken out of both faces (a face left with fewer than three
 // corners is dropped, counted with `degenerate`), until none is left. Returns the vertices taken out.
-size_t dissolveFolds(PolygonMesh& mesh, size_t& degenerate) {
+size_t dissolveFolds(PolygonMesh& mesh, size_t& degenerate, int threads) {
   size_t dissolved = 0;
   for (bool changed = true; changed;) {
     changed = false;
@@ -60,25 +103,16 @@ size_t dissolveFolds(PolygonMesh& mesh, size_t& degenerate) {
       changed = true;
     }
     if (!changed) break;
-    PolygonMesh kept;
-    kept.positions = std::move(mesh.positions);
-    std::vector<uint32_t> corners;
-    std::vector<glm::vec3> normals;
-    for (size_t f = 0; f < mesh.faceCount(); f++) {
-      corners.clear();
-      normals.clear();
+    const size_t before = mesh.faceCount();
+    mesh = keptFaces(mesh, threads, [&](size_t f, std::vector<uint32_t>& corners, std::vector<glm::vec3>& normals) {
       for (uint32_t c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; c++) {
         if (drop[c]) continue;
         corners.push_back(mesh.faceVertices[c]);
         if (!mesh.cornerNormals.empty()) normals.push_back(mesh.cornerNormals[c]);
       }
-      if (corners.size() < 3) {
-        degenerate++;
-        continue;
-      }
-      kept.addFace(corners.data(), corners.size(), mesh.cornerNormals.empty() ? nullptr : normals.data());
-    }
-    mesh = std::move(kept);
+      return corners.size() >= 3;
+    });
+    degenerate += before - mesh.faceCount();
   }
   return dissolved;
 }
@@ -149,33 +183,32 @@ std::vector<uint32_t> weldPositions(const PolygonMesh& mesh, const std::vector<b
 
 // The faces over welded corners: repeated neighbours merged, faces with < 3 distinct corners dropped
 // (counted in `degenerate`). Takes the positions from `mesh`.
-PolygonMesh weldFaces(PolygonMesh& mesh, const std::vector<uint32_t>& weld, size_t& degenerate) {
-  PolygonMesh faces;
-  faces.positions = std::move(mesh.positions);
+PolygonMesh weldFaces(PolygonMesh& mesh, const std::vector<uint32_t>& weld, size_t& degenerate, int threads) {
   const bool withNormals = !mesh.cornerNormals.empty();
-  std::vector<uint32_t> corners, sorted;
-  std::vector<glm::vec3> normals;
-  for (size_t f = 0; f < mesh.faceCount(); f++) {
-    corners.clear();
-    normals.clear();
-    for (uint32_t i = 0; i < mesh.faceSize(f); i++) {
-      uint32_t v = weld[mesh.face(f)[i]];
-      if (!corners.empty() && corners.back() == v) continue;
-      corners.push_back(v);
-      if (withNormals) normals.push_back(mesh.faceNormals(f)[i]);
-    }
-    while (corners.size() > 1 && corners.front() == corners.back()) {
-      corners.pop_back();
-      if (withNormals) normals.pop_back();
-    }
-    sorted = corners;
-    std::sort(sorted.begin(), sorted.end());
-    if (corners.size() < 3 || std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
-      degenerate++;
-      continue;
-    }
-    faces.addFace(corners.data(), corners.size(), withNormals ? normals.data() : nullptr);
-  }
+  PolygonMesh faces =
+      keptFaces(mesh, threads, [&](size_t f, std::vector<uint32_t>& corners, std::vector<glm::vec3>& normals) {
+        for (uint32_t i = 0; i < mesh.faceSize(f); i++) {
+          uint32_t v = weld[mesh.face(f)[i]];
+          if (!corners.empty() && corners.back() == v) continue;
+          corners.push_back(v);
+          if (withNormals) normals.push_back(mesh.faceNormals(f)[i]);
+        }
+        while (corners.size() > 1 && corners.front() == corners.back()) {
+          corners.pop_back();
+          if (withNormals) normals.pop_back();
+        }
+        if (corners.size() < 3) return false;
+        if (corners.size() > 16) {  // distinct corners: sorted, or for a face of a few compared pairwise
+          std::vector<uint32_t> sorted(corners);
+          std::sort(sorted.begin(), sorted.end());
+          return std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end();
+        }
+        for (size_t i = 0; i < corners.size(); i++)
+          for (size_t j = i + 1; j < corners.size(); j++)
+            if (corners[i] == corners[j]) return false;
+        return true;
+      });
+  degenerate += mesh.faceCount() - faces.faceCount();
   return faces;
 }
 
@@ -212,14 +245,14 @@ size_t dropDuplicateFaces(PolygonMesh& faces, int threads) {
     }
   }
   std::vector<std::pair<uint64_t, uint32_t>>().swap(byHash);  // before the copy below
-  PolygonMesh kept;
-  kept.positions = std::move(faces.positions);
-  for (size_t f = 0; f < n; f++) {
-    if (drop[f])
-      duplicates++;
-    else
-      kept.addFace(faces.face(f), faces.faceSize(f), faces.faceNormals(f));
-  }
+  PolygonMesh kept =
+      keptFaces(faces, threads, [&](size_t f, std::vector<uint32_t>& corners, std::vector<glm::vec3>& normals) {
+        if (drop[f]) return false;
+        corners.assign(faces.face(f), faces.face(f) + faces.faceSize(f));
+        if (const glm::vec3* n = faces.faceNormals(f)) normals.assign(n, n + faces.faceSize(f));
+        return true;
+      });
+  duplicates = n - kept.faceCount();
   faces = std::move(kept);
   return duplicates;
 }
@@ -373,12 +406,12 @@ RepairReport repairMesh(PolygonMesh& mesh, const std::string& file, int threads)
   {
     const std::vector<bool> used = checkPositions(mesh, file);
     const std::vector<uint32_t> weld = weldPositions(mesh, used, report.weldedVertices, threads);
-    faces = weldFaces(mesh, weld, report.degenerateFaces);
+    faces = weldFaces(mesh, weld, report.degenerateFaces, threads);
     mesh = PolygonMesh();  // its positions moved to `faces`; its faces are not needed again
   }
   report.duplicateFaces = dropDuplicateFaces(faces, threads);
   if (faces.faceCount() == 0) throw InputError(file, "empty mesh: every face is degenerate or a duplicate");
-  report.dissolvedVertices = dissolveFolds(faces, report.degenerateFaces);
+  report.dissolvedVertices = dissolveFolds(faces, report.degenerateFaces, threads);
   if (faces.faceCount() == 0) throw InputError(file, "empty mesh: every face is degenerate or a duplicate");
   OrientedEdges edges;
   const OrientReport orient = orientFaces(faces, threads, &edges);
