@@ -12,6 +12,19 @@ namespace vgeo {
 std::string readWholeFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
+  // A regular file is read at once into a string of its size: a stream's growing buffer copied a
+  // large file twice and held up to twice its size.
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  in.seekg(0, std::ios::beg);
+  if (size > 0 && in) {
+    std::string data(size_t(size), '\0');
+    in.read(data.data(), size);
+    if (in.gcount() == size && in.peek() == std::char_traits<char>::eof()) return data;
+    in.clear();
+    in.seekg(0, std::ios::beg);  // it changed while read: read it as a stream
+  }
+  in.clear();
   std::ostringstream data;
   data << in.rdbuf();
   if (in.bad()) throw InputError(path, "read error");

@@ -162,44 +162,71 @@ SourceScene loadObj(const std::string& path, int threads) {
   for (const std::exception_ptr& e : errors)
     if (e) std::rethrow_exception(e);  // the first in the file
 
-  // The pieces joined in file order.
-  PolygonMesh mesh = std::move(parsed[0].mesh);
-  std::vector<glm::vec3> normals = std::move(parsed[0].normals);
-  std::vector<int64_t> cornerNormal = std::move(parsed[0].cornerNormal);
-  bool named = parsed[0].named;
-  for (size_t k = 1; k < pieces; k++) {
-    ObjPiece& p = parsed[k];
-    if (p.named && !named) cornerNormal.assign(mesh.faceVertices.size(), -1);
-    if (named && !p.named) p.cornerNormal.assign(p.mesh.faceVertices.size(), -1);
-    named = named || p.named;
-    if (named) cornerNormal.insert(cornerNormal.end(), p.cornerNormal.begin(), p.cornerNormal.end());
-    const uint32_t offset = uint32_t(mesh.faceVertices.size());
-    for (size_t f = 1; f < p.mesh.faceStart.size(); f++) mesh.faceStart.push_back(offset + p.mesh.faceStart[f]);
-    mesh.faceVertices.insert(mesh.faceVertices.end(), p.mesh.faceVertices.begin(), p.mesh.faceVertices.end());
-    mesh.positions.insert(mesh.positions.end(), p.mesh.positions.begin(), p.mesh.positions.end());
-    normals.insert(normals.end(), p.normals.begin(), p.normals.end());
-    p = ObjPiece();
+  // The pieces joined in file order, each copied to its place on the threads.
+  bool named = false;
+  std::vector<size_t> faceBase(pieces + 1, 0), cornerBase(pieces + 1, 0), vertexBase(pieces + 1, 0),
+      normalBase(pieces + 1, 0);
+  for (size_t k = 0; k < pieces; k++) {
+    named = named || parsed[k].named;
+    faceBase[k + 1] = faceBase[k] + parsed[k].mesh.faceCount();
+    cornerBase[k + 1] = cornerBase[k] + parsed[k].mesh.faceVertices.size();
+    vertexBase[k + 1] = vertexBase[k] + parsed[k].mesh.positions.size();
+    normalBase[k + 1] = normalBase[k] + parsed[k].normals.size();
   }
+  if (cornerBase[pieces] > UINT32_MAX) throw InputError(path, "more than 4294967295 face corners");
+  PolygonMesh mesh;
+  std::vector<glm::vec3> normals(normalBase[pieces]);
+  std::vector<int64_t> cornerNormal(named ? cornerBase[pieces] : 0);
+  mesh.positions.resize(vertexBase[pieces]);
+  mesh.faceStart.resize(faceBase[pieces] + 1);
+  mesh.faceVertices.resize(cornerBase[pieces]);
+  parallelFor(pieces, threads, [&](size_t k) {
+    ObjPiece& p = parsed[k];
+    for (size_t f = 1; f < p.mesh.faceStart.size(); f++)
+      mesh.faceStart[faceBase[k] + f] = uint32_t(cornerBase[k] + p.mesh.faceStart[f]);
+    std::copy(p.mesh.faceVertices.begin(), p.mesh.faceVertices.end(), mesh.faceVertices.begin() + cornerBase[k]);
+    std::copy(p.mesh.positions.begin(), p.mesh.positions.end(), mesh.positions.begin() + vertexBase[k]);
+    std::copy(p.normals.begin(), p.normals.end(), normals.begin() + normalBase[k]);
+    if (named && p.named)
+      std::copy(p.cornerNormal.begin(), p.cornerNormal.end(), cornerNormal.begin() + cornerBase[k]);
+    else if (named)
+      std::fill(cornerNormal.begin() + cornerBase[k], cornerNormal.begin() + cornerBase[k + 1], -1);
+    p = ObjPiece();
+  });
 
-  // Positive indices may point forward, so ranges are checked once every vertex is known.
-  for (size_t f = 0; f < mesh.faceCount(); f++)
-    for (uint32_t i = 0; i < mesh.faceSize(f); i++)
-      if (mesh.face(f)[i] >= mesh.positions.size())
-        throw InputError(path, "line " + std::to_string(lineOfFace(data, path, f)) + ": face index " +
-                                   std::to_string(mesh.face(f)[i] + 1) + " is out of range (" +
-                                   std::to_string(mesh.positions.size()) + " vertices)");
-  for (size_t f = 0; f < mesh.faceCount() && named; f++)
-    for (uint32_t i = 0; i < mesh.faceSize(f); i++) {
-      int64_t n = cornerNormal[mesh.faceStart[f] + i];
-      if (n >= int64_t(normals.size()))
-        throw InputError(path, "line " + std::to_string(lineOfFace(data, path, f)) + ": normal index " +
-                                   std::to_string(n + 1) + " is out of range (" + std::to_string(normals.size()) +
-                                   " normals)");
+  // Positive indices may point forward, so ranges are checked once every vertex is known: the first
+  // face with a vertex index out of range is reported, else the first with a normal index out of range.
+  size_t badVertex = SIZE_MAX, badNormal = SIZE_MAX;
+  auto lowest = [](size_t& first, size_t f) {
+    size_t seen = __atomic_load_n(&first, __ATOMIC_RELAXED);
+    while (f < seen && !__atomic_compare_exchange_n(&first, &seen, f, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) {
     }
+  };
+  parallelForRanges(mesh.faceCount(), threads, [&](size_t begin, size_t end) {
+    for (size_t f = begin; f < end; f++)
+      for (uint32_t c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; c++) {
+        if (mesh.faceVertices[c] >= mesh.positions.size()) lowest(badVertex, f);
+        if (named && cornerNormal[c] >= int64_t(normals.size())) lowest(badNormal, f);
+      }
+  });
+  if (badVertex != SIZE_MAX)
+    for (uint32_t v : std::vector<uint32_t>(mesh.face(badVertex), mesh.face(badVertex) + mesh.faceSize(badVertex)))
+      if (v >= mesh.positions.size())
+        throw InputError(path, "line " + std::to_string(lineOfFace(data, path, badVertex)) + ": face index " +
+                                   std::to_string(v + 1) + " is out of range (" +
+                                   std::to_string(mesh.positions.size()) + " vertices)");
+  if (badNormal != SIZE_MAX)
+    for (uint32_t c = mesh.faceStart[badNormal]; c < mesh.faceStart[badNormal + 1]; c++)
+      if (cornerNormal[c] >= int64_t(normals.size()))
+        throw InputError(path, "line " + std::to_string(lineOfFace(data, path, badNormal)) + ": normal index " +
+                                   std::to_string(cornerNormal[c] + 1) + " is out of range (" +
+                                   std::to_string(normals.size()) + " normals)");
   if (named) {
-    mesh.cornerNormals.resize(mesh.faceVertices.size(), glm::vec3(0.0f));  // zero: its face's normal
-    for (size_t c = 0; c < mesh.faceVertices.size(); c++)
-      if (cornerNormal[c] >= 0) mesh.cornerNormals[c] = normals[size_t(cornerNormal[c])];
+    mesh.cornerNormals.resize(mesh.faceVertices.size());
+    parallelForRanges(mesh.faceVertices.size(), threads, [&](size_t begin, size_t end) {
+      for (size_t c = begin; c < end; c++)  // zero: its face's normal
+        mesh.cornerNormals[c] = cornerNormal[c] >= 0 ? normals[size_t(cornerNormal[c])] : glm::vec3(0.0f);
+    });
   }
   return singleMeshScene(std::move(mesh));
 }
