@@ -170,51 +170,71 @@ void appendGeometry(SectionSink& file, const Dag& dag, const PolygonMesh& leafMe
   SectionWriter<uint32_t> cageFaceVertices(file, Section::CageFaceVertices);
   SectionWriter<shaderio::ClusterCone> clusterCones(file, Section::ClusterCones);
   SectionWriter<shaderio::Patch> filePatches(file, Section::Patches);
-  std::vector<uint32_t> local;
-  std::vector<uint32_t> slotOf(vertices, UINT32_MAX);  // wedge -> local index, reset per cluster
-  for (uint32_t id : clusterOrder) {
-    const BuildCluster& c = dag.clusters[id];
-    const BuildGroup& parent = dag.groups[c.group];
-    shaderio::Cluster out{};
-    out.selfSphere = c.selfSphere;
-    out.selfError = c.selfError;
-    out.parentSphere = parent.sphere;
-    out.parentError = parent.error;
-    out.group = groupIndex[c.group];
-    out.producer = c.producer == VGEO_NO_GROUP ? VGEO_NO_GROUP : groupIndex[c.producer];
-    out.vertexOffset = clusterVertices.count();
-    out.triangleOffset = clusterTriangles.count();
-    local.clear();
-    const std::vector<uint32_t>& corners = c.wedges.empty() ? c.indices : c.wedges;
-    for (uint32_t v : corners)
-      if (slotOf[v] == UINT32_MAX) {
-        slotOf[v] = uint32_t(local.size());
-        local.push_back(v);
+  // A batch of clusters is laid out on the threads, each into arrays of its own (offsets within
+  // them), then appended in cluster order with its offsets in the file.
+  struct ClusterLayout {
+    shaderio::Cluster cluster;
+    std::vector<uint32_t> vertices, triangles, faceVertices;
+    std::vector<shaderio::CageFace> faces;
+    std::vector<shaderio::Patch> patches;
+  };
+  constexpr size_t kBatch = 4096;
+  std::vector<ClusterLayout> batch;
+  for (size_t first = 0; first < clusterOrder.size(); first += kBatch) {
+    batch.assign(std::min(kBatch, clusterOrder.size() - first), ClusterLayout());
+    parallelFor(batch.size(), threads, [&](size_t i) {
+      const uint32_t id = clusterOrder[first + i];
+      const BuildCluster& c = dag.clusters[id];
+      const BuildGroup& parent = dag.groups[c.group];
+      ClusterLayout& lay = batch[i];
+      shaderio::Cluster& out = lay.cluster;
+      out.selfSphere = c.selfSphere;
+      out.selfError = c.selfError;
+      out.parentSphere = parent.sphere;
+      out.parentError = parent.error;
+      out.group = groupIndex[c.group];
+      out.producer = c.producer == VGEO_NO_GROUP ? VGEO_NO_GROUP : groupIndex[c.producer];
+      // Its vertices in order of first use, its triangles as three local indices.
+      std::vector<uint32_t> local;
+      localIds(c.wedges.empty() ? c.indices : c.wedges, lay.vertices, local);
+      for (uint32_t& v : lay.vertices) v += vertexOffset;
+      for (size_t t = 0; t + 2 < local.size(); t += 3)
+        lay.triangles.push_back(local[t] | local[t + 1] << 8 | local[t + 2] << 16);
+      uint32_t firstTriangle = 0;
+      const uint32_t faceCount = patched ? uint32_t(c.cageFaces.size()) : 0u;
+      for (uint32_t k = 0; k < faceCount; k++) {
+        const uint32_t f = c.cageFaces[k];
+        shaderio::CageFace face{};
+        face.firstVertex = uint32_t(lay.faceVertices.size());
+        face.vertexCount = leafMesh.faceSize(f);
+        face.leafCluster = clusterIndex[id];
+        face.firstTriangle = firstTriangle;
+        firstTriangle += face.vertexCount - 2;
+        for (uint32_t j = 0; j < face.vertexCount; j++)
+          lay.faceVertices.push_back(vertexOffset + shading.wedgeOfCorner(leafMesh, leafMesh.faceStart[f] + j));
+        lay.faces.push_back(face);
+        lay.patches.push_back(filePatch(f));
       }
-    for (uint32_t v : local) clusterVertices.push(vertexOffset + v);
-    for (size_t t = 0; t + 2 < corners.size(); t += 3)
-      clusterTriangles.push(slotOf[corners[t]] | slotOf[corners[t + 1]] << 8 | slotOf[corners[t + 2]] << 16);
-    for (uint32_t v : local) slotOf[v] = UINT32_MAX;
-    out.cageFaceOffset = cageFaces.count();
-    uint32_t firstTriangle = 0;
-    const uint32_t faceCount = patched ? uint32_t(c.cageFaces.size()) : 0u;
-    for (uint32_t i = 0; i < faceCount; i++) {
-      const uint32_t f = c.cageFaces[i];
-      shaderio::CageFace face{};
-      face.firstVertex = cageFaceVertices.count();
-      face.vertexCount = leafMesh.faceSize(f);
-      face.leafCluster = clusterIndex[id];
-      face.firstTriangle = firstTriangle;
-      firstTriangle += face.vertexCount - 2;
-      for (uint32_t k = 0; k < face.vertexCount; k++)
-        cageFaceVertices.push(vertexOffset + shading.wedgeOfCorner(leafMesh, leafMesh.faceStart[f] + k));
-      cageFaces.push(face);
-      filePatches.push(filePatch(f));
+      out.counts = shaderio::packClusterCounts(uint32_t(lay.vertices.size()), uint32_t(c.indices.size() / 3), c.level,
+                                               faceCount);
+    });
+    for (size_t i = 0; i < batch.size(); i++) {
+      ClusterLayout& lay = batch[i];
+      lay.cluster.vertexOffset = clusterVertices.count();
+      lay.cluster.triangleOffset = clusterTriangles.count();
+      lay.cluster.cageFaceOffset = cageFaces.count();
+      for (uint32_t v : lay.vertices) clusterVertices.push(v);
+      for (uint32_t t : lay.triangles) clusterTriangles.push(t);
+      const uint32_t faceVertexBase = cageFaceVertices.count();
+      for (shaderio::CageFace face : lay.faces) {
+        face.firstVertex += faceVertexBase;
+        cageFaces.push(face);
+      }
+      for (uint32_t v : lay.faceVertices) cageFaceVertices.push(v);
+      for (const shaderio::Patch& patch : lay.patches) filePatches.push(patch);
+      clusterCones.push(cones[clusterOrder[first + i]]);
+      clusters.push(lay.cluster);
     }
-    clusterCones.push(cones[id]);
-    out.counts =
-        shaderio::packClusterCounts(uint32_t(local.size()), uint32_t(c.indices.size() / 3), c.level, faceCount);
-    clusters.push(out);
   }
   clusters.flush(), clusterVertices.flush(), clusterTriangles.flush(), cageFaces.flush();
   cageFaceVertices.flush(), clusterCones.flush(), filePatches.flush();
