@@ -35,24 +35,34 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
       i = j;
     }
   });
-  std::vector<std::pair<uint64_t, uint32_t>> borders;
-  for (size_t slot = 0; slot < n; slot++)
-    for (uint64_t e : clusterBorders[slot]) borders.push_back({e, uint32_t(slot)});
-  std::vector<std::vector<uint64_t>>().swap(clusterBorders);
+  std::vector<size_t> borderStart(n + 1, 0);
+  for (size_t slot = 0; slot < n; slot++) borderStart[slot + 1] = borderStart[slot] + clusterBorders[slot].size();
+  std::vector<std::pair<uint64_t, uint32_t>> borders(borderStart[n]);
+  parallelFor(n, threads, [&](size_t slot) {
+    for (size_t k = 0; k < clusterBorders[slot].size(); k++)
+      borders[borderStart[slot] + k] = {clusterBorders[slot][k], uint32_t(slot)};
+    std::vector<uint64_t>().swap(clusterBorders[slot]);
+  });
   parallelSort(borders, threads);
-  // Cluster pairs sharing an edge, counted; an edge on one cluster's border only is open.
+  // Cluster pairs sharing an edge, counted; an edge on one cluster's border only is open. Kept a
+  // range of the sorted borders at a time, joined in order (the open edges stay ascending).
+  const size_t ranges = parallelRangeCount(borders.size());
+  std::vector<std::vector<uint64_t>> pairsOf(ranges), openOf(ranges);
+  parallelForRuns(
+      borders.size(), threads, [&](size_t a, size_t b) { return borders[a].first == borders[b].first; },
+      [&](size_t i, size_t j, size_t range) {
+        if (j - i == 1) openOf[range].push_back(borders[i].first);
+        for (size_t a = i; a < j; a++)
+          for (size_t b = a + 1; b < j; b++)
+            if (borders[a].second != borders[b].second)
+              pairsOf[range].push_back(uint64_t(std::min(borders[a].second, borders[b].second)) << 32 |
+                                       std::max(borders[a].second, borders[b].second));
+      });
   std::vector<uint64_t> pairs;
   if (openEdges) openEdges->clear();
-  for (size_t i = 0; i < borders.size();) {
-    size_t j = i;
-    while (j < borders.size() && borders[j].first == borders[i].first) j++;
-    if (j - i == 1 && openEdges) openEdges->push_back(borders[i].first);
-    for (size_t a = i; a < j; a++)
-      for (size_t b = a + 1; b < j; b++)
-        if (borders[a].second != borders[b].second)
-          pairs.push_back(uint64_t(std::min(borders[a].second, borders[b].second)) << 32 |
-                          std::max(borders[a].second, borders[b].second));
-    i = j;
+  for (size_t r = 0; r < ranges; r++) {
+    pairs.insert(pairs.end(), pairsOf[r].begin(), pairsOf[r].end());
+    if (openEdges) openEdges->insert(openEdges->end(), openOf[r].begin(), openOf[r].end());
   }
   parallelSort(pairs, threads);
   std::vector<std::vector<std::pair<uint32_t, int>>> neighbours(n);

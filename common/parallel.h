@@ -12,6 +12,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <type_traits>
 #include <functional>
 #include <vector>
 
@@ -37,17 +38,20 @@ void parallelFor(size_t count, int threads, Fn&& fn) {
   withThreads(threads, [&] { tbb::parallel_for(size_t(0), count, [&](size_t i) { fn(i); }); });
 }
 
-// fn(begin, end) over [0, count) in ranges of 65,536 on up to `threads` threads: for loops whose body
-// is too small to be a task of its own.
+// fn(begin, end) over [0, count) in ranges of kParallelRange on up to `threads` threads: for loops whose
+// body is too small to be a task of its own.
+constexpr size_t kParallelRange = 65536;
+inline size_t parallelRangeCount(size_t count) { return (count + kParallelRange - 1) / kParallelRange; }
 template <class Fn>
 void parallelForRanges(size_t count, int threads, Fn&& fn) {
-  constexpr size_t kRange = 65536;
-  parallelFor((count + kRange - 1) / kRange, threads,
-              [&](size_t r) { fn(r * kRange, std::min(count, (r + 1) * kRange)); });
+  parallelFor(parallelRangeCount(count), threads,
+              [&](size_t r) { fn(r * kParallelRange, std::min(count, (r + 1) * kParallelRange)); });
 }
 
 // fn(begin, end) for each run [begin, end) of [0, count) whose neighbours are alike (same(i - 1, i)),
-// on up to `threads` threads: for passes over sorted records, a key's records handled together.
+// on up to `threads` threads: for passes over sorted records, a key's records handled together. With a
+// third parameter fn also gets the index of the range the run starts in (parallelRangeCount(count) of
+// them, in order), for output kept a range at a time and joined in order.
 template <class Same, class Fn>
 void parallelForRuns(size_t count, int threads, Same&& same, Fn&& fn) {
   parallelForRanges(count, threads, [&](size_t begin, size_t end) {
@@ -56,7 +60,10 @@ void parallelForRuns(size_t count, int threads, Same&& same, Fn&& fn) {
     while (i < end) {
       size_t j = i + 1;
       while (j < count && same(j - 1, j)) j++;
-      fn(i, j);
+      if constexpr (std::is_invocable_v<Fn, size_t, size_t, size_t>)
+        fn(i, j, begin / kParallelRange);
+      else
+        fn(i, j);
       i = j;
     }
   });
