@@ -51,11 +51,10 @@ template <class Keep>
 void EdgeSet::retainAndReserve(Keep&& keep, size_t edges, int threads) {
   // The edges kept, gathered a range of slots at a time, then the table made again at its new size
   // (the old one freed first: the two are never held at once).
-  constexpr size_t kRange = 65536;
-  std::vector<std::vector<uint64_t>> kept((capacity_ + kRange - 1) / kRange);
-  parallelFor(kept.size(), threads, [&](size_t r) {
-    for (size_t i = r * kRange; i < std::min(capacity_, (r + 1) * kRange); i++)
-      if (slots_[i] != kEmpty && keep(slots_[i])) kept[r].push_back(slots_[i]);
+  std::vector<std::vector<uint64_t>> kept(parallelRangeCount(capacity_));
+  parallelForRanges(capacity_, threads, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; i++)
+      if (slots_[i] != kEmpty && keep(slots_[i])) kept[begin / kParallelRange].push_back(slots_[i]);
   });
   slots_.reset();
   std::vector<uint64_t> keys;

@@ -64,9 +64,7 @@ void checkNoFold(const std::vector<BuildCluster>& clusters, const std::vector<gl
   parallelForRanges(directed.size(), threads, [&](size_t begin, size_t end) {
     for (size_t i = std::max<size_t>(begin, 1); i < end; i++)
       if (directed[i] == directed[i - 1]) {
-        size_t seen = __atomic_load_n(&first, __ATOMIC_RELAXED);
-        while (i < seen && !__atomic_compare_exchange_n(&first, &seen, i, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) {
-        }
+        atomicMin(first, i);
         return;
       }
   });

@@ -197,23 +197,18 @@ SourceScene loadObj(const std::string& path, int threads) {
   // Positive indices may point forward, so ranges are checked once every vertex is known: the first
   // face with a vertex index out of range is reported, else the first with a normal index out of range.
   size_t badVertex = SIZE_MAX, badNormal = SIZE_MAX;
-  auto lowest = [](size_t& first, size_t f) {
-    size_t seen = __atomic_load_n(&first, __ATOMIC_RELAXED);
-    while (f < seen && !__atomic_compare_exchange_n(&first, &seen, f, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) {
-    }
-  };
   parallelForRanges(mesh.faceCount(), threads, [&](size_t begin, size_t end) {
     for (size_t f = begin; f < end; f++)
       for (uint32_t c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; c++) {
-        if (mesh.faceVertices[c] >= mesh.positions.size()) lowest(badVertex, f);
-        if (named && cornerNormal[c] >= int64_t(normals.size())) lowest(badNormal, f);
+        if (mesh.faceVertices[c] >= mesh.positions.size()) atomicMin(badVertex, f);
+        if (named && cornerNormal[c] >= int64_t(normals.size())) atomicMin(badNormal, f);
       }
   });
   if (badVertex != SIZE_MAX)
-    for (uint32_t v : std::vector<uint32_t>(mesh.face(badVertex), mesh.face(badVertex) + mesh.faceSize(badVertex)))
-      if (v >= mesh.positions.size())
+    for (uint32_t c = mesh.faceStart[badVertex]; c < mesh.faceStart[badVertex + 1]; c++)
+      if (mesh.faceVertices[c] >= mesh.positions.size())
         throw InputError(path, "line " + std::to_string(lineOfFace(data, path, badVertex)) + ": face index " +
-                                   std::to_string(v + 1) + " is out of range (" +
+                                   std::to_string(mesh.faceVertices[c] + 1) + " is out of range (" +
                                    std::to_string(mesh.positions.size()) + " vertices)");
   if (badNormal != SIZE_MAX)
     for (uint32_t c = mesh.faceStart[badNormal]; c < mesh.faceStart[badNormal + 1]; c++)

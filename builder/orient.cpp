@@ -16,58 +16,9 @@
 
 #include "../common/parallel.h"
 #include "builder.h"
+#include "union_find.h"
 
 namespace vgeo {
-namespace {
-
-// Disjoint sets of faces with, for each face, whether it turns relative to its set's representative
-// (the set's smallest face). A word a face: its parent << 1 | its turn relative to the parent. unite()
-// and find() may run on many threads at once: parents change by compare-and-swap, every change keeps the
-// relation it states true, and a root is linked under the smaller one, so the representatives and
-// turns come out the same whatever the order of the unions.
-class ParityUnionFind {
- public:
-  explicit ParityUnionFind(size_t n) : words_(n) {
-    for (size_t i = 0; i < n; i++) words_[i] = uint32_t(i) << 1;
-  }
-  // The representative of x's set and x's turn relative to it.
-  std::pair<uint32_t, uint8_t> find(uint32_t x) {
-    uint8_t parity = 0;
-    for (;;) {
-      uint32_t w = load(x), parent = w >> 1;
-      if (parent == x) return {x, parity};
-      uint32_t up = load(parent), grand = up >> 1;
-      uint32_t expected = w;
-      if (grand != parent)  // path halving: x's relation to its grandparent holds as well
-        __atomic_compare_exchange_n(&words_[x], &expected, grand << 1 | ((w ^ up) & 1u), false, __ATOMIC_RELAXED,
-                                    __ATOMIC_RELAXED);
-      parity ^= uint8_t(w & 1u);
-      x = parent;
-    }
-  }
-  // Joins the sets of a and b with a's turn differing from b's when `differ`; false when they were
-  // joined already with the opposite relation.
-  bool unite(uint32_t a, uint32_t b, bool differ) {
-    for (;;) {
-      auto [ra, pa] = find(a);
-      auto [rb, pb] = find(b);
-      const uint32_t relation = uint32_t(differ) ^ pa ^ pb;  // turn of ra relative to rb
-      if (ra == rb) return relation == 0;
-      const uint32_t high = std::max(ra, rb), low = std::min(ra, rb);
-      uint32_t expected = high << 1;  // still a root
-      if (__atomic_compare_exchange_n(&words_[high], &expected, low << 1 | relation, false, __ATOMIC_RELAXED,
-                                      __ATOMIC_RELAXED))
-        return true;
-    }
-  }
-
- private:
-  uint32_t load(uint32_t x) const { return __atomic_load_n(&words_[x], __ATOMIC_RELAXED); }
-  std::vector<uint32_t> words_;
-};
-
-}  // namespace
-
 OrientReport orientFaces(PolygonMesh& mesh, int threads, OrientedEdges* oriented) {
   OrientReport report;
   const size_t faceCount = mesh.faceCount();
@@ -124,7 +75,7 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads, OrientedEdges* oriented
   std::vector<uint8_t> flip(faceCount);
   parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {
     for (size_t f = begin; f < end; f++) {
-      const auto [r, parity] = faces.find(uint32_t(f));
+      const auto [r, parity] = faces.findWithTurn(uint32_t(f));
       root[f] = r, flip[f] = parity;
     }
   });

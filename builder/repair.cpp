@@ -326,11 +326,7 @@ PolygonMesh splitNonManifold(PolygonMesh& faces, OrientedEdges&& oriented, Repai
   parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
     for (size_t c = begin; c < end; c++) {
       newCorner[c] = wedges.find(uint32_t(c));
-      uint32_t* first = &firstCorner[faces.faceVertices[c]];
-      uint32_t seen = __atomic_load_n(first, __ATOMIC_RELAXED);
-      while (c < seen &&
-             !__atomic_compare_exchange_n(first, &seen, uint32_t(c), false, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) {
-      }
+      atomicMin(firstCorner[faces.faceVertices[c]], uint32_t(c));
     }
   });
   wedges = UnionFind(0);

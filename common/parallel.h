@@ -38,6 +38,15 @@ void parallelFor(size_t count, int threads, Fn&& fn) {
   withThreads(threads, [&] { tbb::parallel_for(size_t(0), count, [&](size_t i) { fn(i); }); });
 }
 
+// Lowers `target` to `value` when smaller, from any thread (the smallest of all offered wins).
+template <class T>
+void atomicMin(T& target, T value) {
+  T seen = __atomic_load_n(&target, __ATOMIC_RELAXED);
+  while (value < seen &&
+         !__atomic_compare_exchange_n(&target, &seen, value, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) {
+  }
+}
+
 // fn(begin, end) over [0, count) in ranges of kParallelRange on up to `threads` threads: for loops whose
 // body is too small to be a task of its own.
 constexpr size_t kParallelRange = 65536;
@@ -74,17 +83,16 @@ void parallelForRuns(size_t count, int threads, Same&& same, Fn&& fn) {
 // number n (0, 1, ...). Returns the total.
 template <class Pick, class Sized, class Number>
 size_t parallelNumber(size_t count, int threads, Pick&& pick, Sized&& sized, Number&& number) {
-  constexpr size_t kBlock = 65536;
-  const size_t blocks = (count + kBlock - 1) / kBlock;
+  const size_t blocks = parallelRangeCount(count);
   std::vector<size_t> base(blocks + 1, 0);
-  parallelFor(blocks, threads, [&](size_t k) {
-    for (size_t i = k * kBlock; i < std::min(count, (k + 1) * kBlock); i++) base[k + 1] += pick(i) ? 1 : 0;
+  parallelForRanges(count, threads, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; i++) base[begin / kParallelRange + 1] += pick(i) ? 1 : 0;
   });
   for (size_t k = 0; k < blocks; k++) base[k + 1] += base[k];
   sized(base[blocks]);
-  parallelFor(blocks, threads, [&](size_t k) {
-    size_t n = base[k];
-    for (size_t i = k * kBlock; i < std::min(count, (k + 1) * kBlock); i++)
+  parallelForRanges(count, threads, [&](size_t begin, size_t end) {
+    size_t n = base[begin / kParallelRange];
+    for (size_t i = begin; i < end; i++)
       if (pick(i)) number(i, n++);
   });
   return base[blocks];
