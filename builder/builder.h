@@ -299,6 +299,9 @@ struct BuildCluster {
   uint32_t group = VGEO_NO_GROUP;     // the group it belongs to
   uint32_t level = 0;
 };
+// The triangles a cluster is cut to, leaves and simplified groups alike: nearly full, with the last
+// few of VGEO_MAX_CLUSTER_TRIANGLES left as room to merge a cut-off piece back into a neighbour.
+constexpr uint32_t kClusterFill = 126;
 // Faces of more than kMaxLeafFaceCorners corners are replaced by triangle fans: they could not be
 // patches and might not fit one cluster. Call before buildLeafClusters (a no-op on subdivided meshes).
 constexpr uint32_t kMaxLeafFaceCorners = 66;
@@ -353,14 +356,15 @@ struct SimplifiedGroup {
   int relaxation = 0;             // 1 when it needed an error above 2% of the group's size to get there
   bool halved = false;            // reached <= 55% of the input triangles
 };
-// Simplifies a group's triangles to half by quadric-error half-edge collapses with the group border
-// (edges without a twin inside the group that another cluster has) locked, keeping the surface manifold
-// (link condition, no flips). Edges of `openEdges` (absolute ids, min << 32 | max, ascending) are the
-// surface's open boundary: their vertices, unless also on the locked border, collapse along it. A new
-// edge between two locked vertices a, b (absolute ids) is made only if chordAllowed(a, b).
+// Simplifies a group's triangles to `targetTriangles` (about half) by quadric-error half-edge collapses
+// with the group border (edges without a twin inside the group that another cluster has) locked,
+// keeping the surface manifold (link condition, no flips). Edges of `openEdges` (absolute ids,
+// min << 32 | max, ascending) are the surface's open boundary: their vertices, unless also on the
+// locked border, collapse along it. A new edge between two locked vertices a, b (absolute ids) is made
+// only if chordAllowed(a, b).
 SimplifiedGroup simplifyGroup(const std::vector<uint32_t>& indices, const std::vector<glm::vec3>& positions,
                               const std::function<bool(uint32_t, uint32_t)>& chordAllowed,
-                              const std::vector<uint64_t>& openEdges);
+                              const std::vector<uint64_t>& openEdges, size_t targetTriangles);
 
 // ---- dag.cpp ----------------------------------------------------------------------------------------
 struct BuildOptions {

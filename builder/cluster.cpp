@@ -190,10 +190,8 @@ void fanLargeFaces(PolygonMesh& mesh) {
 std::vector<BuildCluster> buildLeafClusters(const PolygonMesh& mesh, int threads, const ShadingNormals* shading) {
   for (size_t f = 0; f < mesh.faceCount(); f++)
     if (mesh.faceSize(f) > kMaxLeafFaceCorners) throw std::logic_error("buildLeafClusters: call fanLargeFaces first");
-  // Leaves: nearly full clusters (the builder's promise is >= 124 triangles on average), with a little
-  // room left for merging cut-off pieces.
   const bool hardEdges = shading && !shading->oneAVertex;
-  return clustersFromFaces(mesh.faceStart, mesh.faceVertices, mesh.positions, threads, true, 126,
+  return clustersFromFaces(mesh.faceStart, mesh.faceVertices, mesh.positions, threads, true, kClusterFill,
                            hardEdges ? &shading->cornerWedge : nullptr);
 }
 
@@ -206,8 +204,6 @@ std::vector<BuildCluster> splitIntoClusters(const std::vector<uint32_t>& indices
   for (size_t i = 0; i < globals.size(); i++) points[i] = positions[globals[i]];
   std::vector<uint32_t> faceStart(indices.size() / 3 + 1);
   for (size_t i = 0; i < faceStart.size(); i++) faceStart[i] = uint32_t(3 * i);
-  // Simplified groups have a fine border ring around coarse insides, which cuts pieces off easily:
-  // leave more room for merging them back.
   std::vector<uint32_t> wedges;
   if (shading && !shading->oneAVertex) {
     wedges.resize(indices.size());
@@ -218,7 +214,7 @@ std::vector<BuildCluster> splitIntoClusters(const std::vector<uint32_t>& indices
     }
   }
   std::vector<BuildCluster> clusters =
-      clustersFromFaces(faceStart, local, points, 1, false, 120, wedges.empty() ? nullptr : &wedges);
+      clustersFromFaces(faceStart, local, points, 1, false, kClusterFill, wedges.empty() ? nullptr : &wedges);
   for (BuildCluster& c : clusters)
     for (uint32_t& v : c.indices) v = globals[v];
   return clusters;

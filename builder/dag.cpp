@@ -91,6 +91,17 @@ std::vector<BuildCluster> makeLeafClusters(const PolygonMesh& mesh, const BuildO
   return clusters;
 }
 
+// What a group of `triangles` is simplified to: the multiple of kClusterFill nearest half of it, so
+// that the split can fill every cluster it makes (half of 1,890 triangles, 945, would make eight
+// clusters of 118). Held under 52% of the group, below what counts as halved; a group of fewer than
+// two clusters' worth goes to half.
+size_t simplifyTarget(size_t triangles) {
+  constexpr double kMostKept = 0.52;
+  size_t clusters = (triangles / 2 + kClusterFill / 2) / kClusterFill;
+  if (clusters * kClusterFill > size_t(double(triangles) * kMostKept)) clusters--;
+  return clusters > 0 ? clusters * kClusterFill : triangles / 2;
+}
+
 struct GroupOutcome {
   SimplifiedGroup simplified;
   std::vector<BuildCluster> produced;
@@ -106,7 +117,8 @@ std::vector<GroupOutcome> simplifyGroups(const std::vector<GroupPlan>& plans, co
     for (uint32_t m : plans[g].clusters)
       indices.insert(indices.end(), clusters[m].indices.begin(), clusters[m].indices.end());
     auto chordAllowed = [&](uint32_t a, uint32_t b) { return chords.allowed(uint32_t(g), a, b); };
-    outcomes[g].simplified = simplifyGroup(indices, positions, chordAllowed, openEdges);
+    outcomes[g].simplified =
+        simplifyGroup(indices, positions, chordAllowed, openEdges, simplifyTarget(indices.size() / 3));
     if (outcomes[g].simplified.halved)
       outcomes[g].produced = splitIntoClusters(outcomes[g].simplified.indices, positions, options.shading);
     std::vector<uint32_t>().swap(outcomes[g].simplified.indices);  // held as the clusters now

@@ -1,6 +1,6 @@
-// simplify.cpp: one group's triangles to about half by half-edge collapse in quadric-error order
-// (Garland & Heckbert 1997), with the group border locked. Vertices only ever collapse onto existing
-// vertices, so every level of the DAG indexes the leaf vertex array.
+// simplify.cpp: one group's triangles to about half (the DAG builder sets the count) by half-edge
+// collapse in quadric-error order (Garland & Heckbert 1997), with the group border locked. Vertices
+// only ever collapse onto existing vertices, so every level of the DAG indexes the leaf vertex array.
 //
 // Written here rather than taken from meshoptimizer 0.18 because the cut must stay a manifold surface
 // for every camera, and that needs three tests meshopt does not make:
@@ -382,7 +382,7 @@ class Simplifier {
 
 SimplifiedGroup simplifyGroup(const std::vector<uint32_t>& indices, const std::vector<glm::vec3>& positions,
                               const std::function<bool(uint32_t, uint32_t)>& chordAllowed,
-                              const std::vector<uint64_t>& openEdges) {
+                              const std::vector<uint64_t>& openEdges, size_t targetTriangles) {
   std::vector<uint32_t> globals, local;
   localIds(indices, globals, local);
 
@@ -421,7 +421,7 @@ SimplifiedGroup simplifyGroup(const std::vector<uint32_t>& indices, const std::v
   const size_t triangles = indices.size() / 3;
   Simplifier s(std::move(local), std::move(points), std::move(kind), localOpen,
                [&](uint32_t a, uint32_t b) { return chordAllowed(globals[a], globals[b]); });
-  double error = s.run(triangles / 2);
+  double error = s.run(targetTriangles);
   error = std::max(error, s.removedVertexError());
   SimplifiedGroup result;
   result.error = float(error);
