@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../common/bucket_sort.h"
 #include "../common/parallel.h"
 #include "builder.h"
 #include "chord_rule.h"
@@ -51,15 +52,14 @@ BuildGroup makeGroup(std::vector<BuildCluster>& clusters, const std::vector<uint
 // may still fold onto a neighbour (a quad's diagonal running along another face's edge, faces meeting
 // at a sliver): a directed edge held by two leaf triangles could never be covered once by a cut.
 void checkNoFold(const std::vector<BuildCluster>& clusters, const std::vector<glm::vec3>& positions, int threads) {
-  std::vector<size_t> start(clusters.size() + 1, 0);  // each cluster's first directed edge
-  for (size_t i = 0; i < clusters.size(); i++) start[i + 1] = start[i] + clusters[i].indices.size() / 3 * 3;
-  std::vector<uint64_t> directed(start.back());
-  parallelFor(clusters.size(), threads, [&](size_t i) {
-    const std::vector<uint32_t>& idx = clusters[i].indices;
-    for (size_t t = 0; t + 2 < idx.size(); t += 3)
-      for (size_t k = 0; k < 3; k++) directed[start[i] + t + k] = uint64_t(idx[t + k]) << 32 | idx[t + (k + 1) % 3];
-  });
-  parallelSort(directed, threads);
+  const std::vector<uint64_t> directed = bucketSorted<uint64_t>(
+      clusters.size(), bitsFor(positions.size()), bitsFor(positions.size()), threads,
+      [&](size_t i, auto&& emit) {
+        const std::vector<uint32_t>& idx = clusters[i].indices;
+        for (size_t t = 0; t + 2 < idx.size(); t += 3)
+          for (size_t k = 0; k < 3; k++) emit(idx[t + k], uint64_t(idx[t + k]) << 32 | idx[t + (k + 1) % 3]);
+      },
+      std::less<uint64_t>());
   size_t first = SIZE_MAX;  // the first edge held twice, in sorted order (the same message on any thread count)
   parallelForRanges(directed.size(), threads, [&](size_t begin, size_t end) {
     for (size_t i = std::max<size_t>(begin, 1); i < end; i++)

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <numeric>
 
+#include "../common/bucket_sort.h"
 #include "../common/parallel.h"
 #include "builder.h"
 #include "union_find.h"
@@ -25,16 +26,19 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads, OrientedEdges* oriented
   // Every corner's edge, sorted by (key, corner): an edge's faces are adjacent, in face order (a face
   // holds an undirected edge once, as repair left its corners distinct).
   std::vector<uint32_t> cornerFace(mesh.faceVertices.size());
-  std::vector<CornerEdge> halfEdges(mesh.faceVertices.size());
   parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {
     for (size_t f = begin; f < end; f++)
-      for (uint32_t i = 0, n = mesh.faceSize(f); i < n; i++) {
-        uint32_t a = mesh.face(f)[i], b = mesh.face(f)[(i + 1) % n];
-        cornerFace[mesh.faceStart[f] + i] = uint32_t(f);
-        halfEdges[mesh.faceStart[f] + i] = {std::min(a, b), std::max(a, b), mesh.faceStart[f] + i};
-      }
+      std::fill(cornerFace.begin() + mesh.faceStart[f], cornerFace.begin() + mesh.faceStart[f + 1], uint32_t(f));
   });
-  parallelSort(halfEdges, threads);
+  std::vector<CornerEdge> halfEdges = bucketSorted<CornerEdge>(
+      faceCount, bitsFor(mesh.positions.size()), bitsFor(mesh.positions.size()), threads,
+      [&](size_t f, auto&& emit) {
+        for (uint32_t i = 0, n = mesh.faceSize(f); i < n; i++) {
+          uint32_t a = mesh.face(f)[i], b = mesh.face(f)[(i + 1) % n];
+          emit(std::min(a, b), CornerEdge{std::min(a, b), std::max(a, b), mesh.faceStart[f] + i});
+        }
+      },
+      std::less<CornerEdge>());
   // Across each two-face edge, the corner of the other face that starts it: a face's neighbours are
   // its corners' partners, visited in the order of their edges' keys.
   std::vector<uint32_t> partner(mesh.faceVertices.size(), UINT32_MAX);

@@ -15,6 +15,7 @@
 #include <cstring>
 #include <numeric>
 
+#include "../common/bucket_sort.h"
 #include "../common/parallel.h"
 #include "builder.h"
 #include "union_find.h"
@@ -162,22 +163,32 @@ std::vector<uint32_t> weldPositions(const PolygonMesh& mesh, const std::vector<b
     return b;
   };
   // The keys themselves are sorted, not vertex ids compared through the positions: on a large mesh
-  // every such comparison missed the cache.
+  // every such comparison missed the cache. Equal positions only need to be next to each other, so
+  // the buckets are a hash of the position.
   struct Key {
     std::array<uint32_t, 3> bits;
     uint32_t vertex;
     bool operator<(const Key& o) const { return bits != o.bits ? bits < o.bits : vertex < o.vertex; }
   };
-  std::vector<Key> keys(vertexCount);
-  parallelForRanges(vertexCount, threads, [&](size_t begin, size_t end) {
-    for (size_t v = begin; v < end; v++) keys[v] = {bits(uint32_t(v)), uint32_t(v)};
-  });
-  parallelSort(keys, threads);
-  for (size_t i = 0; i < keys.size(); i++) {
-    bool same = i > 0 && keys[i].bits == keys[i - 1].bits;
-    weld[keys[i].vertex] = same ? weld[keys[i - 1].vertex] : keys[i].vertex;
-    if (same && used[keys[i].vertex]) welded++;
-  }
+  const std::vector<Key> keys = bucketSorted<Key>(
+      vertexCount, 64, kChunkedBucketBits, threads,
+      [&](size_t v, auto&& emit) {
+        const Key key{bits(uint32_t(v)), uint32_t(v)};
+        emit(hashWords(key.bits.data(), 3), key);
+      },
+      std::less<Key>());
+  size_t joined = 0;
+  parallelForRuns(
+      keys.size(), threads, [&](size_t i, size_t j) { return keys[i].bits == keys[j].bits; },
+      [&](size_t i, size_t j) {
+        size_t n = 0;
+        for (size_t k = i; k < j; k++) {
+          weld[keys[k].vertex] = keys[i].vertex;
+          n += k > i && used[keys[k].vertex];
+        }
+        if (n) __atomic_fetch_add(&joined, n, __ATOMIC_RELAXED);
+      });
+  welded += joined;
   return weld;
 }
 
@@ -216,20 +227,15 @@ PolygonMesh weldFaces(PolygonMesh& mesh, const std::vector<uint32_t>& weld, size
 size_t dropDuplicateFaces(PolygonMesh& faces, int threads) {
   size_t duplicates = 0;
   const size_t n = faces.faceCount();
-  // (hash of the sorted corners, face) pairs, sorted as they are (comparing face ids through a hash
-  // array missed the cache on large meshes).
-  std::vector<std::pair<uint64_t, uint32_t>> byHash(n);
-  parallelForRanges(n, threads, [&](size_t begin, size_t end) {
-    std::vector<uint32_t> sorted;
-    for (size_t f = begin; f < end; f++) {
-      sorted.assign(faces.face(f), faces.face(f) + faces.faceSize(f));
-      std::sort(sorted.begin(), sorted.end());
-      uint64_t h = 1469598103934665603ull;
-      for (uint32_t v : sorted) h = (h ^ v) * 1099511628211ull;
-      byHash[f] = {h, uint32_t(f)};
-    }
-  });
-  parallelSort(byHash, threads);
+  // (hash of the corner set, face) pairs, sorted as they are (comparing face ids through a hash array
+  // missed the cache on large meshes). Faces of one corner set meet in one run, the first face first.
+  std::vector<std::pair<uint64_t, uint32_t>> byHash = bucketSorted<std::pair<uint64_t, uint32_t>>(
+      n, 64, kChunkedBucketBits, threads,
+      [&](size_t f, auto&& emit) {
+        const uint64_t h = hashOfSet(faces.face(f), faces.faceSize(f));
+        emit(h, std::pair<uint64_t, uint32_t>(h, uint32_t(f)));
+      },
+      std::less<std::pair<uint64_t, uint32_t>>());
   std::vector<bool> drop(n, false);
   std::vector<uint32_t> sa, sb;
   for (size_t i = 0; i < n; i++) {

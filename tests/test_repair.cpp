@@ -3,6 +3,7 @@
 #include <cmath>
 #include <map>
 
+#include "../common/bucket_sort.h"
 #include "test_util.h"
 
 namespace vgeo {
@@ -175,6 +176,48 @@ TEST(Repair, AMessyMeshRepairsTheSameOnAnyThreadCount) {
   EXPECT_EQ(one.faceStart, four.faceStart);
   EXPECT_TRUE(one.positions == four.positions);
   expectManifold(one);
+}
+
+TEST(Repair, BucketSortedIsStdSortOnAnyThreadCount) {
+  // Repair's and the leaf clusters' sorts: (key, id) items from 100,000 sources, a tenth of them on one
+  // key (a vertex of a huge fan), in buckets of one key each (shared counts) and by a hash's top bits
+  // (counts a chunk), on 1 and 3 threads: std::sort's order, and each bucket's start where it begins.
+  using Item = std::pair<uint64_t, uint32_t>;
+  const size_t sources = 100000;
+  auto vertexKey = [](size_t s, int k) { return s % 10 == 0 ? 7u : uint32_t((s * 2654435761u + size_t(k)) % 50000); };
+  std::vector<Item> expectVertex, expectHash;
+  for (size_t s = 0; s < sources; s++)
+    for (int k = 0; k < 3; k++) {
+      expectVertex.push_back({vertexKey(s, k), uint32_t(3 * s + size_t(k))});
+      const uint32_t id = uint32_t(3 * s + size_t(k));
+      expectHash.push_back({hashWords(&id, 1), id});
+    }
+  std::sort(expectVertex.begin(), expectVertex.end());
+  std::sort(expectHash.begin(), expectHash.end());
+  for (int threads : {1, 3}) {
+    std::vector<size_t> starts;
+    const int bits = bitsFor(50000);
+    std::vector<Item> byVertex = bucketSorted<Item>(
+        sources, bits, bits, threads,
+        [&](size_t s, auto&& emit) {
+          for (int k = 0; k < 3; k++) emit(vertexKey(s, k), Item(vertexKey(s, k), uint32_t(3 * s + size_t(k))));
+        },
+        std::less<Item>(), &starts);
+    EXPECT_EQ(byVertex, expectVertex) << threads << " threads";
+    ASSERT_EQ(starts.size(), (size_t(1) << bits) + 1);
+    for (uint64_t v = 0; v < 50000; v += 97)
+      for (size_t i = starts[v]; i < starts[v + 1]; i++) ASSERT_EQ(byVertex[i].first, v);
+    std::vector<Item> byHash = bucketSorted<Item>(
+        sources, 64, kChunkedBucketBits, threads,
+        [&](size_t s, auto&& emit) {
+          for (int k = 0; k < 3; k++) {
+            const uint32_t id = uint32_t(3 * s + size_t(k));
+            emit(hashWords(&id, 1), Item(hashWords(&id, 1), id));
+          }
+        },
+        std::less<Item>());
+    EXPECT_EQ(byHash, expectHash) << threads << " threads";
+  }
 }
 
 TEST(Repair, RejectsNonFinitePositions) {

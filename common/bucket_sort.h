@@ -1,0 +1,103 @@
+// bucket_sort.h: the builder's large sorts (tens of millions of edges or faces) as a counting pass into
+// buckets by the top bits of a key, then a sort of each bucket (an MSD radix step, then std::sort).
+// Each pass runs on all threads: counting and placing over chunks of the input, each chunk with its
+// own counts, then the buckets' sorts; a comparison sort of the whole array starts with partitions on
+// one thread, which kept 16 threads at a few times the speed of one. Buckets are few enough that the
+// counts stay in cache and placing writes one stream a bucket. The caller's generator makes the items
+// twice (once counted, once placed), so no unsorted copy is held next to the sorted one.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "parallel.h"
+
+namespace vgeo {
+
+// Keys for items whose order between buckets does not matter, only that equal ones meet: a hash of
+// 32-bit words in order (FNV-1a, finished by a mix so that its top bits spread), and of a set of
+// distinct words in any order (a sum of mixed words, no sort needed).
+inline uint64_t mixBits(uint64_t x) {  // splitmix64's finalizer
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+  return x ^ (x >> 31);
+}
+inline uint64_t hashWords(const uint32_t* words, size_t count) {
+  uint64_t h = 1469598103934665603ull;
+  for (size_t i = 0; i < count; i++) h = (h ^ words[i]) * 1099511628211ull;
+  return mixBits(h);
+}
+inline uint64_t hashOfSet(const uint32_t* words, size_t count) {
+  uint64_t h = mixBits(count);
+  for (size_t i = 0; i < count; i++) h += mixBits(words[i] + 0x9e3779b97f4a7c15ull);
+  return h;
+}
+
+// The items that make(s, emit) emits as emit(key, item) for every source s in [0, sources), sorted by
+// the top `bucketBits` of their keys (below 2^keyBits), then by `less`: exactly by `less` where the key
+// never decreases along it. With a strict order in which no two distinguishable items are equal, the
+// result does not depend on `threads`. `starts`, when given, receives where each bucket begins (one
+// more entry, the end). Up to kChunkedBucketBits, each chunk of sources counts into buckets of its own
+// (hashed keys, scattered over memory: the counts must stay in cache); above, into one shared array by
+// atomic increments (keys such as vertex ids, which follow the sources' order, so that a bucket a key
+// costs no sort and little cache).
+constexpr int kChunkedBucketBits = 14;
+template <class T, class Make, class Less>
+std::vector<T> bucketSorted(size_t sources, int keyBits, int bucketBits, int threads, Make&& make, Less&& less,
+                            std::vector<size_t>* starts = nullptr) {
+  bucketBits = std::min(bucketBits, keyBits);
+  const int shift = keyBits - bucketBits;
+  const size_t buckets = size_t(1) << bucketBits;
+  const bool shared = bucketBits > kChunkedBucketBits;
+  const size_t chunks = shared ? 1 : std::max<size_t>(1, std::min(sources, size_t(std::max(threads, 1)) * 4));
+  auto chunkBegin = [&](size_t c) { return sources * c / chunks; };
+  // Shared: any source on any thread; chunked: chunk c's sources on one.
+  auto forSources = [&](auto&& body) {
+    if (shared)
+      parallelFor(sources, threads, [&](size_t s) { body(0, s); });
+    else
+      parallelFor(chunks, threads, [&](size_t c) {
+        for (size_t s = chunkBegin(c); s < chunkBegin(c + 1); s++) body(c, s);
+      });
+  };
+  const bool atomic = shared && threads > 1;
+  auto claim = [&](size_t& slot) { return atomic ? __atomic_fetch_add(&slot, size_t(1), __ATOMIC_RELAXED) : slot++; };
+  // next[c * buckets + b]: chunk c's count in bucket b, then where its next item there goes.
+  std::vector<size_t> next(chunks * buckets, 0);
+  forSources([&](size_t c, size_t s) {
+    make(s, [&](uint64_t key, const T&) { claim(next[c * buckets + size_t(key >> shift)]); });
+  });
+  std::vector<size_t> bucketStart(buckets + 1);
+  size_t total = 0;
+  for (size_t b = 0; b < buckets; b++) {
+    bucketStart[b] = total;
+    for (size_t c = 0; c < chunks; c++) {
+      const size_t n = next[c * buckets + b];
+      next[c * buckets + b] = total;
+      total += n;
+    }
+  }
+  bucketStart[buckets] = total;
+  std::vector<T> sorted(total);
+  forSources([&](size_t c, size_t s) {
+    make(s, [&](uint64_t key, const T& item) { sorted[claim(next[c * buckets + size_t(key >> shift)])] = item; });
+  });
+  std::vector<size_t>().swap(next);
+  parallelForRanges(buckets, threads, [&](size_t begin, size_t end) {
+    for (size_t b = begin; b < end; b++)
+      if (bucketStart[b + 1] - bucketStart[b] > 1)
+        std::sort(sorted.begin() + long(bucketStart[b]), sorted.begin() + long(bucketStart[b + 1]), less);
+  });
+  if (starts) *starts = std::move(bucketStart);
+  return sorted;
+}
+
+// Bits to hold values below `end`.
+inline int bitsFor(uint64_t end) {
+  int bits = 0;
+  while (bits < 64 && (end - 1) >> bits) bits++;
+  return bits;
+}
+
+}  // namespace vgeo
