@@ -4,6 +4,7 @@
 // of the level-N cage, so a quad's two triangles never part and every patch belongs to one cluster.
 #include <algorithm>
 
+#include "../common/bucket_sort.h"
 #include "../common/parallel.h"
 #include "builder.h"
 
@@ -26,36 +27,39 @@ namespace {
 
 // Faces sharing an edge are neighbours (all of them, should an edge have more than two faces). Found
 // through each vertex's faces rather than by sorting edges: linear, ~3x faster on large meshes, and
-// parallel over faces.
-Graph dualGraph(const std::vector<uint32_t>& faceStart, const std::vector<uint32_t>& faceVertices, int threads) {
+// every pass parallel over faces.
+Graph dualGraph(const std::vector<uint32_t>& faceStart, const std::vector<uint32_t>& faceVertices, size_t vertexCount,
+                int threads) {
   const size_t faceCount = faceStart.size() - 1;
-  uint32_t vertexCount = 0;
-  for (uint32_t v : faceVertices) vertexCount = std::max(vertexCount, v + 1);
-  std::vector<uint32_t> vertexStart(vertexCount + 1, 0), vertexFaces(faceVertices.size());
-  for (uint32_t v : faceVertices) vertexStart[v + 1]++;
-  for (uint32_t v = 0; v < vertexCount; v++) vertexStart[v + 1] += vertexStart[v];
-  {
-    std::vector<uint32_t> fill(vertexStart.begin(), vertexStart.end() - 1);
-    for (uint32_t f = 0; f < faceCount; f++)
-      for (uint32_t c = faceStart[f]; c < faceStart[f + 1]; c++) vertexFaces[fill[faceVertices[c]]++] = f;
-  }
+  // Each vertex's faces, ascending: vertex v's are vertexFaces[vertexStart[v] .. vertexStart[v + 1]).
+  std::vector<size_t> vertexStart;
+  const int vertexBits = bitsFor(std::max<size_t>(vertexCount, 1));
+  const std::vector<uint32_t> vertexFaces = bucketSorted<uint32_t>(
+      faceCount, vertexBits, vertexBits, threads,
+      [&](size_t f, auto&& emit) {
+        for (uint32_t c = faceStart[f]; c < faceStart[f + 1]; c++) emit(faceVertices[c], uint32_t(f));
+      },
+      std::less<uint32_t>(), &vertexStart);
   auto hasVertex = [&](uint32_t f, uint32_t v) {
     for (uint32_t c = faceStart[f]; c < faceStart[f + 1]; c++)
       if (faceVertices[c] == v) return true;
     return false;
   };
   // Each face writes its neighbours into a slot per corner edge (one neighbour an edge on a manifold
-  // mesh); faces with an edge of several neighbours are listed apart and merged after.
+  // mesh); faces with an edge of several neighbours are listed apart, a chunk's in face order.
   const uint32_t kNone = UINT32_MAX;
   std::vector<uint32_t> slots(faceVertices.size(), kNone);
   const size_t chunk = 4096, chunks = (faceCount + chunk - 1) / chunk;
+  auto chunkFaces = [&](size_t ch) {
+    return std::pair<uint32_t, uint32_t>(uint32_t(ch * chunk), uint32_t(std::min(faceCount, (ch + 1) * chunk)));
+  };
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> extraByChunk(chunks);
   parallelFor(chunks, threads, [&](size_t ch) {
-    for (uint32_t f = uint32_t(ch * chunk); f < std::min(faceCount, (ch + 1) * chunk); f++) {
+    for (uint32_t f = chunkFaces(ch).first; f < chunkFaces(ch).second; f++) {
       uint32_t n = faceStart[f + 1] - faceStart[f];
       for (uint32_t i = 0; i < n; i++) {
         uint32_t a = faceVertices[faceStart[f] + i], b = faceVertices[faceStart[f] + (i + 1) % n];
-        for (uint32_t k = vertexStart[a]; k < vertexStart[a + 1]; k++) {
+        for (size_t k = vertexStart[a]; k < vertexStart[a + 1]; k++) {
           uint32_t other = vertexFaces[k];
           if (other == f || !hasVertex(other, b)) continue;
           uint32_t& slot = slots[faceStart[f] + i];
@@ -67,23 +71,29 @@ Graph dualGraph(const std::vector<uint32_t>& faceStart, const std::vector<uint32
       }
     }
   });
+  // A face's neighbours: its slots' in corner order, then its extra ones.
+  auto forNeighbours = [&](size_t ch, auto&& visit) {
+    size_t e = 0;
+    const auto& extra = extraByChunk[ch];
+    for (uint32_t f = chunkFaces(ch).first; f < chunkFaces(ch).second; f++) {
+      for (uint32_t c = faceStart[f]; c < faceStart[f + 1]; c++)
+        if (slots[c] != kNone) visit(f, slots[c]);
+      for (; e < extra.size() && extra[e].first == f; e++) visit(f, extra[e].second);
+    }
+  };
   Graph g;
   g.offsets.assign(faceCount + 1, 0);
-  std::vector<uint32_t> extraCount(faceCount, 0);
-  for (auto& list : extraByChunk)
-    for (auto [f, other] : list) extraCount[f]++;
-  for (uint32_t f = 0; f < faceCount; f++) {
-    uint32_t found = extraCount[f];
-    for (uint32_t c = faceStart[f]; c < faceStart[f + 1]; c++) found += slots[c] != kNone;
-    g.offsets[f + 1] = g.offsets[f] + found;
-  }
+  parallelFor(chunks, threads,
+              [&](size_t ch) { forNeighbours(ch, [&](uint32_t f, uint32_t) { g.offsets[f + 1]++; }); });
+  for (size_t f = 0; f < faceCount; f++) g.offsets[f + 1] += g.offsets[f];
   g.adjacency.resize(g.offsets.back());
-  std::vector<uint32_t> fill(g.offsets.begin(), g.offsets.end() - 1);
-  for (uint32_t f = 0; f < faceCount; f++)
-    for (uint32_t c = faceStart[f]; c < faceStart[f + 1]; c++)
-      if (slots[c] != kNone) g.adjacency[fill[f]++] = slots[c];
-  for (auto& list : extraByChunk)
-    for (auto [f, other] : list) g.adjacency[fill[f]++] = other;
+  parallelFor(chunks, threads, [&](size_t ch) {
+    uint32_t filled = 0, face = kNone;
+    forNeighbours(ch, [&](uint32_t f, uint32_t other) {
+      if (f != face) face = f, filled = 0;
+      g.adjacency[g.offsets[f] + filled++] = other;
+    });
+  });
   return g;
 }
 
@@ -122,7 +132,7 @@ std::vector<BuildCluster> clustersFromFaces(const std::vector<uint32_t>& faceSta
   const size_t faceCount = faceStart.size() - 1;
   Partition parts;
   {  // the graph and its node data are freed before the clusters are made
-    Graph graph = dualGraph(faceStart, faceVertices, threads);
+    Graph graph = dualGraph(faceStart, faceVertices, positions.size(), threads);
     std::vector<uint8_t> weights(faceCount);
     std::vector<glm::vec3> centroids(faceCount);
     parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {

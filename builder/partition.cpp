@@ -149,38 +149,51 @@ struct Bisector {
 
 // Moves the fragments of parts (every connected piece but the largest) into the neighbouring part they
 // share most edges with, when it has room and still fits; parts keep their order, moved nodes go last.
+// A piece once moved is not looked at again, so a part's pieces at its turn are those it was made
+// with: they are found for all parts at once, on the threads, and only parts in pieces take a turn.
 void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uint32_t maxWeight,
-                    const std::function<bool(const uint32_t*, size_t)>& fits, Partition& p) {
+                    const std::function<bool(const uint32_t*, size_t)>& fits, int threads, Partition& p) {
   const size_t n = p.order.size(), parts = p.partCount();
   std::vector<uint32_t> owner(n);
   std::vector<std::vector<uint32_t>> members(parts);
   std::vector<uint64_t> weight(parts, 0);
-  for (uint32_t q = 0; q < parts; q++)
-    for (uint32_t i = p.partStart[q]; i < p.partStart[q + 1]; i++) {
-      owner[p.order[i]] = q;
-      members[q].push_back(p.order[i]);
-      weight[q] += weights[p.order[i]];
+  parallelFor(parts, threads, [&](size_t q) {
+    members[q].assign(p.order.begin() + p.partStart[q], p.order.begin() + p.partStart[q + 1]);
+    for (uint32_t u : members[q]) {
+      owner[u] = uint32_t(q);
+      weight[q] += weights[u];
     }
+  });
+  // The connected pieces of part q, by flood fill in member order, moved nodes left out; `piece` is
+  // left as it was found.
   std::vector<uint32_t> piece(n, UINT32_MAX);
-  bool moved = false;
-  for (uint32_t q = 0; q < parts; q++) {
-    // Pieces of part q, by flood fill in member order.
+  std::vector<uint8_t> moved(n, 0);
+  auto piecesOf = [&](uint32_t q) {
     std::vector<std::vector<uint32_t>> pieces;
     for (uint32_t start : members[q]) {
-      if (piece[start] != UINT32_MAX) continue;
+      if (piece[start] != UINT32_MAX || moved[start]) continue;
       pieces.push_back({start});
       piece[start] = uint32_t(pieces.size() - 1);
       for (size_t h = 0; h < pieces.back().size(); h++) {
         uint32_t u = pieces.back()[h];
         for (uint32_t e = graph.offsets[u]; e < graph.offsets[u + 1]; e++) {
           uint32_t v = graph.adjacency[e];
-          if (owner[v] == q && piece[v] == UINT32_MAX) {
+          if (owner[v] == q && piece[v] == UINT32_MAX && !moved[v]) {
             piece[v] = piece[u];
             pieces.back().push_back(v);
           }
         }
       }
     }
+    for (uint32_t u : members[q]) piece[u] = UINT32_MAX;
+    return pieces;
+  };
+  std::vector<uint8_t> inPieces(parts, 0);
+  parallelFor(parts, threads, [&](size_t q) { inPieces[q] = piecesOf(uint32_t(q)).size() > 1; });
+  bool anyMoved = false;
+  for (uint32_t q = 0; q < parts; q++) {
+    if (!inPieces[q]) continue;
+    std::vector<std::vector<uint32_t>> pieces = piecesOf(q);
     if (pieces.size() < 2) continue;
     size_t largest = 0;
     for (size_t i = 1; i < pieces.size(); i++)
@@ -211,25 +224,27 @@ void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uin
         members[r] = std::move(merged);
         weight[r] += w;
         weight[q] -= w;
-        for (uint32_t u : pieces[i]) owner[u] = r;
+        for (uint32_t u : pieces[i]) owner[u] = r, moved[u] = 1;
         std::vector<uint32_t> rest;
         for (uint32_t u : members[q])
           if (owner[u] == q) rest.push_back(u);
         members[q] = std::move(rest);
-        moved = true;
+        anyMoved = true;
         break;
       }
     }
-    for (uint32_t u : members[q]) piece[u] = UINT32_MAX;
   }
-  if (!moved) return;
-  p.order.clear();
+  if (!anyMoved) return;
   p.partStart.assign(1, 0);
-  for (uint32_t q = 0; q < parts; q++) {
-    if (members[q].empty()) continue;
-    p.order.insert(p.order.end(), members[q].begin(), members[q].end());
-    p.partStart.push_back(uint32_t(p.order.size()));
-  }
+  std::vector<uint32_t> kept;  // the parts left with nodes
+  for (uint32_t q = 0; q < parts; q++)
+    if (!members[q].empty()) {
+      kept.push_back(q);
+      p.partStart.push_back(p.partStart.back() + uint32_t(members[q].size()));
+    }
+  parallelFor(kept.size(), threads, [&](size_t k) {
+    std::copy(members[kept[k]].begin(), members[kept[k]].end(), p.order.begin() + p.partStart[k]);
+  });
 }
 
 }  // namespace
@@ -258,7 +273,7 @@ Partition partitionGraph(const Graph& graph, const std::vector<uint8_t>& weights
   for (uint32_t i = 1; i < n; i++)
     if (b.partHead[i]) result.partStart.push_back(i);
   result.partStart.push_back(n);
-  mergeFragments(graph, weights, maxWeight, fits, result);
+  mergeFragments(graph, weights, maxWeight, fits, threads, result);
   return result;
 }
 
