@@ -34,24 +34,35 @@ PolygonMesh keptFaces(PolygonMesh& mesh, int threads, Keep&& keep) {
   const size_t n = mesh.faceCount();
   const bool withNormals = !mesh.cornerNormals.empty();
   std::vector<uint32_t> size(n);
+  // Kept faces and their corners before each range of faces: counted in the first pass, summed after.
+  std::vector<std::pair<size_t, size_t>> before(parallelRangeCount(n) + 1);
   parallelForRanges(n, threads, [&](size_t begin, size_t end) {
     std::vector<uint32_t> corners;
     std::vector<glm::vec3> normals;
+    auto& count = before[begin / kParallelRange + 1];
     for (size_t f = begin; f < end; f++) {
       corners.clear(), normals.clear();
       size[f] = keep(f, corners, normals) ? uint32_t(corners.size()) : 0u;
+      count.first += size[f] > 0, count.second += size[f];
     }
   });
+  for (size_t r = 1; r < before.size(); r++)
+    before[r].first += before[r - 1].first, before[r].second += before[r - 1].second;
   PolygonMesh kept;
   kept.positions = std::move(mesh.positions);
+  kept.faceStart.resize(before.back().first + 1);
   std::vector<uint32_t> faceIndex(n);  // a kept face's index in `kept`
-  size_t corners = 0;
-  for (size_t f = 0; f < n; f++)
-    if (size[f]) {
-      faceIndex[f] = uint32_t(kept.faceCount());
-      corners += size[f];
-      kept.faceStart.push_back(uint32_t(corners));
-    }
+  parallelForRanges(n, threads, [&](size_t begin, size_t end) {
+    auto [face, corners] = before[begin / kParallelRange];
+    for (size_t f = begin; f < end; f++)
+      if (size[f]) {
+        faceIndex[f] = uint32_t(face);
+        kept.faceStart[face] = uint32_t(corners);
+        face++, corners += size[f];
+      }
+  });
+  const size_t corners = before.back().second;
+  kept.faceStart.back() = uint32_t(corners);
   kept.faceVertices.resize(corners);
   if (withNormals) kept.cornerNormals.resize(corners);
   parallelForRanges(n, threads, [&](size_t begin, size_t end) {
@@ -119,38 +130,56 @@ size_t dissolveFolds(PolygonMesh& mesh, size_t& degenerate, int threads) {
 }
 
 // Every face index in range and every used position finite and within +-kMaxCoordinate, else an
-// InputError naming the file. Returns which vertices the faces use.
-std::vector<bool> checkPositions(const PolygonMesh& mesh, const std::string& file) {
-  const size_t vertexCount = mesh.positions.size();
-  for (uint32_t v : mesh.faceVertices)
-    if (v >= vertexCount)
-      throw InputError(
-          file, "face index " + std::to_string(v) + " is out of range (" + std::to_string(vertexCount) + " vertices)");
-  std::vector<bool> used(vertexCount, false);
-  for (uint32_t v : mesh.faceVertices) used[v] = true;
-  for (size_t v = 0; v < vertexCount; v++) {
-    const glm::vec3& p = mesh.positions[v];
-    if (used[v] && !(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)))
-      throw InputError(file, "vertex " + std::to_string(v) + " has a non-finite position (" + std::to_string(p.x) +
-                                 ", " + std::to_string(p.y) + ", " + std::to_string(p.z) + ")");
-  }
-  for (size_t v = 0; v < vertexCount; v++) {
-    const glm::vec3& p = mesh.positions[v];
-    if (used[v] && std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) > kMaxCoordinate) {
-      char where[256];
-      std::snprintf(where, sizeof where,
-                    "vertex %zu lies beyond +-1e12 (%g, %g, %g), past what the LOD build's float arithmetic holds: "
-                    "scale the model down",
-                    v, double(p.x), double(p.y), double(p.z));
-      throw InputError(file, where);
+// InputError naming the file (the first bad index or vertex in order, on any thread count). Returns
+// which vertices the faces use.
+std::vector<uint8_t> checkPositions(const PolygonMesh& mesh, const std::string& file, int threads) {
+  const size_t vertexCount = mesh.positions.size(), none = SIZE_MAX;
+  size_t badCorner = none;
+  parallelForRanges(mesh.faceVertices.size(), threads, [&](size_t begin, size_t end) {
+    for (size_t c = begin; c < end; c++)
+      if (mesh.faceVertices[c] >= vertexCount) {
+        atomicMin(badCorner, c);
+        return;
+      }
+  });
+  if (badCorner != none)
+    throw InputError(file, "face index " + std::to_string(mesh.faceVertices[badCorner]) + " is out of range (" +
+                               std::to_string(vertexCount) + " vertices)");
+  std::vector<uint8_t> used(vertexCount, 0);
+  parallelForRanges(mesh.faceVertices.size(), threads, [&](size_t begin, size_t end) {
+    for (size_t c = begin; c < end; c++) __atomic_store_n(&used[mesh.faceVertices[c]], uint8_t(1), __ATOMIC_RELAXED);
+  });
+  size_t nonFinite = none, far = none;
+  parallelForRanges(vertexCount, threads, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; v++) {
+      const glm::vec3& p = mesh.positions[v];
+      if (!used[v]) continue;
+      if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)))
+        atomicMin(nonFinite, v);
+      else if (std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}) > kMaxCoordinate)
+        atomicMin(far, v);
     }
+  });
+  if (nonFinite != none) {
+    const glm::vec3& p = mesh.positions[nonFinite];
+    throw InputError(file, "vertex " + std::to_string(nonFinite) + " has a non-finite position (" +
+                               std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) + ")");
+  }
+  if (far != none) {
+    const glm::vec3& p = mesh.positions[far];
+    char where[256];
+    std::snprintf(where, sizeof where,
+                  "vertex %zu lies beyond +-1e12 (%g, %g, %g), past what the LOD build's float arithmetic holds: "
+                  "scale the model down",
+                  far, double(p.x), double(p.y), double(p.z));
+    throw InputError(file, where);
   }
   if (mesh.faceCount() == 0) throw InputError(file, "empty mesh: no faces");
   return used;
 }
 
 // Weld: sorts the vertices by position bits (with -0 == +0) and maps each to the first of its equals.
-std::vector<uint32_t> weldPositions(const PolygonMesh& mesh, const std::vector<bool>& used, size_t& welded,
+std::vector<uint32_t> weldPositions(const PolygonMesh& mesh, const std::vector<uint8_t>& used, size_t& welded,
                                     int threads) {
   const size_t vertexCount = mesh.positions.size();
   std::vector<uint32_t> weld(vertexCount);
@@ -406,7 +435,7 @@ RepairReport repairMesh(PolygonMesh& mesh, const std::string& file, int threads)
   RepairReport report;
   PolygonMesh faces;
   {
-    const std::vector<bool> used = checkPositions(mesh, file);
+    const std::vector<uint8_t> used = checkPositions(mesh, file, threads);
     const std::vector<uint32_t> weld = weldPositions(mesh, used, report.weldedVertices, threads);
     faces = weldFaces(mesh, weld, report.degenerateFaces, threads);
     mesh = PolygonMesh();  // its positions moved to `faces`; its faces are not needed again
