@@ -89,15 +89,31 @@ size_t dissolveFolds(PolygonMesh& mesh, size_t& degenerate, int threads) {
   for (bool changed = true; changed;) {
     changed = false;
     const size_t vertexCount = mesh.positions.size();
+    // Each vertex's corner count, and for a vertex of two corners the two, in order.
+    const size_t cornerCount = mesh.faceVertices.size();
     std::vector<uint32_t> count(vertexCount, 0), cornerOf(2 * vertexCount, UINT32_MAX);
-    for (uint32_t c = 0; c < mesh.faceVertices.size(); c++) {
-      uint32_t v = mesh.faceVertices[c];
-      if (count[v] < 2) cornerOf[2 * v + count[v]] = c;
-      count[v]++;
-    }
-    std::vector<uint32_t> cornerFace(mesh.faceVertices.size());
-    for (size_t f = 0; f < mesh.faceCount(); f++)
-      for (uint32_t c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; c++) cornerFace[c] = uint32_t(f);
+    parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
+      for (size_t c = begin; c < end; c++) __atomic_fetch_add(&count[mesh.faceVertices[c]], 1u, __ATOMIC_RELAXED);
+    });
+    parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
+      for (size_t c = begin; c < end; c++) {
+        const uint32_t v = mesh.faceVertices[c];
+        if (count[v] != 2) continue;
+        uint32_t* two = &cornerOf[2 * v];
+        uint32_t empty = UINT32_MAX;
+        if (!__atomic_compare_exchange_n(&two[0], &empty, uint32_t(c), false, __ATOMIC_RELAXED, __ATOMIC_RELAXED))
+          __atomic_store_n(&two[1], uint32_t(c), __ATOMIC_RELAXED);
+      }
+    });
+    parallelForRanges(vertexCount, threads, [&](size_t begin, size_t end) {
+      for (size_t v = begin; v < end; v++)
+        if (count[v] == 2 && cornerOf[2 * v] > cornerOf[2 * v + 1]) std::swap(cornerOf[2 * v], cornerOf[2 * v + 1]);
+    });
+    std::vector<uint32_t> cornerFace(cornerCount);
+    parallelForRanges(mesh.faceCount(), threads, [&](size_t begin, size_t end) {
+      for (size_t f = begin; f < end; f++)
+        std::fill(cornerFace.begin() + mesh.faceStart[f], cornerFace.begin() + mesh.faceStart[f + 1], uint32_t(f));
+    });
     auto around = [&](uint32_t c, int step) {
       const uint32_t f = cornerFace[c], n = mesh.faceSize(f), k = c - mesh.faceStart[f];
       return mesh.face(f)[(k + n + uint32_t(step)) % n];

@@ -89,10 +89,9 @@ std::vector<T> bucketSorted(size_t sources, int keyBits, int bucketBits, int thr
     make(s, [&](uint64_t key, const T& item) { sorted[claim(next[c * buckets + size_t(key >> shift)])] = item; });
   });
   std::vector<size_t>().swap(next);
-  parallelForRanges(buckets, threads, [&](size_t begin, size_t end) {
-    for (size_t b = begin; b < end; b++)
-      if (bucketStart[b + 1] - bucketStart[b] > 1)
-        std::sort(sorted.begin() + long(bucketStart[b]), sorted.begin() + long(bucketStart[b + 1]), less);
+  parallelFor(buckets, threads, [&](size_t b) {  // a task a bucket: 16,384 buckets are one range of a loop
+    if (bucketStart[b + 1] - bucketStart[b] > 1)
+      std::sort(sorted.begin() + long(bucketStart[b]), sorted.begin() + long(bucketStart[b + 1]), less);
   });
   if (starts) *starts = std::move(bucketStart);
   return sorted;
