@@ -34,36 +34,24 @@ PolygonMesh keptFaces(PolygonMesh& mesh, int threads, Keep&& keep) {
   const size_t n = mesh.faceCount();
   const bool withNormals = !mesh.cornerNormals.empty();
   std::vector<uint32_t> size(n);
-  // Kept faces and their corners before each range of faces: counted in the first pass, summed after.
-  std::vector<std::pair<size_t, size_t>> before(parallelRangeCount(n) + 1);
   parallelForRanges(n, threads, [&](size_t begin, size_t end) {
     std::vector<uint32_t> corners;
     std::vector<glm::vec3> normals;
-    auto& count = before[begin / kParallelRange + 1];
     for (size_t f = begin; f < end; f++) {
       corners.clear(), normals.clear();
       size[f] = keep(f, corners, normals) ? uint32_t(corners.size()) : 0u;
-      count.first += size[f] > 0, count.second += size[f];
     }
   });
-  for (size_t r = 1; r < before.size(); r++)
-    before[r].first += before[r - 1].first, before[r].second += before[r - 1].second;
   PolygonMesh kept;
   kept.positions = std::move(mesh.positions);
-  kept.faceStart.resize(before.back().first + 1);
-  std::vector<uint32_t> faceIndex(n);  // a kept face's index in `kept`
-  parallelForRanges(n, threads, [&](size_t begin, size_t end) {
-    auto [face, corners] = before[begin / kParallelRange];
-    for (size_t f = begin; f < end; f++)
-      if (size[f]) {
-        faceIndex[f] = uint32_t(face);
-        kept.faceStart[face] = uint32_t(corners);
-        face++, corners += size[f];
-      }
-  });
-  const size_t corners = before.back().second;
+  std::vector<uint32_t> at(n);  // a kept face's first corner in `kept`
+  const size_t corners = parallelNumber(
+      n, threads, [&](size_t f) { return size[f]; }, [&](size_t total) { kept.faceVertices.resize(total); },
+      [&](size_t f, size_t corner) { at[f] = uint32_t(corner); });
+  parallelNumber(
+      n, threads, [&](size_t f) { return size[f] > 0; }, [&](size_t faces) { kept.faceStart.resize(faces + 1); },
+      [&](size_t f, size_t face) { kept.faceStart[face] = at[f]; });
   kept.faceStart.back() = uint32_t(corners);
-  kept.faceVertices.resize(corners);
   if (withNormals) kept.cornerNormals.resize(corners);
   parallelForRanges(n, threads, [&](size_t begin, size_t end) {
     std::vector<uint32_t> corners;
@@ -72,9 +60,8 @@ PolygonMesh keptFaces(PolygonMesh& mesh, int threads, Keep&& keep) {
       if (!size[f]) continue;
       corners.clear(), normals.clear();
       keep(f, corners, normals);
-      const uint32_t at = kept.faceStart[faceIndex[f]];
-      std::copy(corners.begin(), corners.end(), kept.faceVertices.begin() + at);
-      if (withNormals) std::copy(normals.begin(), normals.end(), kept.cornerNormals.begin() + at);
+      std::copy(corners.begin(), corners.end(), kept.faceVertices.begin() + at[f]);
+      if (withNormals) std::copy(normals.begin(), normals.end(), kept.cornerNormals.begin() + at[f]);
     }
   });
   return kept;

@@ -78,22 +78,26 @@ void parallelForRuns(size_t count, int threads, Same&& same, Fn&& fn) {
   });
 }
 
-// Numbers the elements of [0, count) for which pick(i) holds, in order, on up to `threads` threads:
-// counted a block at a time, then sized(total) is called, then number(i, n) for each picked i with its
-// number n (0, 1, ...). Returns the total.
-template <class Pick, class Sized, class Number>
-size_t parallelNumber(size_t count, int threads, Pick&& pick, Sized&& sized, Number&& number) {
+// Numbers the elements of [0, count) in order, each taking weight(i) numbers (a bool: one when it is
+// picked), on up to `threads` threads: weighed a block at a time, then sized(total) is called, then
+// number(i, n) for each i of non-zero weight with the first of its numbers (0, 1, ...: the weights
+// before it). Returns the total.
+template <class Weight, class Sized, class Number>
+size_t parallelNumber(size_t count, int threads, Weight&& weight, Sized&& sized, Number&& number) {
   const size_t blocks = parallelRangeCount(count);
   std::vector<size_t> base(blocks + 1, 0);
   parallelForRanges(count, threads, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; i++) base[begin / kParallelRange + 1] += pick(i) ? 1 : 0;
+    for (size_t i = begin; i < end; i++) base[begin / kParallelRange + 1] += size_t(weight(i));
   });
   for (size_t k = 0; k < blocks; k++) base[k + 1] += base[k];
   sized(base[blocks]);
   parallelForRanges(count, threads, [&](size_t begin, size_t end) {
     size_t n = base[begin / kParallelRange];
     for (size_t i = begin; i < end; i++)
-      if (pick(i)) number(i, n++);
+      if (const size_t w = size_t(weight(i))) {
+        number(i, n);
+        n += w;
+      }
   });
   return base[blocks];
 }
