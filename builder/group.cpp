@@ -5,11 +5,48 @@
 #include <metis.h>
 
 #include <algorithm>
-#include <mutex>
+#include <csignal>
+#include <cstdlib>
 
 #include "../common/parallel.h"
 
 #include "builder.h"
+
+// METIS draws its random numbers from the C library's rand(), whose one state the whole process
+// shares: METIS calls side by side would draw from each other's sequence and partition differently
+// on every run. So the builder defines rand and srand itself, over a state for each thread kept by
+// the C library's own generator (random_r with the 128-byte state is the sequence glibc's rand gives):
+// each METIS call seeds first and then sees the numbers it would see alone, whatever runs beside it.
+namespace {
+struct ThreadRandom {
+  char state[128] = {};
+  random_data data = {};
+  ThreadRandom() { initstate_r(1, state, sizeof state, &data); }
+};
+thread_local ThreadRandom threadRandom;
+
+// Each METIS call points SIGABRT and SIGTERM at its own error trap and then puts back the handler it
+// found; calls side by side can put back each other's trap, which would outlive them. The handlers
+// from before the calls are restored after them.
+struct KeptSignalHandlers {
+  struct sigaction abortHandler = {}, termHandler = {};
+  KeptSignalHandlers() {
+    sigaction(SIGABRT, nullptr, &abortHandler);
+    sigaction(SIGTERM, nullptr, &termHandler);
+  }
+  ~KeptSignalHandlers() {
+    sigaction(SIGABRT, &abortHandler, nullptr);
+    sigaction(SIGTERM, &termHandler, nullptr);
+  }
+};
+}  // namespace
+
+extern "C" void srand(unsigned seed) noexcept { srandom_r(seed, &threadRandom.data); }
+extern "C" int rand() noexcept {
+  int32_t value = 0;
+  random_r(&threadRandom.data, &value);
+  return value;
+}
 
 namespace vgeo {
 
@@ -108,6 +145,7 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
   for (size_t p = 0; p < pieces.partCount(); p++)
     for (uint32_t k = pieces.partStart[p]; k < pieces.partStart[p + 1]; k++)
       localOf[pieces.order[k]] = k - pieces.partStart[p];
+  const KeptSignalHandlers keptSignalHandlers;
   parallelFor(pieces.partCount(), threads, [&](size_t p) {
     const uint32_t* slots = &pieces.order[pieces.partStart[p]];
     const idx_t count = idx_t(pieces.partStart[p + 1] - pieces.partStart[p]);
@@ -132,10 +170,6 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
       options[METIS_OPTION_NUMBERING] = 0;
       // Recursive bisection rather than k-way: with ~16 clusters a part, k-way cannot coarsen the graph
       // and was 6x slower; recursive bisection also gave shorter borders (armadillo, --subdiv 2).
-      // One METIS call at a time: its random numbers come from one global generator, seeded by each
-      // call (calls side by side drew from each other's and gave a different partition each run).
-      static std::mutex metis;
-      std::lock_guard<std::mutex> lock(metis);
       int status = METIS_PartGraphRecursive(&nvtxs, &ncon, xadj.data(), adjncy.data(), nullptr, nullptr, adjwgt.data(),
                                             &pieceParts, nullptr, nullptr, options, &objval, local.data());
       if (status != METIS_OK)

@@ -1,5 +1,8 @@
 // test_dag.cpp: the invariants of docs/design.md on real meshes (CGAL's demo data, the shipped cage, a
 // multi-mesh glTF), through the same checker as `vgeo check`, plus the builder's promises on sizes.
+#include <dlfcn.h>
+
+#include <cstdlib>
 #include <fstream>
 #include <set>
 #include <nlohmann/json.hpp>
@@ -148,6 +151,64 @@ TEST(DagBuild, ATriangleSoupBuildsTheSameOnAnyThreadCount) {
   EXPECT_EQ(serializeVgeo(one), serializeVgeo(two));
   CheckResult result = checkVgeo(one, {8, 7});
   EXPECT_TRUE(result.ok) << result.firstViolation;
+}
+
+TEST(DagBuild, RandIsTheCLibrarysSequenceKeptPerThread) {
+  // METIS's random numbers: the builder's rand and srand give glibc's sequence for every seed, from a
+  // state of each thread's own.
+  using RandFunction = int (*)();
+  using SrandFunction = void (*)(unsigned);
+  auto libcRand = reinterpret_cast<RandFunction>(dlsym(RTLD_NEXT, "rand"));
+  auto libcSrand = reinterpret_cast<SrandFunction>(dlsym(RTLD_NEXT, "srand"));
+  ASSERT_TRUE(libcRand && libcSrand);
+  ASSERT_NE(reinterpret_cast<void*>(libcRand), reinterpret_cast<void*>(&rand));
+  for (unsigned seed : {0u, 1u, 7u, 123456789u}) {
+    srand(seed);
+    libcSrand(seed);
+    for (int i = 0; i < 1000; i++) ASSERT_EQ(rand(), libcRand()) << "seed " << seed << ", draw " << i;
+  }
+  srand(5);
+  const int first = rand();
+  int otherThreads = 0;
+  std::thread other([&] {
+    srand(99);
+    otherThreads = rand();
+  });
+  other.join();
+  srand(5);
+  EXPECT_EQ(rand(), first);
+  libcSrand(99);
+  EXPECT_EQ(otherThreads, libcRand());
+}
+
+TEST(DagBuild, GroupsAreTheSameOnAnyThreadCount) {
+  // 6,400 clusters of 2 x 2 grid cells on a wavy sheet: past 2 * kGroupingPiece, so the level is cut
+  // into pieces and METIS partitions them side by side.
+  constexpr uint32_t kCells = 160;
+  std::vector<glm::vec3> positions;
+  for (uint32_t y = 0; y <= kCells; y++)
+    for (uint32_t x = 0; x <= kCells; x++)
+      positions.push_back({float(x), float(y), std::sin(0.3f * float(x)) * std::cos(0.2f * float(y))});
+  std::vector<BuildCluster> clusters((kCells / 2) * (kCells / 2));
+  for (uint32_t y = 0; y < kCells; y++)
+    for (uint32_t x = 0; x < kCells; x++) {
+      const uint32_t v = y * (kCells + 1) + x;
+      auto& indices = clusters[(y / 2) * (kCells / 2) + x / 2].indices;
+      indices.insert(indices.end(), {v, v + 1, v + kCells + 2, v, v + kCells + 2, v + kCells + 1});
+    }
+  std::vector<uint32_t> active(clusters.size());
+  for (uint32_t i = 0; i < active.size(); i++) active[i] = i;
+  ASSERT_GT(clusters.size(), 2 * size_t(kGroupingPiece));
+  const auto one = groupClusters(clusters, active, positions, 16, 1, nullptr);
+  std::vector<int> seen(clusters.size(), 0);
+  for (const auto& g : one)
+    for (uint32_t c : g.clusters) seen[c]++;
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), long(clusters.size()));
+  for (int run = 0; run < 3; run++) {
+    const auto four = groupClusters(clusters, active, positions, 16, 4, nullptr);
+    ASSERT_EQ(four.size(), one.size());
+    for (size_t g = 0; g < one.size(); g++) ASSERT_EQ(four[g].clusters, one[g].clusters) << "group " << g;
+  }
 }
 
 TEST(DagBuild, BvhRootHoldsOneSubtreePerLevel) {
