@@ -17,8 +17,20 @@ namespace vgeo {
 namespace {
 
 constexpr uint32_t kTaken = 0x80000000u;
-constexpr uint64_t kMedianSplitParts = 64;  // sets of more parts are cut at the weighted median
-constexpr uint32_t kParallelNodes = 4096;   // smaller sets are not worth a task of their own
+constexpr uint64_t kMedianSplitParts = 64;   // sets of more parts are cut at the weighted median
+constexpr uint32_t kParallelNodes = 4096;    // smaller sets are not worth a task of their own
+constexpr uint32_t kParallelSet = 1u << 18;  // larger sets' passes run on the threads too
+
+// Weight and bounds of a set of nodes.
+struct SetExtent {
+  uint64_t weight = 0;
+  glm::vec3 lower{INFINITY}, upper{-INFINITY};
+  void add(const SetExtent& o) {
+    weight += o.weight;
+    lower = glm::min(lower, o.lower);
+    upper = glm::max(upper, o.upper);
+  }
+};
 
 struct Bisector {
   const Graph& graph;
@@ -30,13 +42,80 @@ struct Bisector {
   std::vector<uint32_t> stamp;    // the end of the segment a node lives in; kTaken|end while being taken
   std::vector<uint8_t> partHead;  // 1 at the first position of every part
   bool parallel = false;          // halves as tasks (inside withThreads)
+  int threads = 1;
+
+  // Sets of kParallelSet nodes or more have their passes on the threads too.
+  int threadsFor(uint32_t lo, uint32_t hi) const { return parallel && hi - lo >= kParallelSet ? threads : 1; }
+
+  // fn(begin, end, extent) over ranges of [lo, hi), summed; exact (integer sums, minima and maxima), so
+  // the same on any thread count.
+  template <class Fn>
+  SetExtent extentOf(uint32_t lo, uint32_t hi, Fn&& fn) const {
+    SetExtent total;
+    if (threadsFor(lo, hi) == 1) {
+      fn(lo, hi, total);
+      return total;
+    }
+    std::vector<SetExtent> ranges(parallelRangeCount(hi - lo));
+    parallelForRanges(hi - lo, threadsFor(lo, hi),
+                      [&](size_t begin, size_t end) { fn(lo + begin, lo + end, ranges[begin / kParallelRange]); });
+    for (const SetExtent& r : ranges) total.add(r);
+    return total;
+  }
+
+  // Puts the set's `rank` first nodes in (position on `axis`, id) order in front, the rest behind, each
+  // side in its previous order: a stable partition around the node of that rank, which is found by
+  // counting the nodes into slabs across [lower, upper] and selecting inside the slab that holds it.
+  // Every pass runs over ranges on the threads; the order left depends only on the set.
+  void medianCut(uint32_t lo, uint32_t hi, uint32_t rank, int axis, float lower, float upper) {
+    constexpr uint32_t kSlabs = 4096;
+    const size_t n = hi - lo;
+    const int th = threadsFor(lo, hi);
+    const float scale = upper > lower ? float(kSlabs) / (upper - lower) : 0.0f;
+    auto slab = [&](uint32_t node) { return std::min(kSlabs - 1, uint32_t((positions[node][axis] - lower) * scale)); };
+    auto before = [&](uint32_t a, uint32_t b) {
+      float pa = positions[a][axis], pb = positions[b][axis];
+      return pa != pb ? pa < pb : a < b;
+    };
+    std::vector<uint32_t> counts(parallelRangeCount(n) * kSlabs, 0);
+    parallelForRanges(n, th, [&](size_t begin, size_t end) {
+      uint32_t* count = &counts[begin / kParallelRange * kSlabs];
+      for (size_t i = begin; i < end; i++) count[slab(order[lo + i])]++;
+    });
+    std::vector<size_t> inSlab(kSlabs, 0);
+    for (size_t i = 0; i < counts.size(); i++) inSlab[i % kSlabs] += counts[i];
+    uint32_t pivotSlab = 0;
+    size_t below = 0;
+    while (below + inSlab[pivotSlab] <= rank) below += inSlab[pivotSlab++];
+    std::vector<uint32_t> candidates;
+    parallelNumber(
+        n, th, [&](size_t i) { return slab(order[lo + i]) == pivotSlab; },
+        [&](size_t total) { candidates.resize(total); }, [&](size_t i, size_t k) { candidates[k] = order[lo + i]; });
+    std::nth_element(candidates.begin(), candidates.begin() + long(rank - below), candidates.end(), before);
+    const uint32_t pivot = candidates[rank - below];
+    std::vector<uint8_t> front(n);
+    parallelForRanges(n, th, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; i++) front[i] = before(order[lo + i], pivot);
+    });
+    std::vector<uint32_t> cut(n);
+    parallelNumber(
+        n, th, [&](size_t i) { return front[i] != 0; }, [](size_t) {},
+        [&](size_t i, size_t k) { cut[k] = order[lo + i]; });
+    parallelNumber(
+        n, th, [&](size_t i) { return front[i] == 0; }, [](size_t) {},
+        [&](size_t i, size_t k) { cut[rank + k] = order[lo + i]; });
+    parallelForRanges(n, th, [&](size_t begin, size_t end) {
+      std::copy(cut.begin() + long(begin), cut.begin() + long(end), order.begin() + lo + long(begin));
+    });
+  }
 
   uint32_t load(uint32_t node) const { return __atomic_load_n(&stamp[node], __ATOMIC_RELAXED); }
   void store(uint32_t node, uint32_t value) { __atomic_store_n(&stamp[node], value, __ATOMIC_RELAXED); }
 
   void split(uint32_t lo, uint32_t hi) {
-    uint64_t w = 0;
-    for (uint32_t i = lo; i < hi; i++) w += weights[order[i]];
+    const uint64_t w = extentOf(lo, hi, [&](uint32_t begin, uint32_t end, SetExtent& e) {
+                         for (uint32_t i = begin; i < end; i++) e.weight += weights[order[i]];
+                       }).weight;
     if (hi - lo == 1 || (w <= targetWeight && (!fits || fits(&order[lo], hi - lo)))) {
       partHead[lo] = 1;
       return;
@@ -46,12 +125,13 @@ struct Bisector {
     uint64_t targetA = (w * kA + k / 2) / k;
     uint64_t maxA = w <= targetWeight ? w - 1 : kA * targetWeight;
 
-    glm::vec3 lower(INFINITY), upper(-INFINITY);
-    for (uint32_t i = lo; i < hi; i++) {
-      lower = glm::min(lower, positions[order[i]]);
-      upper = glm::max(upper, positions[order[i]]);
-    }
-    glm::vec3 extent = upper - lower;
+    const SetExtent bounds = extentOf(lo, hi, [&](uint32_t begin, uint32_t end, SetExtent& e) {
+      for (uint32_t i = begin; i < end; i++) {
+        e.lower = glm::min(e.lower, positions[order[i]]);
+        e.upper = glm::max(e.upper, positions[order[i]]);
+      }
+    });
+    glm::vec3 extent = bounds.upper - bounds.lower;
     int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
     auto before = [&](uint32_t a, uint32_t b) {
       float pa = positions[a][axis], pb = positions[b][axis];
@@ -62,10 +142,11 @@ struct Bisector {
       // Large sets: a weighted median cut across the longest axis. It costs one selection instead of a
       // growth over half the set, and the halves run in parallel sooner; the growth cuts below it
       // make the parts connected.
-      auto mid = order.begin() + lo + long((hi - lo) * kA / k);
-      std::nth_element(order.begin() + lo, mid, order.begin() + hi, before);
-      const uint32_t m = uint32_t(mid - order.begin());
-      for (uint32_t i = lo; i < m; i++) store(order[i], m);
+      const uint32_t m = lo + uint32_t(uint64_t(hi - lo) * kA / k);
+      medianCut(lo, hi, m - lo, axis, bounds.lower[axis], bounds.upper[axis]);
+      parallelForRanges(m - lo, threadsFor(lo, m), [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; i++) store(order[lo + i], m);
+      });
       recurse(lo, m, hi);
       return;
     }
@@ -265,7 +346,8 @@ Partition partitionGraph(const Graph& graph, const std::vector<uint8_t>& weights
              result.order,
              std::vector<uint32_t>(n, n),
              std::vector<uint8_t>(n, 0),
-             threads > 1};
+             threads > 1,
+             threads};
   if (threads > 1)
     withThreads(threads, [&] { b.split(0, n); });
   else
