@@ -135,7 +135,7 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
         options.progress((double(m) + f) / double(scene.meshes.size()), stage);
       };
     StageTimer normals(&stats.stages, "shading normals");
-    const ShadingNormals shading = shadingNormals(leaves, leafNormals, options.creaseAngleDegrees);
+    const ShadingNormals shading = shadingNormals(leaves, leafNormals, options.creaseAngleDegrees, options.threads);
     normals.stop();
     std::vector<glm::vec3>().swap(leafNormals);
     bo.shading = &shading;

@@ -143,9 +143,10 @@ struct ShadingNormals {
 };
 // Wedges of a leaf mesh: from `vertexNormals` when given (a subdivided cage's limit normals, one a
 // vertex), else from the mesh's cornerNormals when it has them, else from its faces, with a crease
-// wherever two faces meet at more than creaseAngleDegrees (180: smooth everywhere).
+// wherever two faces meet at more than creaseAngleDegrees (180: smooth everywhere). The same on any
+// number of threads.
 ShadingNormals shadingNormals(const PolygonMesh& mesh, const std::vector<glm::vec3>& vertexNormals,
-                              float creaseAngleDegrees);
+                              float creaseAngleDegrees, int threads);
 
 // ---- subdivide.cpp ----------------------------------------------------------------------------------
 // Faces of `mesh` after `levels` rounds, computed without allocating; used to reject sizes that would not

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "../common/parallel.h"
 #include "../common/vgeo_file.h"
 #include "builder.h"
 #include "union_find.h"
@@ -28,10 +29,19 @@ glm::dvec3 areaVector(const PolygonMesh& mesh, size_t f) {
   return n;
 }
 
+void normalizeAll(std::vector<glm::vec3>& normals, int threads) {
+  parallelForRanges(normals.size(), threads, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; i++) {
+      const float len = glm::length(normals[i]);
+      normals[i] = len > 0.0f && std::isfinite(len) ? normals[i] / len : glm::vec3(0.0f, 0.0f, 1.0f);
+    }
+  });
+}
+
 }  // namespace
 
 ShadingNormals shadingNormals(const PolygonMesh& mesh, const std::vector<glm::vec3>& vertexNormals,
-                              float creaseAngleDegrees) {
+                              float creaseAngleDegrees, int threads) {
   ShadingNormals out;
   const size_t cornerCount = mesh.faceVertices.size(), vertexCount = mesh.positions.size();
   const bool given = vertexNormals.size() == vertexCount && vertexCount > 0;
@@ -53,32 +63,36 @@ ShadingNormals shadingNormals(const PolygonMesh& mesh, const std::vector<glm::ve
       out.wedgeNormal.resize(vertexCount);
       for (size_t v = 0; v < vertexCount; v++) out.wedgeNormal[v] = glm::vec3(sums[v]);
     }
-    for (glm::vec3& n : out.wedgeNormal) {
-      const float len = glm::length(n);
-      n = len > 0.0f && std::isfinite(len) ? n / len : glm::vec3(0.0f, 0.0f, 1.0f);
-    }
+    normalizeAll(out.wedgeNormal, threads);
     return out;
   }
   std::vector<uint32_t> cornerFace(cornerCount);
-  for (size_t f = 0; f < mesh.faceCount(); f++)
-    for (uint32_t c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; c++) cornerFace[c] = uint32_t(f);
   std::vector<glm::dvec3> faceArea(mesh.faceCount());
-  for (size_t f = 0; f < mesh.faceCount(); f++) faceArea[f] = areaVector(mesh, f);
+  parallelForRanges(mesh.faceCount(), threads, [&](size_t begin, size_t end) {
+    for (size_t f = begin; f < end; f++) {
+      for (uint32_t c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; c++) cornerFace[c] = uint32_t(f);
+      faceArea[f] = areaVector(mesh, f);
+    }
+  });
 
   // Corners joined into wedges.
   UnionFind wedges(cornerCount);
   if (fromInput) {
     // Equal encoded normals at one vertex share a wedge; an unusable normal takes its face's.
     std::vector<std::pair<uint64_t, uint32_t>> keys(cornerCount);
-    for (uint32_t c = 0; c < cornerCount; c++) {
-      glm::vec3 n = mesh.cornerNormals[c];
-      const float len = glm::length(n);
-      if (!(len > 1e-12f) || !std::isfinite(len)) n = glm::vec3(faceArea[cornerFace[c]]);
-      keys[c] = {uint64_t(mesh.faceVertices[c]) << 32 | encodeNormal(n), c};
-    }
-    std::sort(keys.begin(), keys.end());
-    for (size_t i = 1; i < keys.size(); i++)
-      if (keys[i].first == keys[i - 1].first) wedges.unite(keys[i - 1].second, keys[i].second);
+    parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
+      for (size_t c = begin; c < end; c++) {
+        glm::vec3 n = mesh.cornerNormals[c];
+        const float len = glm::length(n);
+        if (!(len > 1e-12f) || !std::isfinite(len)) n = glm::vec3(faceArea[cornerFace[c]]);
+        keys[c] = {uint64_t(mesh.faceVertices[c]) << 32 | encodeNormal(n), uint32_t(c)};
+      }
+    });
+    parallelSort(keys, threads);
+    parallelForRanges(keys.size(), threads, [&](size_t begin, size_t end) {
+      for (size_t i = std::max<size_t>(begin, 1); i < end; i++)
+        if (keys[i].first == keys[i - 1].first) wedges.unite(keys[i - 1].second, keys[i].second);
+    });
   } else {
     // Across each edge v -> w of a face, the face holding w -> v joins its corner at v when the faces
     // meet at no more than the crease angle (and likewise at w, from that face's side).
@@ -87,28 +101,34 @@ ShadingNormals shadingNormals(const PolygonMesh& mesh, const std::vector<glm::ve
       return c + 1 == mesh.faceStart[cornerFace[c] + 1] ? mesh.faceStart[cornerFace[c]] : c + 1;
     };
     std::vector<std::pair<uint64_t, uint32_t>> directed(cornerCount);  // (v << 32 | w, corner at v)
-    for (uint32_t c = 0; c < cornerCount; c++)
-      directed[c] = {uint64_t(mesh.faceVertices[c]) << 32 | mesh.faceVertices[nextCorner(c)], c};
-    std::sort(directed.begin(), directed.end());
-    for (uint32_t c = 0; c < cornerCount; c++) {
-      const uint32_t v = mesh.faceVertices[c], w = mesh.faceVertices[nextCorner(c)];
-      auto it =
-          std::lower_bound(directed.begin(), directed.end(), std::pair<uint64_t, uint32_t>(uint64_t(w) << 32 | v, 0u));
-      if (it == directed.end() || it->first != (uint64_t(w) << 32 | v)) continue;  // a boundary edge
-      const uint32_t other = it->second;  // the corner at w of the face across; its next corner is at v
-      const glm::dvec3 a = faceArea[cornerFace[c]], b = faceArea[cornerFace[other]];
-      const double la = glm::length(a), lb = glm::length(b);
-      if (la > 0.0 && lb > 0.0 && glm::dot(a, b) < cosCrease * la * lb) continue;  // a crease
-      wedges.unite(c, nextCorner(other));
-    }
+    parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
+      for (size_t c = begin; c < end; c++)
+        directed[c] = {uint64_t(mesh.faceVertices[c]) << 32 | mesh.faceVertices[nextCorner(uint32_t(c))], uint32_t(c)};
+    });
+    parallelSort(directed, threads);
+    parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
+      for (uint32_t c = uint32_t(begin); c < end; c++) {
+        const uint32_t v = mesh.faceVertices[c], w = mesh.faceVertices[nextCorner(c)];
+        auto it = std::lower_bound(directed.begin(), directed.end(),
+                                   std::pair<uint64_t, uint32_t>(uint64_t(w) << 32 | v, 0u));
+        if (it == directed.end() || it->first != (uint64_t(w) << 32 | v)) continue;  // a boundary edge
+        const uint32_t other = it->second;  // the corner at w of the face across; its next corner is at v
+        const glm::dvec3 a = faceArea[cornerFace[c]], b = faceArea[cornerFace[other]];
+        const double la = glm::length(a), lb = glm::length(b);
+        if (la > 0.0 && lb > 0.0 && glm::dot(a, b) < cosCrease * la * lb) continue;  // a crease
+        wedges.unite(c, nextCorner(other));
+      }
+    });
   }
 
   // Wedges numbered by (vertex, first corner), so that one wedge a vertex numbers them as the vertices.
   std::vector<uint32_t> order(cornerCount);
   std::iota(order.begin(), order.end(), 0u);
   std::vector<uint32_t> root(cornerCount);
-  for (uint32_t c = 0; c < cornerCount; c++) root[c] = wedges.find(c);
-  std::sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) {
+  parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
+    for (size_t c = begin; c < end; c++) root[c] = wedges.find(uint32_t(c));
+  });
+  parallelSort(order, threads, [&](uint32_t x, uint32_t y) {
     uint32_t vx = mesh.faceVertices[x], vy = mesh.faceVertices[y];
     return vx != vy ? vx < vy : root[x] != root[y] ? root[x] < root[y] : x < y;
   });
@@ -141,10 +161,7 @@ ShadingNormals shadingNormals(const PolygonMesh& mesh, const std::vector<glm::ve
       out.wedgeNormal[w] = (len > 1e-12f && std::isfinite(len)) ? n : glm::vec3(faceArea[cornerFace[c]]);
     }
   }
-  for (glm::vec3& n : out.wedgeNormal) {
-    const float len = glm::length(n);
-    n = len > 0.0f && std::isfinite(len) ? n / len : glm::vec3(0.0f, 0.0f, 1.0f);
-  }
+  normalizeAll(out.wedgeNormal, threads);
   out.oneAVertex = true;
   for (size_t v = 0; v < vertexCount && out.oneAVertex; v++)
     out.oneAVertex = out.wedgeStart[v + 1] - out.wedgeStart[v] == 1;
