@@ -13,6 +13,7 @@
 
 #include <glm/glm.hpp>
 
+#include "../common/fill_later.h"
 #include "../common/input_error.h"
 #include "../common/stage_times.h"
 #include "../shaders/patch_eval.h"
@@ -109,8 +110,8 @@ struct CornerEdge {
 // What orientation leaves for repair's split step, which would otherwise make both again: every corner's
 // edge of the oriented mesh sorted by (first, second, corner), and each corner's face.
 struct OrientedEdges {
-  std::vector<CornerEdge> edges;
-  std::vector<uint32_t> cornerFace;
+  FillLaterVector<CornerEdge> edges;
+  FillLaterVector<uint32_t> cornerFace;
 };
 // Turns faces so that every component walks each of its two-face edges once each way, keeping the
 // orientation of the larger part (by area) of each component. Deterministic; positions are not moved.
@@ -268,13 +269,13 @@ std::vector<PatchErrors> patchChordErrors(const PolygonMesh& limitMesh, const Me
 // ---- partition.cpp ----------------------------------------------------------------------------------
 // A graph in compressed rows: node i's neighbours are adjacency[offsets[i] .. offsets[i+1]).
 struct Graph {
-  std::vector<uint32_t> offsets{0};
-  std::vector<uint32_t> adjacency;
+  FillLaterVector<uint32_t> offsets{0};
+  FillLaterVector<uint32_t> adjacency;
   size_t nodeCount() const { return offsets.size() - 1; }
 };
 // The parts as contiguous runs of a node permutation: part p is order[partStart[p] .. partStart[p+1]).
 struct Partition {
-  std::vector<uint32_t> order;
+  FillLaterVector<uint32_t> order;
   std::vector<uint32_t> partStart{0};
   size_t partCount() const { return partStart.size() - 1; }
 };
@@ -285,7 +286,7 @@ struct Partition {
 // maxWeight). `fits(nodes, count)` may reject a part (then it is split in two). Every node weight must
 // be <= targetWeight <= maxWeight. Deterministic for any thread count.
 Partition partitionGraph(const Graph& graph, const std::vector<uint8_t>& weights,
-                         const std::vector<glm::vec3>& positions, uint32_t maxWeight, uint32_t targetWeight,
+                         const FillLaterVector<glm::vec3>& positions, uint32_t maxWeight, uint32_t targetWeight,
                          int threads, const std::function<bool(const uint32_t*, size_t)>& fits = {});
 
 // ---- cluster.cpp ------------------------------------------------------------------------------------

@@ -32,9 +32,9 @@ Graph dualGraph(const std::vector<uint32_t>& faceStart, const std::vector<uint32
                 int threads) {
   const size_t faceCount = faceStart.size() - 1;
   // Each vertex's faces, ascending: vertex v's are vertexFaces[vertexStart[v] .. vertexStart[v + 1]).
-  std::vector<size_t> vertexStart;
+  FillLaterVector<size_t> vertexStart;
   const int vertexBits = bitsFor(std::max<size_t>(vertexCount, 1));
-  const std::vector<uint32_t> vertexFaces = bucketSorted<uint32_t>(
+  const FillLaterVector<uint32_t> vertexFaces = bucketSorted<uint32_t>(
       faceCount, vertexBits, vertexBits, threads,
       [&](size_t f, auto&& emit) {
         for (uint32_t c = faceStart[f]; c < faceStart[f + 1]; c++) emit(faceVertices[c], uint32_t(f));
@@ -48,7 +48,7 @@ Graph dualGraph(const std::vector<uint32_t>& faceStart, const std::vector<uint32
   // Each face writes its neighbours into a slot per corner edge (one neighbour an edge on a manifold
   // mesh); faces with an edge of several neighbours are listed apart, a chunk's in face order.
   const uint32_t kNone = UINT32_MAX;
-  std::vector<uint32_t> slots(faceVertices.size(), kNone);
+  FillLaterVector<uint32_t> slots = parallelFilled(faceVertices.size(), kNone, threads);
   const size_t chunk = 4096, chunks = (faceCount + chunk - 1) / chunk;
   auto chunkFaces = [&](size_t ch) {
     return std::pair<uint32_t, uint32_t>(uint32_t(ch * chunk), uint32_t(std::min(faceCount, (ch + 1) * chunk)));
@@ -82,7 +82,7 @@ Graph dualGraph(const std::vector<uint32_t>& faceStart, const std::vector<uint32
     }
   };
   Graph g;
-  g.offsets.assign(faceCount + 1, 0);
+  g.offsets = parallelFilled(faceCount + 1, 0u, threads);
   parallelFor(chunks, threads,
               [&](size_t ch) { forNeighbours(ch, [&](uint32_t f, uint32_t) { g.offsets[f + 1]++; }); });
   for (size_t f = 0; f < faceCount; f++) g.offsets[f + 1] += g.offsets[f];
@@ -134,7 +134,7 @@ std::vector<BuildCluster> clustersFromFaces(const std::vector<uint32_t>& faceSta
   {  // the graph and its node data are freed before the clusters are made
     Graph graph = dualGraph(faceStart, faceVertices, positions.size(), threads);
     std::vector<uint8_t> weights(faceCount);
-    std::vector<glm::vec3> centroids(faceCount);
+    FillLaterVector<glm::vec3> centroids(faceCount);
     parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {
       for (size_t f = begin; f < end; f++) {
         uint32_t n = faceStart[f + 1] - faceStart[f];

@@ -52,7 +52,7 @@ BuildGroup makeGroup(std::vector<BuildCluster>& clusters, const std::vector<uint
 // may still fold onto a neighbour (a quad's diagonal running along another face's edge, faces meeting
 // at a sliver): a directed edge held by two leaf triangles could never be covered once by a cut.
 void checkNoFold(const std::vector<BuildCluster>& clusters, const std::vector<glm::vec3>& positions, int threads) {
-  const std::vector<uint64_t> directed = bucketSorted<uint64_t>(
+  const FillLaterVector<uint64_t> directed = bucketSorted<uint64_t>(
       clusters.size(), bitsFor(positions.size()), bitsFor(positions.size()), threads,
       [&](size_t i, auto&& emit) {
         const std::vector<uint32_t>& idx = clusters[i].indices;

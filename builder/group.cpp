@@ -120,7 +120,7 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
       for (auto [j, w] : neighbours[i]) graph.adjacency.push_back(j);
       graph.offsets.push_back(uint32_t(graph.adjacency.size()));
     }
-    std::vector<glm::vec3> centroids(n);
+    FillLaterVector<glm::vec3> centroids(n);
     parallelFor(n, threads, [&](size_t slot) {
       glm::dvec3 sum(0.0);
       const auto& idx = clusters[active[slot]].indices;

@@ -25,12 +25,12 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads, OrientedEdges* oriented
   const size_t faceCount = mesh.faceCount();
   // Every corner's edge, sorted by (key, corner): an edge's faces are adjacent, in face order (a face
   // holds an undirected edge once, as repair left its corners distinct).
-  std::vector<uint32_t> cornerFace(mesh.faceVertices.size());
+  FillLaterVector<uint32_t> cornerFace(mesh.faceVertices.size());
   parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {
     for (size_t f = begin; f < end; f++)
       std::fill(cornerFace.begin() + mesh.faceStart[f], cornerFace.begin() + mesh.faceStart[f + 1], uint32_t(f));
   });
-  std::vector<CornerEdge> halfEdges = bucketSorted<CornerEdge>(
+  FillLaterVector<CornerEdge> halfEdges = bucketSorted<CornerEdge>(
       faceCount, bitsFor(mesh.positions.size()), bitsFor(mesh.positions.size()), threads,
       [&](size_t f, auto&& emit) {
         for (uint32_t i = 0, n = mesh.faceSize(f); i < n; i++) {
@@ -41,7 +41,7 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads, OrientedEdges* oriented
       std::less<CornerEdge>());
   // Across each two-face edge, the corner of the other face that starts it: a face's neighbours are
   // its corners' partners, visited in the order of their edges' keys.
-  std::vector<uint32_t> partner(mesh.faceVertices.size(), UINT32_MAX);
+  FillLaterVector<uint32_t> partner = parallelFilled(mesh.faceVertices.size(), UINT32_MAX, threads);
   parallelForRuns(
       halfEdges.size(), threads, [&](size_t i, size_t j) { return halfEdges[i].key() == halfEdges[j].key(); },
       [&](size_t i, size_t j) {
@@ -64,8 +64,9 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads, OrientedEdges* oriented
 
   // Each face's turn relative to its component's first face, from the parity union-find over the
   // two-face edges (faces walking an edge the same way must differ, else agree).
-  ParityUnionFind faces(faceCount);
-  std::vector<uint8_t> conflict(faceCount, 0);  // a face where the relations met with opposite signs
+  ParityUnionFind faces(faceCount, threads);
+  FillLaterVector<uint8_t> conflict =
+      parallelFilled(faceCount, uint8_t(0), threads);  // a face where the relations met with opposite signs
   parallelForRanges(partner.size(), threads, [&](size_t begin, size_t end) {
     for (size_t c = begin; c < end; c++) {
       const uint32_t p = partner[c];
@@ -75,8 +76,8 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads, OrientedEdges* oriented
       if (!faces.unite(cornerFace[c], cornerFace[p], same)) conflict[cornerFace[c]] = 1;
     }
   });
-  std::vector<uint32_t> root(faceCount);
-  std::vector<uint8_t> flip(faceCount);
+  FillLaterVector<uint32_t> root(faceCount);
+  FillLaterVector<uint8_t> flip(faceCount);
   parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {
     for (size_t f = begin; f < end; f++) {
       const auto [r, parity] = faces.findWithTurn(uint32_t(f));
@@ -86,11 +87,11 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads, OrientedEdges* oriented
   faces = ParityUnionFind(0);
   // Which way each component keeps more of its area: kept minus turned, summed into the component's
   // first face in face order (so the sums do not depend on the thread count).
-  std::vector<double> keptMinusTurned(faceCount);
+  FillLaterVector<double> keptMinusTurned(faceCount);
   parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {
     for (size_t f = begin; f < end; f++) keptMinusTurned[f] = flip[f] ? -area(f) : area(f);
   });
-  std::vector<uint8_t> nonOrientable(faceCount, 0);
+  FillLaterVector<uint8_t> nonOrientable = parallelFilled(faceCount, uint8_t(0), threads);
   for (size_t f = 0; f < faceCount; f++) {
     if (root[f] == f)
       report.components++;
@@ -98,12 +99,12 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads, OrientedEdges* oriented
       keptMinusTurned[root[f]] += keptMinusTurned[f];
     if (conflict[f]) nonOrientable[root[f]] = 1;
   }
-  std::vector<uint8_t>().swap(conflict);
+  FillLaterVector<uint8_t>().swap(conflict);
   parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {
     for (size_t f = begin; f < end; f++)
       if (!nonOrientable[root[f]] && keptMinusTurned[root[f]] < 0.0) flip[f] ^= 1u;
   });
-  std::vector<double>().swap(keptMinusTurned);
+  FillLaterVector<double>().swap(keptMinusTurned);
   // A component that cannot be oriented (a Moebius strip) takes the turns of a walk from its first face,
   // breadth first by edge key: where the walk meets itself with the other sign, repair cuts it.
   constexpr uint8_t kUnseen = 2;
@@ -139,7 +140,7 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads, OrientedEdges* oriented
     if (turned > kept)
       for (uint32_t f : component) flip[f] ^= 1u;
   }
-  std::vector<uint32_t>().swap(partner);
+  FillLaterVector<uint32_t>().swap(partner);
   if (oriented) {
     // A turned face keeps its edges; the edge that started at corner k of n starts at n-2-k (mod n),
     // and the order stays (key, corner), since a key's corners are in distinct faces, in face order.

@@ -35,13 +35,13 @@ struct SetExtent {
 struct Bisector {
   const Graph& graph;
   const std::vector<uint8_t>& weights;
-  const std::vector<glm::vec3>& positions;
+  const FillLaterVector<glm::vec3>& positions;
   uint32_t targetWeight;  // sets are cut into ceil(weight / targetWeight) parts
   const std::function<bool(const uint32_t*, size_t)>& fits;
-  std::vector<uint32_t>& order;
-  std::vector<uint32_t> stamp;    // the end of the segment a node lives in; kTaken|end while being taken
-  std::vector<uint8_t> partHead;  // 1 at the first position of every part
-  bool parallel = false;          // halves as tasks (inside withThreads)
+  FillLaterVector<uint32_t>& order;
+  FillLaterVector<uint32_t> stamp;    // the end of the segment a node lives in; kTaken|end while being taken
+  FillLaterVector<uint8_t> partHead;  // 1 at the first position of every part
+  bool parallel = false;              // halves as tasks (inside withThreads)
   int threads = 1;
 
   // Sets of kParallelSet nodes or more have their passes on the threads too.
@@ -93,11 +93,11 @@ struct Bisector {
         [&](size_t total) { candidates.resize(total); }, [&](size_t i, size_t k) { candidates[k] = order[lo + i]; });
     std::nth_element(candidates.begin(), candidates.begin() + long(rank - below), candidates.end(), before);
     const uint32_t pivot = candidates[rank - below];
-    std::vector<uint8_t> front(n);
+    FillLaterVector<uint8_t> front(n);
     parallelForRanges(n, th, [&](size_t begin, size_t end) {
       for (size_t i = begin; i < end; i++) front[i] = before(order[lo + i], pivot);
     });
-    std::vector<uint32_t> cut(n);
+    FillLaterVector<uint32_t> cut(n);
     parallelNumber(
         n, th, [&](size_t i) { return front[i] != 0; }, [](size_t) {},
         [&](size_t i, size_t k) { cut[k] = order[lo + i]; });
@@ -235,7 +235,7 @@ struct Bisector {
 void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uint32_t maxWeight,
                     const std::function<bool(const uint32_t*, size_t)>& fits, int threads, Partition& p) {
   const size_t n = p.order.size(), parts = p.partCount();
-  std::vector<uint32_t> owner(n);
+  FillLaterVector<uint32_t> owner(n);  // every node is in a part: all written below
   std::vector<std::vector<uint32_t>> members(parts);
   std::vector<uint64_t> weight(parts, 0);
   parallelFor(parts, threads, [&](size_t q) {
@@ -247,8 +247,8 @@ void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uin
   });
   // The connected pieces of part q, by flood fill in member order, moved nodes left out; `piece` is
   // left as it was found.
-  std::vector<uint32_t> piece(n, UINT32_MAX);
-  std::vector<uint8_t> moved(n, 0);
+  FillLaterVector<uint32_t> piece = parallelFilled(n, UINT32_MAX, threads);
+  FillLaterVector<uint8_t> moved = parallelFilled(n, uint8_t(0), threads);
   auto piecesOf = [&](uint32_t q) {
     std::vector<std::vector<uint32_t>> pieces;
     for (uint32_t start : members[q]) {
@@ -331,21 +331,23 @@ void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uin
 }  // namespace
 
 Partition partitionGraph(const Graph& graph, const std::vector<uint8_t>& weights,
-                         const std::vector<glm::vec3>& positions, uint32_t maxWeight, uint32_t targetWeight,
+                         const FillLaterVector<glm::vec3>& positions, uint32_t maxWeight, uint32_t targetWeight,
                          int threads, const std::function<bool(const uint32_t*, size_t)>& fits) {
   const uint32_t n = uint32_t(graph.nodeCount());
   Partition result;
   if (n == 0) return result;
   result.order.resize(n);
-  for (uint32_t i = 0; i < n; i++) result.order[i] = i;
+  parallelForRanges(n, threads, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; i++) result.order[i] = uint32_t(i);
+  });
   Bisector b{graph,
              weights,
              positions,
              targetWeight,
              fits,
              result.order,
-             std::vector<uint32_t>(n, n),
-             std::vector<uint8_t>(n, 0),
+             parallelFilled(n, n, threads),
+             parallelFilled(n, uint8_t(0), threads),
              threads > 1,
              threads};
   if (threads > 1)

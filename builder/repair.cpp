@@ -78,7 +78,8 @@ size_t dissolveFolds(PolygonMesh& mesh, size_t& degenerate, int threads) {
     const size_t vertexCount = mesh.positions.size();
     // Each vertex's corner count, and for a vertex of two corners the two, in order.
     const size_t cornerCount = mesh.faceVertices.size();
-    std::vector<uint32_t> count(vertexCount, 0), cornerOf(2 * vertexCount, UINT32_MAX);
+    FillLaterVector<uint32_t> count = parallelFilled(vertexCount, 0u, threads),
+                              cornerOf = parallelFilled(2 * vertexCount, UINT32_MAX, threads);
     parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
       for (size_t c = begin; c < end; c++) __atomic_fetch_add(&count[mesh.faceVertices[c]], 1u, __ATOMIC_RELAXED);
     });
@@ -92,11 +93,18 @@ size_t dissolveFolds(PolygonMesh& mesh, size_t& degenerate, int threads) {
           __atomic_store_n(&two[1], uint32_t(c), __ATOMIC_RELAXED);
       }
     });
+    bool anyOfTwo = false;
     parallelForRanges(vertexCount, threads, [&](size_t begin, size_t end) {
-      for (size_t v = begin; v < end; v++)
-        if (count[v] == 2 && cornerOf[2 * v] > cornerOf[2 * v + 1]) std::swap(cornerOf[2 * v], cornerOf[2 * v + 1]);
+      bool found = false;
+      for (size_t v = begin; v < end; v++) {
+        if (count[v] != 2) continue;
+        found = true;
+        if (cornerOf[2 * v] > cornerOf[2 * v + 1]) std::swap(cornerOf[2 * v], cornerOf[2 * v + 1]);
+      }
+      if (found) __atomic_store_n(&anyOfTwo, true, __ATOMIC_RELAXED);
     });
-    std::vector<uint32_t> cornerFace(cornerCount);
+    if (!anyOfTwo) break;  // no vertex of two corners: nothing can fold
+    FillLaterVector<uint32_t> cornerFace(cornerCount);
     parallelForRanges(mesh.faceCount(), threads, [&](size_t begin, size_t end) {
       for (size_t f = begin; f < end; f++)
         std::fill(cornerFace.begin() + mesh.faceStart[f], cornerFace.begin() + mesh.faceStart[f + 1], uint32_t(f));
@@ -202,7 +210,7 @@ std::vector<uint32_t> weldPositions(const PolygonMesh& mesh, const std::vector<u
     uint32_t vertex;
     bool operator<(const Key& o) const { return bits != o.bits ? bits < o.bits : vertex < o.vertex; }
   };
-  const std::vector<Key> keys = bucketSorted<Key>(
+  const FillLaterVector<Key> keys = bucketSorted<Key>(
       vertexCount, 64, kChunkedBucketBits, threads,
       [&](size_t v, auto&& emit) {
         const Key key{bits(uint32_t(v)), uint32_t(v)};
@@ -261,7 +269,7 @@ size_t dropDuplicateFaces(PolygonMesh& faces, int threads) {
   const size_t n = faces.faceCount();
   // (hash of the corner set, face) pairs, sorted as they are (comparing face ids through a hash array
   // missed the cache on large meshes). Faces of one corner set meet in one run, the first face first.
-  std::vector<std::pair<uint64_t, uint32_t>> byHash = bucketSorted<std::pair<uint64_t, uint32_t>>(
+  FillLaterVector<std::pair<uint64_t, uint32_t>> byHash = bucketSorted<std::pair<uint64_t, uint32_t>>(
       n, 64, kChunkedBucketBits, threads,
       [&](size_t f, auto&& emit) {
         const uint64_t h = hashOfSet(faces.face(f), faces.faceSize(f));
@@ -282,7 +290,8 @@ size_t dropDuplicateFaces(PolygonMesh& faces, int threads) {
       if (sa == sb && !drop[fi]) drop[fj] = true;
     }
   }
-  std::vector<std::pair<uint64_t, uint32_t>>().swap(byHash);  // before the copy below
+  decltype(byHash)().swap(byHash);                                        // before the copy below
+  if (std::find(drop.begin(), drop.end(), true) == drop.end()) return 0;  // nothing to copy
   PolygonMesh kept =
       keptFaces(faces, threads, [&](size_t f, std::vector<uint32_t>& corners, std::vector<glm::vec3>& normals) {
         if (drop[f]) return false;
@@ -303,8 +312,8 @@ size_t dropDuplicateFaces(PolygonMesh& faces, int threads) {
 PolygonMesh splitNonManifold(PolygonMesh& faces, OrientedEdges&& oriented, RepairReport& report, int threads,
                              size_t& singleEdges) {
   const size_t cornerCount = faces.faceVertices.size();
-  const std::vector<CornerEdge>& edges = oriented.edges;
-  const std::vector<uint32_t>& cornerFace = oriented.cornerFace;
+  const FillLaterVector<CornerEdge>& edges = oriented.edges;
+  const FillLaterVector<uint32_t>& cornerFace = oriented.cornerFace;
   auto nextCorner = [&](uint32_t c) {
     uint32_t f = cornerFace[c];
     return c + 1 == faces.faceStart[f + 1] ? faces.faceStart[f] : c + 1;
@@ -314,7 +323,7 @@ PolygonMesh splitNonManifold(PolygonMesh& faces, OrientedEdges&& oriented, Repai
 
   // A key's corners are one run of the sorted edges. Wedges that get a vertex of their own are
   // marked first (by any thread: the flag only goes from 0 to 1), then the manifold edges join theirs.
-  std::vector<uint8_t> isolated(cornerCount, 0);
+  FillLaterVector<uint8_t> isolated = parallelFilled(cornerCount, uint8_t(0), threads);
   auto sameKey = [&](size_t i, size_t j) { return edges[i].key() == edges[j].key(); };
   // The run's edge that joins its first (its partner), or SIZE_MAX when none does.
   auto partnerOf = [&](size_t i, size_t j) {
@@ -343,7 +352,7 @@ PolygonMesh splitNonManifold(PolygonMesh& faces, OrientedEdges&& oriented, Repai
   // which opens its face's other edge at that corner into a boundary. Such an edge joins nothing at
   // either end: joined at its other end only, the two faces would meet at a vertex without an edge
   // (a bowtie the fuzzer found: a face on a three-face edge that also shared a good edge).
-  UnionFind wedges(cornerCount);
+  UnionFind wedges(cornerCount, threads);
   parallelForRuns(edges.size(), threads, sameKey, [&](size_t i, size_t j) {
     const size_t partner = j - i > 1 ? partnerOf(i, j) : SIZE_MAX;
     if (partner == SIZE_MAX) return;
@@ -352,14 +361,14 @@ PolygonMesh splitNonManifold(PolygonMesh& faces, OrientedEdges&& oriented, Repai
     wedges.unite(c0, nextCorner(c1));
     wedges.unite(nextCorner(c0), c1);
   });
-  std::vector<CornerEdge>().swap(oriented.edges);
-  std::vector<uint32_t>().swap(oriented.cornerFace);
+  FillLaterVector<CornerEdge>().swap(oriented.edges);
+  FillLaterVector<uint32_t>().swap(oriented.cornerFace);
 
   // Output vertices: the class of a vertex's first corner keeps the vertex; every other class (a fan
   // of wedges, or an isolated wedge alone) gets a copy, numbered in the order of its first corner,
   // which is its union-find root (the smaller root wins every union; isolated wedges join nothing).
   const size_t vertexCount = faces.positions.size();
-  std::vector<uint32_t> firstCorner(vertexCount, UINT32_MAX);
+  FillLaterVector<uint32_t> firstCorner = parallelFilled(vertexCount, UINT32_MAX, threads);
   std::vector<uint32_t> newCorner(cornerCount);  // each corner's class first, then its output vertex
   parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
     for (size_t c = begin; c < end; c++) {
@@ -368,7 +377,7 @@ PolygonMesh splitNonManifold(PolygonMesh& faces, OrientedEdges&& oriented, Repai
     }
   });
   wedges = UnionFind(0);
-  std::vector<uint32_t> copyId(cornerCount);
+  FillLaterVector<uint32_t> copyId(cornerCount);  // read only where written: the classes given a copy
   PolygonMesh out;
   out.positions = std::move(faces.positions);
   report.splitVertices += parallelNumber(
@@ -392,7 +401,7 @@ PolygonMesh splitNonManifold(PolygonMesh& faces, OrientedEdges&& oriented, Repai
 
 // Drops the vertices no face uses, keeping order; returns how many (welded ones not counted again).
 size_t dropUnusedVertices(PolygonMesh& out, size_t welded, int threads) {
-  std::vector<uint32_t> remap(out.positions.size(), UINT32_MAX);
+  FillLaterVector<uint32_t> remap = parallelFilled(out.positions.size(), UINT32_MAX, threads);
   parallelForRanges(out.faceVertices.size(), threads, [&](size_t begin, size_t end) {
     for (size_t c = begin; c < end; c++) __atomic_store_n(&remap[out.faceVertices[c]], 0u, __ATOMIC_RELAXED);
   });

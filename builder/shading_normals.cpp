@@ -76,7 +76,7 @@ ShadingNormals shadingNormals(const PolygonMesh& mesh, const std::vector<glm::ve
   });
 
   // Corners joined into wedges.
-  UnionFind wedges(cornerCount);
+  UnionFind wedges(cornerCount, threads);
   if (fromInput) {
     // Equal encoded normals at one vertex share a wedge; an unusable normal takes its face's.
     std::vector<std::pair<uint64_t, uint32_t>> keys(cornerCount);

@@ -12,13 +12,17 @@
 #include <utility>
 #include <vector>
 
+#include "../common/parallel.h"
+
 namespace vgeo {
 
 template <bool kParity>
 class BasicUnionFind {
  public:
-  explicit BasicUnionFind(size_t n) : words_(n) {
-    for (size_t i = 0; i < n; i++) words_[i] = uint32_t(i) << kShift;
+  explicit BasicUnionFind(size_t n, int threads = 1) : words_(n) {
+    parallelForRanges(n, threads, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; i++) words_[i] = uint32_t(i) << kShift;
+    });
   }
   uint32_t find(uint32_t x) { return findWithTurn(x).first; }
   // The representative of x's set and x's turn relative to it (0 without kParity).
@@ -55,7 +59,7 @@ class BasicUnionFind {
  private:
   static constexpr uint32_t kShift = kParity ? 1u : 0u, kTurn = kParity ? 1u : 0u;
   uint32_t load(uint32_t x) const { return __atomic_load_n(&words_[x], __ATOMIC_RELAXED); }
-  std::vector<uint32_t> words_;
+  FillLaterVector<uint32_t> words_;
 };
 using UnionFind = BasicUnionFind<false>;
 using ParityUnionFind = BasicUnionFind<true>;

@@ -44,8 +44,8 @@ inline uint64_t hashOfSet(const uint32_t* words, size_t count) {
 // costs no sort and little cache).
 constexpr int kChunkedBucketBits = 14;
 template <class T, class Make, class Less>
-std::vector<T> bucketSorted(size_t sources, int keyBits, int bucketBits, int threads, Make&& make, Less&& less,
-                            std::vector<size_t>* starts = nullptr) {
+FillLaterVector<T> bucketSorted(size_t sources, int keyBits, int bucketBits, int threads, Make&& make, Less&& less,
+                                FillLaterVector<size_t>* starts = nullptr) {
   bucketBits = std::min(bucketBits, keyBits);
   const int shift = keyBits - bucketBits;
   const size_t buckets = size_t(1) << bucketBits;
@@ -64,18 +64,37 @@ std::vector<T> bucketSorted(size_t sources, int keyBits, int bucketBits, int thr
   const bool atomic = shared && threads > 1;
   auto claim = [&](size_t& slot) { return atomic ? __atomic_fetch_add(&slot, size_t(1), __ATOMIC_RELAXED) : slot++; };
   // next[c * buckets + b]: chunk c's count in bucket b, then where its next item there goes.
-  std::vector<size_t> next(chunks * buckets, 0);
+  FillLaterVector<size_t> next = parallelFilled(chunks * buckets, size_t(0), threads);
   forSources([&](size_t c, size_t s) {
     make(s, [&](uint64_t key, const T&) { claim(next[c * buckets + size_t(key >> shift)]); });
   });
-  // Bucket b's items go in chunk order; the counts are read a chunk's row at a time (a walk down the
-  // columns missed the cache on every step).
-  std::vector<size_t> bucketStart(buckets + 1, 0);
-  for (size_t c = 0; c < chunks; c++)
-    for (size_t b = 0; b < buckets; b++) bucketStart[b + 1] += next[c * buckets + b];
-  for (size_t b = 0; b < buckets; b++) bucketStart[b + 1] += bucketStart[b];
-  const size_t total = bucketStart[buckets];
-  {
+  FillLaterVector<size_t> bucketStart(buckets + 1);
+  if (chunks == 1) {
+    // One row of counts (up to a bucket a vertex): an exclusive scan of it, a range at a time.
+    const size_t ranges = parallelRangeCount(buckets);
+    std::vector<size_t> rangeBase(ranges + 1, 0);
+    parallelForRanges(buckets, threads, [&](size_t begin, size_t end) {
+      size_t sum = 0;
+      for (size_t b = begin; b < end; b++) sum += next[b];
+      rangeBase[begin / kParallelRange + 1] = sum;
+    });
+    for (size_t r = 0; r < ranges; r++) rangeBase[r + 1] += rangeBase[r];
+    parallelForRanges(buckets, threads, [&](size_t begin, size_t end) {
+      size_t at = rangeBase[begin / kParallelRange];
+      for (size_t b = begin; b < end; b++) {
+        const size_t n = next[b];
+        bucketStart[b] = next[b] = at;
+        at += n;
+      }
+    });
+    bucketStart[buckets] = rangeBase[ranges];
+  } else {
+    // Bucket b's items go in chunk order; the counts are read a chunk's row at a time (a walk down the
+    // columns missed the cache on every step).
+    std::fill(bucketStart.begin(), bucketStart.end(), size_t(0));
+    for (size_t c = 0; c < chunks; c++)
+      for (size_t b = 0; b < buckets; b++) bucketStart[b + 1] += next[c * buckets + b];
+    for (size_t b = 0; b < buckets; b++) bucketStart[b + 1] += bucketStart[b];
     std::vector<size_t> at(bucketStart.begin(), bucketStart.end() - 1);
     for (size_t c = 0; c < chunks; c++)
       for (size_t b = 0; b < buckets; b++) {
@@ -84,11 +103,11 @@ std::vector<T> bucketSorted(size_t sources, int keyBits, int bucketBits, int thr
         at[b] += n;
       }
   }
-  std::vector<T> sorted(total);
+  FillLaterVector<T> sorted(bucketStart[buckets]);  // every slot written by the placing pass
   forSources([&](size_t c, size_t s) {
     make(s, [&](uint64_t key, const T& item) { sorted[claim(next[c * buckets + size_t(key >> shift)])] = item; });
   });
-  std::vector<size_t>().swap(next);
+  FillLaterVector<size_t>().swap(next);
   parallelFor(buckets, threads, [&](size_t b) {  // a task a bucket: 16,384 buckets are one range of a loop
     if (bucketStart[b + 1] - bucketStart[b] > 1)
       std::sort(sorted.begin() + long(bucketStart[b]), sorted.begin() + long(bucketStart[b + 1]), less);

@@ -12,9 +12,11 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <type_traits>
 #include <functional>
+#include <type_traits>
 #include <vector>
+
+#include "fill_later.h"
 
 namespace vgeo {
 
@@ -100,6 +102,16 @@ size_t parallelNumber(size_t count, int threads, Weight&& weight, Sized&& sized,
       }
   });
   return base[blocks];
+}
+
+// `count` copies of `value`, written on up to `threads` threads.
+template <class T>
+FillLaterVector<T> parallelFilled(size_t count, const T& value, int threads) {
+  FillLaterVector<T> v(count);
+  parallelForRanges(count, threads, [&](size_t begin, size_t end) {
+    std::fill(v.begin() + long(begin), v.begin() + long(end), value);
+  });
+  return v;
 }
 
 // a() and b(), side by side when `together` (inside withThreads, on its threads), else one after the
