@@ -102,7 +102,7 @@ bool readFileInside(std::vector<unsigned char>* out, std::string* err, const std
     *err = "larger than " + std::to_string(kMaxFileBytes >> 30) + " GiB";
     return false;
   }
-  std::string bytes = vgeo::readWholeFile(p.string());
+  const FillLaterVector<char> bytes = vgeo::readWholeFile(p.string());
   out->assign(bytes.begin(), bytes.end());
   return true;
 }
@@ -375,8 +375,8 @@ SourceScene loadGltf(const std::string& path) {
   if (!fs::is_regular_file(path, ec)) throw InputError(path, "cannot open: not a regular file");
   if (fs::file_size(path, ec) > kMaxFileBytes)
     throw InputError(path, "larger than the " + std::to_string(kMaxFileBytes >> 30) + " GiB a glTF file may be");
-  const std::string bytes = vgeo::readWholeFile(path);
-  const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
+  const FillLaterVector<char> bytes = vgeo::readWholeFile(path);
+  const bool binary = bytes.size() >= 4 && std::string_view(bytes.data(), 4) == "glTF";
   // The JSON's nesting, before tinygltf walks it recursively (a GLB's JSON chunk follows its 20-byte
   // headers, its length in bytes 12..15).
   const char* json = bytes.data();

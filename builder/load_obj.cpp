@@ -17,7 +17,7 @@ namespace vgeo {
 namespace {
 // The line of the file's face record number `face` (0-based), for an error found after reading: lines
 // are not kept for every face, which on a large file would take more memory than the faces.
-size_t lineOfFace(const std::string& data, const std::string& path, size_t face) {
+size_t lineOfFace(std::string_view data, const std::string& path, size_t face) {
   TextReader in(data, path);
   for (size_t seen = 0;; in.skipLine()) {
     in.skipWhitespaceAndComments();
@@ -132,18 +132,19 @@ ObjPiece parsePiece(std::string_view text, const std::string& path, size_t first
 }  // namespace
 
 SourceScene loadObj(const std::string& path, int threads) {
-  const std::string data = readWholeFile(path);
+  const FillLaterVector<char> bytes = readWholeFile(path, threads);
+  const std::string_view data(bytes.data(), bytes.size());
   // Pieces of at least 4 MB, ending after a newline.
   const size_t pieceCount = std::max<size_t>(1, std::min<size_t>(size_t(std::max(threads, 1)) * 4, data.size() >> 22));
   std::vector<size_t> bounds{0};
   for (size_t k = 1; k < pieceCount; k++) {
     const size_t at = data.find('\n', std::max(bounds.back(), data.size() * k / pieceCount));
-    if (at == std::string::npos) break;
+    if (at == std::string_view::npos) break;
     if (at + 1 > bounds.back()) bounds.push_back(at + 1);
   }
   bounds.push_back(data.size());
   const size_t pieces = bounds.size() - 1;
-  auto text = [&](size_t k) { return std::string_view(data).substr(bounds[k], bounds[k + 1] - bounds[k]); };
+  auto text = [&](size_t k) { return data.substr(bounds[k], bounds[k + 1] - bounds[k]); };
   std::vector<PieceCounts> counts(pieces);
   parallelFor(pieces, threads, [&](size_t k) { counts[k] = countPiece(text(k)); });
   std::vector<ObjPiece> parsed(pieces);

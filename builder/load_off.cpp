@@ -5,8 +5,8 @@
 namespace vgeo {
 
 SourceScene loadOff(const std::string& path) {
-  std::string data = readWholeFile(path);
-  TextReader in(data, path);
+  const FillLaterVector<char> data = readWholeFile(path);
+  TextReader in(std::string_view(data.data(), data.size()), path);
   in.skipWhitespaceAndComments();
   std::string_view header = in.token();
   bool hasNormals = header.find('N') != std::string_view::npos;

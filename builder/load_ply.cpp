@@ -99,12 +99,13 @@ class ValueReader {
 }  // namespace
 
 SourceScene loadPly(const std::string& path) {
-  std::string data = readWholeFile(path);
+  const FillLaterVector<char> bytes = readWholeFile(path);
+  const std::string_view data(bytes.data(), bytes.size());
   size_t headerEnd = data.find("end_header");
   if (data.compare(0, 3, "ply") != 0) throw InputError(path, "not a PLY file (no 'ply' magic)");
-  if (headerEnd == std::string::npos) throw InputError(path, "truncated: no 'end_header' line");
+  if (headerEnd == std::string_view::npos) throw InputError(path, "truncated: no 'end_header' line");
   size_t bodyStart = data.find('\n', headerEnd);
-  bodyStart = bodyStart == std::string::npos ? data.size() : bodyStart + 1;
+  bodyStart = bodyStart == std::string_view::npos ? data.size() : bodyStart + 1;
 
   TextReader header(std::string_view(data).substr(0, headerEnd), path);
   int format = -1;

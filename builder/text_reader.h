@@ -12,8 +12,9 @@
 
 namespace vgeo {
 
-// Reads a whole file; throws InputError when it cannot be opened or read.
-std::string readWholeFile(const std::string& path);
+// Reads a whole file, a regular one in pieces on up to `threads` threads; throws InputError when it
+// cannot be opened or read.
+FillLaterVector<char> readWholeFile(const std::string& path, int threads = 1);
 
 class TextReader {
  public:
