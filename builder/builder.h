@@ -25,8 +25,8 @@ namespace vgeo {
 // are absent (cornerNormals empty); every step that moves corners moves them alike.
 struct PolygonMesh {
   std::vector<glm::vec3> positions;
-  std::vector<uint32_t> faceStart{0};
-  std::vector<uint32_t> faceVertices;
+  FillLaterVector<uint32_t> faceStart{0};
+  FillLaterVector<uint32_t> faceVertices;
   std::vector<glm::vec3> cornerNormals;
 
   size_t faceCount() const { return faceStart.size() - 1; }
@@ -174,7 +174,7 @@ class QuadCorners {
   const std::vector<uint32_t>& offsets() const { return offsets_; }
 
  private:
-  const std::vector<uint32_t>& vertices_;
+  const FillLaterVector<uint32_t>& vertices_;
   std::vector<uint32_t> offsets_, corners_;
 };
 

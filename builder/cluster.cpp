@@ -3,6 +3,7 @@
 // partitionGraph cuts it by recursive bisection (partition.cpp). Leaf clusters are made of whole faces
 // of the level-N cage, so a quad's two triangles never part and every patch belongs to one cluster.
 #include <algorithm>
+#include <span>
 
 #include "../common/bucket_sort.h"
 #include "../common/parallel.h"
@@ -28,7 +29,7 @@ namespace {
 // Faces sharing an edge are neighbours (all of them, should an edge have more than two faces). Found
 // through each vertex's faces rather than by sorting edges: linear, ~3x faster on large meshes, and
 // every pass parallel over faces.
-Graph dualGraph(const std::vector<uint32_t>& faceStart, const std::vector<uint32_t>& faceVertices, size_t vertexCount,
+Graph dualGraph(std::span<const uint32_t> faceStart, std::span<const uint32_t> faceVertices, size_t vertexCount,
                 int threads) {
   const size_t faceCount = faceStart.size() - 1;
   // Each vertex's faces, ascending: vertex v's are vertexFaces[vertexStart[v] .. vertexStart[v + 1]).
@@ -99,8 +100,8 @@ Graph dualGraph(const std::vector<uint32_t>& faceStart, const std::vector<uint32
 
 // True when the faces use at most VGEO_MAX_CLUSTER_VERTICES distinct vertices (counted with a marker
 // array per thread, stamped so that it never needs clearing).
-bool fitsVertexLimit(const std::vector<uint32_t>& faceStart, const std::vector<uint32_t>& faceVertices,
-                     const uint32_t* faces, size_t count) {
+bool fitsVertexLimit(std::span<const uint32_t> faceStart, std::span<const uint32_t> faceVertices, const uint32_t* faces,
+                     size_t count) {
   size_t corners = 0;
   for (size_t i = 0; i < count; i++) corners += faceStart[faces[i] + 1] - faceStart[faces[i]];
   if (corners <= VGEO_MAX_CLUSTER_VERTICES) return true;
@@ -125,8 +126,7 @@ bool fitsVertexLimit(const std::vector<uint32_t>& faceStart, const std::vector<u
 
 // `wedges`, when given (one a corner, like faceVertices), are what the vertex limit counts, and each
 // cluster lists those of its triangles' corners.
-std::vector<BuildCluster> clustersFromFaces(const std::vector<uint32_t>& faceStart,
-                                            const std::vector<uint32_t>& faceVertices,
+std::vector<BuildCluster> clustersFromFaces(std::span<const uint32_t> faceStart, std::span<const uint32_t> faceVertices,
                                             const std::vector<glm::vec3>& positions, int threads, bool keepFaces,
                                             uint32_t targetTriangles, const std::vector<uint32_t>* wedges) {
   const size_t faceCount = faceStart.size() - 1;
@@ -144,7 +144,7 @@ std::vector<BuildCluster> clustersFromFaces(const std::vector<uint32_t>& faceSta
         centroids[f] = sum / float(n);
       }
     });
-    const std::vector<uint32_t>& limited = wedges ? *wedges : faceVertices;
+    const std::span<const uint32_t> limited = wedges ? std::span<const uint32_t>(*wedges) : faceVertices;
     auto fits = [&](const uint32_t* faces, size_t count) { return fitsVertexLimit(faceStart, limited, faces, count); };
     parts = partitionGraph(graph, weights, centroids, VGEO_MAX_CLUSTER_TRIANGLES, targetTriangles, threads, fits);
   }

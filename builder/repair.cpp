@@ -369,7 +369,7 @@ PolygonMesh splitNonManifold(PolygonMesh& faces, OrientedEdges&& oriented, Repai
   // which is its union-find root (the smaller root wins every union; isolated wedges join nothing).
   const size_t vertexCount = faces.positions.size();
   FillLaterVector<uint32_t> firstCorner = parallelFilled(vertexCount, UINT32_MAX, threads);
-  std::vector<uint32_t> newCorner(cornerCount);  // each corner's class first, then its output vertex
+  FillLaterVector<uint32_t> newCorner(cornerCount);  // each corner's class first, then its output vertex
   parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
     for (size_t c = begin; c < end; c++) {
       newCorner[c] = wedges.find(uint32_t(c));
