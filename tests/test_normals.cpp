@@ -4,6 +4,7 @@
 // a subdivided cage keeps the limit surface's smooth normals. Checked on the .vgeo's own data and, for
 // BoxTextured, in a frame drawn on lavapipe (or any device) with the validation layer.
 #include <cmath>
+#include <cstring>
 #include <set>
 
 #include "../renderer/gpu_renderer.h"
@@ -133,6 +134,22 @@ TEST(Normals, GltfWithoutNormalsIsFlatAndWithThemSmooth) {
   VgeoData smooth = test::build(test::gltfOf(dir, "cow_normals.gltf", withNormals, ""), 0);
   EXPECT_EQ(smooth.vertexCount(), smoothOff.vertexCount()) << "one normal a vertex: welded back into one vertex each";
   EXPECT_GT(fractionBent(smooth, 10.0f, 0), 0.05);
+}
+
+TEST(Normals, WedgesAreTheSameOnAnyThreadCount) {
+  // Smooth normals are summed by a walk over the faces on a few threads and through each vertex's
+  // faces on more; creases and given normals go through parallel sorts and unions: the same bits.
+  SourceScene bunny = loadMeshFile(test::cgalMesh("bunny00.off"));
+  PolygonMesh& mesh = bunny.meshes[0];
+  for (float crease : {180.0f, 30.0f}) {
+    const ShadingNormals one = shadingNormals(mesh, {}, crease, 1), many = shadingNormals(mesh, {}, crease, 8);
+    ASSERT_EQ(one.wedgeNormal.size(), many.wedgeNormal.size()) << crease;
+    EXPECT_EQ(std::memcmp(one.wedgeNormal.data(), many.wedgeNormal.data(), one.wedgeNormal.size() * sizeof(glm::vec3)),
+              0)
+        << crease;
+    EXPECT_EQ(one.cornerWedge, many.cornerWedge) << crease;
+    EXPECT_EQ(one.wedgeVertex, many.wedgeVertex) << crease;
+  }
 }
 
 TEST(Normals, CreaseAngleGivesCadEdgesAtEveryLevel) {
