@@ -57,14 +57,13 @@ void EdgeSet::retainAndReserve(Keep&& keep, size_t edges, int threads) {
       if (slots_[i] != kEmpty && keep(slots_[i])) kept[begin / kParallelRange].push_back(slots_[i]);
   });
   slots_.reset();
-  std::vector<uint64_t> keys;
-  size_t total = 0;
-  for (const auto& k : kept) total += k.size();
-  keys.reserve(total);
-  for (auto& k : kept) {
-    keys.insert(keys.end(), k.begin(), k.end());
-    std::vector<uint64_t>().swap(k);
-  }
+  std::vector<size_t> keptStart(kept.size() + 1, 0);
+  for (size_t r = 0; r < kept.size(); r++) keptStart[r + 1] = keptStart[r] + kept[r].size();
+  FillLaterVector<uint64_t> keys(keptStart.back());
+  parallelFor(kept.size(), threads, [&](size_t r) {
+    std::copy(kept[r].begin(), kept[r].end(), keys.begin() + long(keptStart[r]));
+    std::vector<uint64_t>().swap(kept[r]);
+  });
   capacity_ = std::max<size_t>((keys.size() + edges) * 3 / 2 + 1, 1024);
   limit_ = capacity_ - capacity_ / 10;
   slots_.reset(new uint64_t[capacity_]);
@@ -85,7 +84,7 @@ void ChordRule::addClusters(const std::vector<BuildCluster>& clusters, size_t fi
   for (size_t i = first; i < clusters.size(); i++) triangles += clusters[i].indices.size() / 3;
   size_t room = size_t(triangles * 8 / 5);
   if (active) {
-    std::vector<uint8_t> held(holders_.size() / kHolders, 0);
+    FillLaterVector<uint8_t> held = parallelFilled(holders_.size() / kHolders, uint8_t(0), threads);
     parallelFor(active->size(), threads, [&](size_t i) {
       for (uint32_t v : clusters[(*active)[i]].indices) __atomic_store_n(&held[v], uint8_t(1), __ATOMIC_RELAXED);
     });
@@ -105,7 +104,7 @@ void ChordRule::addClusters(const std::vector<BuildCluster>& clusters, size_t fi
 void ChordRule::startRound(const std::vector<GroupPlan>& plans, const std::vector<BuildCluster>& clusters,
                            int threads) {
   const size_t vertices = holders_.size() / kHolders;
-  holderCount_.assign(vertices, 0);
+  holderCount_ = parallelFilled(vertices, uint8_t(0), threads);
   round_ += roundGroups_;  // this round's groups hold ids round_ + g: entries of earlier rounds are below
   roundGroups_ = uint32_t(plans.size());
   parallelFor(plans.size(), threads, [&](size_t g) {

@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "../common/parallel.h"
 #include "builder.h"
 
 namespace vgeo {
@@ -43,7 +44,7 @@ class EdgeSet {
 // time, after the round: its chords were checked against earlier rounds only.
 class ChordRule {
  public:
-  explicit ChordRule(size_t vertices) : holders_(vertices * kHolders, UINT32_MAX) {}
+  ChordRule(size_t vertices, int threads) : holders_(parallelFilled(vertices * kHolders, UINT32_MAX, threads)) {}
   // Adds the edges of clusters [first, end) of `clusters` to the set of edges made so far. When `active`
   // is given (the clusters of the next round), the edges of vertices none of them holds are dropped
   // first: simplification only ever removes vertices, so no later group can ask for those.
@@ -58,8 +59,8 @@ class ChordRule {
  private:
   static constexpr uint32_t kHolders = 4;
   EdgeSet edges_;
-  std::vector<uint8_t> holderCount_;
-  std::vector<uint32_t> holders_;
+  FillLaterVector<uint8_t> holderCount_;
+  FillLaterVector<uint32_t> holders_;
   uint32_t round_ = 0, roundGroups_ = 0;  // the first id of this round's groups, and how many
 };
 

@@ -192,7 +192,7 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
   dag.clusters = makeLeafClusters(mesh, options);
   leaves.stop();
   StageTimer firstChords(options.times, "chord rule");
-  ChordRule chords(mesh.positions.size());
+  ChordRule chords(mesh.positions.size(), options.threads);
   chords.addClusters(dag.clusters, 0, nullptr, options.threads);
   firstChords.stop();
   std::vector<uint32_t> active(dag.clusters.size());
