@@ -154,7 +154,12 @@ class Simplifier {
     selfCost_.resize(n);
     for (uint32_t v = 0; v < n; v++) selfCost_[v] = quadric_[v].evaluate(p_[v]);
     seen_.assign(n, 0);
-    for (uint32_t u = 0; u < n; u++) pushBest(u);
+    // Every vertex's first candidate, made into a heap at once rather than pushed one by one.
+    std::vector<Candidate> first;
+    first.reserve(n);
+    for (uint32_t u = 0; u < n; u++)
+      if (const Candidate c = bestCandidate(u); c.to != UINT32_MAX) first.push_back(c);
+    heap_ = std::priority_queue<Candidate>(std::less<Candidate>(), std::move(first));
   }
 
   // Collapses until `targetTriangles` are left or nothing valid remains; returns the largest error.
@@ -242,10 +247,16 @@ class Simplifier {
   // Live and dead triangles of v; callers skip the dead.
   const uint32_t* trianglesOf(uint32_t v) const { return &pool_[start_[v]]; }
 
-  // Pushes u's cheapest collapse. Candidates come straight from u's triangles, each neighbour once
-  // (a stamp marks those seen in this call).
+  // Pushes u's cheapest collapse.
   void pushBest(uint32_t u) {
-    if (kind_[u] == kLocked) return;
+    const Candidate c = bestCandidate(u);
+    if (c.to != UINT32_MAX) heap_.push(c);
+  }
+
+  // u's cheapest collapse (to UINT32_MAX when it has none), noted as its live candidate. Candidates
+  // come straight from u's triangles, each neighbour once (a stamp marks those seen in this call).
+  Candidate bestCandidate(uint32_t u) {
+    if (kind_[u] == kLocked) return {0.0, u, UINT32_MAX, 0};
     const bool open = kind_[u] == kOpen;
     double best = INFINITY;
     uint32_t target = UINT32_MAX;
@@ -265,7 +276,7 @@ class Simplifier {
       }
     }
     bestTarget_[u] = target;
-    if (target != UINT32_MAX) heap_.push({best, u, target, version_[u]});
+    return {best, u, target, version_[u]};
   }
 
   // Whether edge uv has exactly one live triangle (a boundary edge).
@@ -324,8 +335,8 @@ class Simplifier {
     return true;
   }
 
+  // Collapses u onto v, right after valid(u, v) (which left u's neighbours in scratchA_).
   void collapse(uint32_t u, uint32_t v) {
-    neighbours(u, scratchA_);
     for (uint32_t i = 0; i < size_[u]; i++) {
       uint32_t t = trianglesOf(u)[i];
       if (!alive_[t]) continue;
