@@ -65,8 +65,8 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads, OrientedEdges* oriented
   // Each face's turn relative to its component's first face, from the parity union-find over the
   // two-face edges (faces walking an edge the same way must differ, else agree).
   ParityUnionFind faces(faceCount, threads);
-  FillLaterVector<uint8_t> conflict =
-      parallelFilled(faceCount, uint8_t(0), threads);  // a face where the relations met with opposite signs
+  // Faces where the relations met with opposite signs.
+  FillLaterVector<uint8_t> conflict = parallelFilled(faceCount, uint8_t(0), threads);
   parallelForRanges(partner.size(), threads, [&](size_t begin, size_t end) {
     for (size_t c = begin; c < end; c++) {
       const uint32_t p = partner[c];

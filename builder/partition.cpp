@@ -63,20 +63,17 @@ struct Bisector {
     return total;
   }
 
-  // Puts the set's `rank` first nodes in (position on `axis`, id) order in front, the rest behind, each
-  // side in its previous order: a stable partition around the node of that rank, which is found by
-  // counting the nodes into slabs across [lower, upper] and selecting inside the slab that holds it.
-  // Every pass runs over ranges on the threads; the order left depends only on the set.
-  void medianCut(uint32_t lo, uint32_t hi, uint32_t rank, int axis, float lower, float upper) {
+  // Puts the set's `rank` first nodes in `before` order (by position on `axis`, then id) in front, the
+  // rest behind, each side in its previous order: a stable partition around the node of that rank,
+  // which is found by counting the nodes into slabs across [lower, upper] and selecting inside the slab
+  // that holds it. Every pass runs over ranges on the threads; the order left depends only on the set.
+  template <class Before>
+  void medianCut(uint32_t lo, uint32_t hi, uint32_t rank, int axis, float lower, float upper, Before&& before) {
     constexpr uint32_t kSlabs = 4096;
     const size_t n = hi - lo;
     const int th = threadsFor(lo, hi);
     const float scale = upper > lower ? float(kSlabs) / (upper - lower) : 0.0f;
     auto slab = [&](uint32_t node) { return std::min(kSlabs - 1, uint32_t((positions[node][axis] - lower) * scale)); };
-    auto before = [&](uint32_t a, uint32_t b) {
-      float pa = positions[a][axis], pb = positions[b][axis];
-      return pa != pb ? pa < pb : a < b;
-    };
     std::vector<uint32_t> counts(parallelRangeCount(n) * kSlabs, 0);
     parallelForRanges(n, th, [&](size_t begin, size_t end) {
       uint32_t* count = &counts[begin / kParallelRange * kSlabs];
@@ -143,7 +140,7 @@ struct Bisector {
       // growth over half the set, and the halves run in parallel sooner; the growth cuts below it
       // make the parts connected.
       const uint32_t m = lo + uint32_t(uint64_t(hi - lo) * kA / k);
-      medianCut(lo, hi, m - lo, axis, bounds.lower[axis], bounds.upper[axis]);
+      medianCut(lo, hi, m - lo, axis, bounds.lower[axis], bounds.upper[axis], before);
       parallelForRanges(m - lo, threadsFor(lo, m), [&](size_t begin, size_t end) {
         for (size_t i = begin; i < end; i++) store(order[lo + i], m);
       });

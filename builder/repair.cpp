@@ -290,8 +290,9 @@ size_t dropDuplicateFaces(PolygonMesh& faces, int threads) {
       if (sa == sb && !drop[fi]) drop[fj] = true;
     }
   }
-  decltype(byHash)().swap(byHash);                                        // before the copy below
-  if (std::find(drop.begin(), drop.end(), true) == drop.end()) return 0;  // nothing to copy
+  decltype(byHash)().swap(byHash);  // before the copy below
+  // Nothing dropped: nothing to copy.
+  if (std::find(drop.begin(), drop.end(), true) == drop.end()) return 0;
   PolygonMesh kept =
       keptFaces(faces, threads, [&](size_t f, std::vector<uint32_t>& corners, std::vector<glm::vec3>& normals) {
         if (drop[f]) return false;
