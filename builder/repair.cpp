@@ -269,30 +269,43 @@ size_t dropDuplicateFaces(PolygonMesh& faces, int threads) {
   const size_t n = faces.faceCount();
   // (hash of the corner set, face) pairs, sorted as they are (comparing face ids through a hash array
   // missed the cache on large meshes). Faces of one corner set meet in one run, the first face first.
-  FillLaterVector<std::pair<uint64_t, uint32_t>> byHash = bucketSorted<std::pair<uint64_t, uint32_t>>(
+  struct FaceHash {
+    uint64_t hash;
+    uint32_t face;
+    bool operator<(const FaceHash& o) const { return hash != o.hash ? hash < o.hash : face < o.face; }
+  };
+  FillLaterVector<FaceHash> byHash = bucketSorted<FaceHash>(
       n, 64, kChunkedBucketBits, threads,
       [&](size_t f, auto&& emit) {
         const uint64_t h = hashOfSet(faces.face(f), faces.faceSize(f));
-        emit(h, std::pair<uint64_t, uint32_t>(h, uint32_t(f)));
+        emit(h, FaceHash{h, uint32_t(f)});
       },
-      std::less<std::pair<uint64_t, uint32_t>>());
-  std::vector<bool> drop(n, false);
-  std::vector<uint32_t> sa, sb;
-  for (size_t i = 0; i < n; i++) {
-    const uint32_t fi = byHash[i].second;
-    for (size_t j = i + 1; j < n && byHash[j].first == byHash[i].first; j++) {
-      const uint32_t fj = byHash[j].second;
-      if (drop[fj]) continue;
-      sa.assign(faces.face(fi), faces.face(fi) + faces.faceSize(fi));
-      sb.assign(faces.face(fj), faces.face(fj) + faces.faceSize(fj));
-      std::sort(sa.begin(), sa.end());
-      std::sort(sb.begin(), sb.end());
-      if (sa == sb && !drop[fi]) drop[fj] = true;
-    }
-  }
+      std::less<FaceHash>());
+  // Each run of one hash on its own: a face is in one run, so runs never write the same flag.
+  FillLaterVector<uint8_t> drop = parallelFilled(n, uint8_t(0), threads);
+  bool dropped = false;
+  parallelForRuns(
+      n, threads, [&](size_t i, size_t j) { return byHash[i].hash == byHash[j].hash; },
+      [&](size_t begin, size_t end) {
+        std::vector<uint32_t> sa, sb;
+        for (size_t i = begin; i < end; i++) {
+          const uint32_t fi = byHash[i].face;
+          for (size_t j = i + 1; j < end; j++) {
+            const uint32_t fj = byHash[j].face;
+            if (drop[fj]) continue;
+            sa.assign(faces.face(fi), faces.face(fi) + faces.faceSize(fi));
+            sb.assign(faces.face(fj), faces.face(fj) + faces.faceSize(fj));
+            std::sort(sa.begin(), sa.end());
+            std::sort(sb.begin(), sb.end());
+            if (sa == sb && !drop[fi]) {
+              drop[fj] = 1;
+              __atomic_store_n(&dropped, true, __ATOMIC_RELAXED);
+            }
+          }
+        }
+      });
   decltype(byHash)().swap(byHash);  // before the copy below
-  // Nothing dropped: nothing to copy.
-  if (std::find(drop.begin(), drop.end(), true) == drop.end()) return 0;
+  if (!dropped) return 0;           // nothing to copy
   PolygonMesh kept =
       keptFaces(faces, threads, [&](size_t f, std::vector<uint32_t>& corners, std::vector<glm::vec3>& normals) {
         if (drop[f]) return false;
