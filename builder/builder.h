@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -310,6 +311,14 @@ constexpr uint32_t kMaxLeafFaceCorners = 66;
 void fanLargeFaces(PolygonMesh& mesh);
 // Appends the triangles of face v[0..n): a quad split along its shorter diagonal, other faces fanned.
 void triangulateFace(const glm::vec3* positions, const uint32_t* v, uint32_t n, std::vector<uint32_t>& out);
+// Each vertex's faces, ascending (a face once for each of its corners at the vertex): vertex v's are
+// faces[start[v] .. start[v + 1]). The same on any number of threads.
+struct VertexFaces {
+  FillLaterVector<size_t> start;
+  FillLaterVector<uint32_t> faces;
+};
+VertexFaces vertexFaces(std::span<const uint32_t> faceStart, std::span<const uint32_t> faceVertices, size_t vertexCount,
+                        int threads);
 // Leaf clusters from whole faces of `mesh` (a face's triangles never part): faces adjacent by an edge
 // are graph neighbours, weighted by their triangle count. cageFaces lists each cluster's faces, whose
 // triangles follow in that order (quads split along the shorter diagonal, other faces fanned).

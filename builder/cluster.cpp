@@ -24,6 +24,19 @@ void triangulateFace(const glm::vec3* positions, const uint32_t* v, uint32_t n, 
   for (uint32_t i = 1; i + 1 < n; i++) out.insert(out.end(), {v[0], v[i], v[i + 1]});
 }
 
+VertexFaces vertexFaces(std::span<const uint32_t> faceStart, std::span<const uint32_t> faceVertices, size_t vertexCount,
+                        int threads) {
+  VertexFaces out;
+  const int vertexBits = bitsFor(std::max<size_t>(vertexCount, 1));
+  out.faces = bucketSorted<uint32_t>(
+      faceStart.size() - 1, vertexBits, vertexBits, threads,
+      [&](size_t f, auto&& emit) {
+        for (uint32_t c = faceStart[f]; c < faceStart[f + 1]; c++) emit(faceVertices[c], uint32_t(f));
+      },
+      std::less<uint32_t>(), &out.start);
+  return out;
+}
+
 namespace {
 
 // Faces sharing an edge are neighbours (all of them, should an edge have more than two faces). Found
@@ -32,15 +45,7 @@ namespace {
 Graph dualGraph(std::span<const uint32_t> faceStart, std::span<const uint32_t> faceVertices, size_t vertexCount,
                 int threads) {
   const size_t faceCount = faceStart.size() - 1;
-  // Each vertex's faces, ascending: vertex v's are vertexFaces[vertexStart[v] .. vertexStart[v + 1]).
-  FillLaterVector<size_t> vertexStart;
-  const int vertexBits = bitsFor(std::max<size_t>(vertexCount, 1));
-  const FillLaterVector<uint32_t> vertexFaces = bucketSorted<uint32_t>(
-      faceCount, vertexBits, vertexBits, threads,
-      [&](size_t f, auto&& emit) {
-        for (uint32_t c = faceStart[f]; c < faceStart[f + 1]; c++) emit(faceVertices[c], uint32_t(f));
-      },
-      std::less<uint32_t>(), &vertexStart);
+  const VertexFaces around = vertexFaces(faceStart, faceVertices, vertexCount, threads);
   auto hasVertex = [&](uint32_t f, uint32_t v) {
     for (uint32_t c = faceStart[f]; c < faceStart[f + 1]; c++)
       if (faceVertices[c] == v) return true;
@@ -60,8 +65,8 @@ Graph dualGraph(std::span<const uint32_t> faceStart, std::span<const uint32_t> f
       uint32_t n = faceStart[f + 1] - faceStart[f];
       for (uint32_t i = 0; i < n; i++) {
         uint32_t a = faceVertices[faceStart[f] + i], b = faceVertices[faceStart[f] + (i + 1) % n];
-        for (size_t k = vertexStart[a]; k < vertexStart[a + 1]; k++) {
-          uint32_t other = vertexFaces[k];
+        for (size_t k = around.start[a]; k < around.start[a + 1]; k++) {
+          uint32_t other = around.faces[k];
           if (other == f || !hasVertex(other, b)) continue;
           uint32_t& slot = slots[faceStart[f] + i];
           if (slot == kNone)

@@ -12,7 +12,6 @@
 #include <cmath>
 #include <numeric>
 
-#include "../common/bucket_sort.h"
 #include "../common/parallel.h"
 #include "../common/vgeo_file.h"
 #include "builder.h"
@@ -70,18 +69,11 @@ ShadingNormals shadingNormals(const PolygonMesh& mesh, const std::vector<glm::ve
         }
         for (size_t v = 0; v < vertexCount; v++) out.wedgeNormal[v] = glm::vec3(sums[v]);
       } else {
-        FillLaterVector<size_t> vertexStart;
-        const int vertexBits = bitsFor(std::max<size_t>(vertexCount, 1));
-        const FillLaterVector<uint32_t> vertexFaces = bucketSorted<uint32_t>(
-            mesh.faceCount(), vertexBits, vertexBits, threads,
-            [&](size_t f, auto&& emit) {
-              for (uint32_t k = 0; k < mesh.faceSize(f); k++) emit(mesh.face(f)[k], uint32_t(f));
-            },
-            std::less<uint32_t>(), &vertexStart);
+        const VertexFaces around = vertexFaces(mesh.faceStart, mesh.faceVertices, vertexCount, threads);
         parallelForRanges(vertexCount, threads, [&](size_t begin, size_t end) {
           for (size_t v = begin; v < end; v++) {
             glm::dvec3 sum(0.0);
-            for (size_t k = vertexStart[v]; k < vertexStart[v + 1]; k++) sum += areaVector(mesh, vertexFaces[k]);
+            for (size_t k = around.start[v]; k < around.start[v + 1]; k++) sum += areaVector(mesh, around.faces[k]);
             out.wedgeNormal[v] = glm::vec3(sum);
           }
         });

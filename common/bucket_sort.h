@@ -70,24 +70,10 @@ FillLaterVector<T> bucketSorted(size_t sources, int keyBits, int bucketBits, int
   });
   FillLaterVector<size_t> bucketStart(buckets + 1);
   if (chunks == 1) {
-    // One row of counts (up to a bucket a vertex): an exclusive scan of it, a range at a time.
-    const size_t ranges = parallelRangeCount(buckets);
-    std::vector<size_t> rangeBase(ranges + 1, 0);
-    parallelForRanges(buckets, threads, [&](size_t begin, size_t end) {
-      size_t sum = 0;
-      for (size_t b = begin; b < end; b++) sum += next[b];
-      rangeBase[begin / kParallelRange + 1] = sum;
-    });
-    for (size_t r = 0; r < ranges; r++) rangeBase[r + 1] += rangeBase[r];
-    parallelForRanges(buckets, threads, [&](size_t begin, size_t end) {
-      size_t at = rangeBase[begin / kParallelRange];
-      for (size_t b = begin; b < end; b++) {
-        const size_t n = next[b];
-        bucketStart[b] = next[b] = at;
-        at += n;
-      }
-    });
-    bucketStart[buckets] = rangeBase[ranges];
+    // One row of counts (up to a bucket a vertex): its prefix sums, on the threads.
+    bucketStart[buckets] = parallelPrefix(
+        buckets, threads, [&](size_t b) { return next[b]; }, [](size_t) {},
+        [&](size_t b, size_t at, size_t) { bucketStart[b] = next[b] = at; });
   } else {
     // Bucket b's items go in chunk order; the counts are read a chunk's row at a time (a walk down the
     // columns missed the cache on every step).

@@ -80,12 +80,12 @@ void parallelForRuns(size_t count, int threads, Same&& same, Fn&& fn) {
   });
 }
 
-// Numbers the elements of [0, count) in order, each taking weight(i) numbers (a bool: one when it is
-// picked), on up to `threads` threads: weighed a block at a time, then sized(total) is called, then
-// number(i, n) for each i of non-zero weight with the first of its numbers (0, 1, ...: the weights
-// before it). Returns the total.
-template <class Weight, class Sized, class Number>
-size_t parallelNumber(size_t count, int threads, Weight&& weight, Sized&& sized, Number&& number) {
+// The prefix sums of weight(i) over [0, count), on up to `threads` threads: weighed a block at a time,
+// then sized(total) is called, then visit(i, n, w) for every i in order, with its weight w and n the
+// sum of the weights before it (weight(i) is read before visit(i, ...), which may change what it
+// read). Returns the total.
+template <class Weight, class Sized, class Visit>
+size_t parallelPrefix(size_t count, int threads, Weight&& weight, Sized&& sized, Visit&& visit) {
   const size_t blocks = parallelRangeCount(count);
   std::vector<size_t> base(blocks + 1, 0);
   parallelForRanges(count, threads, [&](size_t begin, size_t end) {
@@ -95,13 +95,23 @@ size_t parallelNumber(size_t count, int threads, Weight&& weight, Sized&& sized,
   sized(base[blocks]);
   parallelForRanges(count, threads, [&](size_t begin, size_t end) {
     size_t n = base[begin / kParallelRange];
-    for (size_t i = begin; i < end; i++)
-      if (const size_t w = size_t(weight(i))) {
-        number(i, n);
-        n += w;
-      }
+    for (size_t i = begin; i < end; i++) {
+      const size_t w = size_t(weight(i));
+      visit(i, n, w);
+      n += w;
+    }
   });
   return base[blocks];
+}
+
+// Numbers the elements of [0, count) in order, each taking weight(i) numbers (a bool: one when it is
+// picked): parallelPrefix, with number(i, n) for each i of non-zero weight and the first of its
+// numbers. Returns the total.
+template <class Weight, class Sized, class Number>
+size_t parallelNumber(size_t count, int threads, Weight&& weight, Sized&& sized, Number&& number) {
+  return parallelPrefix(count, threads, weight, sized, [&](size_t i, size_t n, size_t w) {
+    if (w) number(i, n);
+  });
 }
 
 // `count` copies of `value`, written on up to `threads` threads.
