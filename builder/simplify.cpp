@@ -21,7 +21,6 @@
 // such distance and the one-sided Hausdorff distance of the removed vertices to the result.
 #include <algorithm>
 #include <cmath>
-#include <queue>
 
 #include "builder.h"
 
@@ -86,12 +85,68 @@ struct Quadric {
 
 struct Candidate {
   double cost;
-  uint32_t from, to, version;
-  bool operator<(const Candidate& o) const {  // std::priority_queue is a max-heap: invert
-    if (cost != o.cost) return cost > o.cost;
-    if (from != o.from) return from > o.from;
-    return to > o.to;
+  uint32_t from, to;
+};
+
+// The vertices with a candidate, cheapest first (then by vertex id), one entry each: a vertex's entry
+// is moved in place when its candidate changes, so no stale entries pile up and are popped.
+class CandidateHeap {
+ public:
+  explicit CandidateHeap(size_t vertices) : cost_(vertices), at_(vertices, kAbsent) {}
+  bool empty() const { return heap_.empty(); }
+  uint32_t top() const { return heap_[0]; }
+  double cost(uint32_t v) const { return cost_[v]; }
+  // Enters or moves v with this cost.
+  void set(uint32_t v, double cost) {
+    cost_[v] = cost;
+    if (at_[v] == kAbsent) {
+      at_[v] = uint32_t(heap_.size());
+      heap_.push_back(v);
+    }
+    siftDown(siftUp(at_[v]));
   }
+  void remove(uint32_t v) {
+    const uint32_t i = at_[v];
+    if (i == kAbsent) return;
+    at_[v] = kAbsent;
+    const uint32_t last = heap_.back();
+    heap_.pop_back();
+    if (i == heap_.size()) return;
+    heap_[i] = last;
+    at_[last] = i;
+    siftDown(siftUp(i));
+  }
+
+ private:
+  static constexpr uint32_t kAbsent = UINT32_MAX;
+  bool before(uint32_t a, uint32_t b) const { return cost_[a] != cost_[b] ? cost_[a] < cost_[b] : a < b; }
+  void place(uint32_t i, uint32_t v) {
+    heap_[i] = v;
+    at_[v] = i;
+  }
+  uint32_t siftUp(uint32_t i) {
+    const uint32_t v = heap_[i];
+    while (i > 0 && before(v, heap_[(i - 1) / 2])) {
+      place(i, heap_[(i - 1) / 2]);
+      i = (i - 1) / 2;
+    }
+    place(i, v);
+    return i;
+  }
+  void siftDown(uint32_t i) {
+    const uint32_t v = heap_[i], n = uint32_t(heap_.size());
+    for (;;) {
+      uint32_t child = 2 * i + 1;
+      if (child >= n) break;
+      if (child + 1 < n && before(heap_[child + 1], heap_[child])) child++;
+      if (!before(heap_[child], v)) break;
+      place(i, heap_[child]);
+      i = child;
+    }
+    place(i, v);
+  }
+  std::vector<double> cost_;
+  std::vector<uint32_t> heap_, at_;
 };
 
 class Simplifier {
@@ -102,7 +157,8 @@ class Simplifier {
       : tri_(std::move(triangles)),
         p_(std::move(points)),
         kind_(std::move(kind)),
-        chordAllowed_(std::move(chordAllowed)) {
+        chordAllowed_(std::move(chordAllowed)),
+        heap_(p_.size()) {
     const size_t n = p_.size(), m = tri_.size() / 3;
     alive_.assign(m, 1);
     removed_.assign(n, 0);
@@ -122,7 +178,6 @@ class Simplifier {
     }
     pool_.resize(total);
     quadric_.resize(n);
-    version_.assign(n, 0);
     bestTarget_.assign(n, UINT32_MAX);
     rejected_.resize(n);
     for (uint32_t t = 0; t < m; t++) {
@@ -154,20 +209,16 @@ class Simplifier {
     selfCost_.resize(n);
     for (uint32_t v = 0; v < n; v++) selfCost_[v] = quadric_[v].evaluate(p_[v]);
     seen_.assign(n, 0);
-    // Every vertex's first candidate, made into a heap at once rather than pushed one by one.
-    std::vector<Candidate> first;
-    first.reserve(n);
-    for (uint32_t u = 0; u < n; u++)
-      if (const Candidate c = bestCandidate(u); c.to != UINT32_MAX) first.push_back(c);
-    heap_ = std::priority_queue<Candidate>(std::less<Candidate>(), std::move(first));
+    for (uint32_t u = 0; u < n; u++) pushBest(u);
   }
 
   // Collapses until `targetTriangles` are left or nothing valid remains; returns the largest error.
   double run(size_t targetTriangles) {
     while (aliveCount_ > targetTriangles && !heap_.empty()) {
-      Candidate c = heap_.top();
-      heap_.pop();
-      if (c.version != version_[c.from] || dead(c.from) || dead(c.to)) continue;
+      const uint32_t u = heap_.top();
+      const Candidate c{heap_.cost(u), u, bestTarget_[u]};
+      heap_.remove(u);
+      if (dead(c.to)) continue;
       if (!valid(c.from, c.to)) {
         rejected_[c.from].push_back(c.to);
         pushBest(c.from);
@@ -190,8 +241,9 @@ class Simplifier {
       if (!removed_[u]) continue;
       uint32_t w = u;
       while (removed_[w]) w = collapsedInto_[w];
+      // Once a triangle is within `worst`, this vertex cannot raise it: the rest are not measured.
       double best = INFINITY;
-      for (uint32_t i = 0; i < size_[w]; i++) {
+      for (uint32_t i = 0; i < size_[w] && best > worst; i++) {
         uint32_t t = trianglesOf(w)[i];
         if (alive_[t])
           best =
@@ -247,16 +299,19 @@ class Simplifier {
   // Live and dead triangles of v; callers skip the dead.
   const uint32_t* trianglesOf(uint32_t v) const { return &pool_[start_[v]]; }
 
-  // Pushes u's cheapest collapse.
+  // Enters u's cheapest collapse in the heap, or takes u out when it has none.
   void pushBest(uint32_t u) {
     const Candidate c = bestCandidate(u);
-    if (c.to != UINT32_MAX) heap_.push(c);
+    if (c.to != UINT32_MAX)
+      heap_.set(u, c.cost);
+    else
+      heap_.remove(u);
   }
 
   // u's cheapest collapse (to UINT32_MAX when it has none), noted as its live candidate. Candidates
   // come straight from u's triangles, each neighbour once (a stamp marks those seen in this call).
   Candidate bestCandidate(uint32_t u) {
-    if (kind_[u] == kLocked) return {0.0, u, UINT32_MAX, 0};
+    if (kind_[u] == kLocked) return {0.0, u, UINT32_MAX};
     const bool open = kind_[u] == kOpen;
     double best = INFINITY;
     uint32_t target = UINT32_MAX;
@@ -276,7 +331,7 @@ class Simplifier {
       }
     }
     bestTarget_[u] = target;
-    return {best, u, target, version_[u]};
+    return {best, u, target};
   }
 
   // Whether edge uv has exactly one live triangle (a boundary edge).
@@ -359,12 +414,10 @@ class Simplifier {
     // keep their cost, and its collapse onto v only got dearer by v's grown quadric, or so little
     // cheaper that the order barely changes). Validity is checked again when a candidate is popped.
     for (uint32_t w : scratchA_) {
-      if (w == u || (w != v && bestTarget_[w] != u && bestTarget_[w] != v)) continue;
-      version_[w]++;
+      if (w == u || w == v || (bestTarget_[w] != u && bestTarget_[w] != v)) continue;
       rejected_[w].clear();
       pushBest(w);
     }
-    version_[v]++;
     rejected_[v].clear();
     pushBest(v);
   }
@@ -381,13 +434,40 @@ class Simplifier {
   std::vector<double> selfCost_;  // quadric_[v].evaluate(p_[v])
   std::vector<uint32_t> seen_;    // pushBest's stamp of the neighbours it has tried
   uint32_t stamp_ = 0;
-  std::vector<uint32_t> version_;
-  std::vector<uint32_t> bestTarget_;  // target of each vertex's live heap entry
+  std::vector<uint32_t> bestTarget_;  // target of each vertex's heap entry
   std::vector<std::vector<uint32_t>> rejected_;
-  std::priority_queue<Candidate> heap_;
+  CandidateHeap heap_;
   std::vector<uint32_t> scratchA_, scratchB_, scratchC_;
   double maxCost_ = 0.0;
 };
+
+// The edges (min << 32 | max, ascending) that one triangle of `local` alone has; vertex ids are below
+// `vertices`. Counted into a list of partners for each smaller end, so each end's few are compared.
+std::vector<uint64_t> edgesUsedOnce(const std::vector<uint32_t>& local, size_t vertices) {
+  std::vector<uint32_t> start(vertices + 1, 0), partner(local.size());
+  auto forEdges = [&](auto&& visit) {
+    for (size_t t = 0; t + 2 < local.size(); t += 3)
+      for (size_t k = 0; k < 3; k++) {
+        const uint32_t a = local[t + k], b = local[t + (k + 1) % 3];
+        visit(std::min(a, b), std::max(a, b));
+      }
+  };
+  forEdges([&](uint32_t a, uint32_t) { start[a + 1]++; });
+  for (size_t v = 0; v < vertices; v++) start[v + 1] += start[v];
+  std::vector<uint32_t> next(start.begin(), start.end() - 1);
+  forEdges([&](uint32_t a, uint32_t b) { partner[next[a]++] = b; });
+  std::vector<uint64_t> once;
+  for (uint32_t a = 0; a < vertices; a++) {
+    const auto first = partner.begin() + start[a], last = partner.begin() + start[a + 1];
+    std::sort(first, last);
+    for (auto i = first; i != last;) {
+      const auto j = std::find_if(i, last, [&](uint32_t b) { return b != *i; });
+      if (j - i == 1) once.push_back(uint64_t(a) << 32 | *i);
+      i = j;
+    }
+  }
+  return once;
+}
 
 }  // namespace
 
@@ -399,22 +479,13 @@ SimplifiedGroup simplifyGroup(const std::vector<uint32_t>& indices, const std::v
 
   // Locked: vertices on an edge with one triangle in the group that another cluster has (the group
   // border); open: vertices on edges of the surface's open boundary and on no locked edge.
-  std::vector<uint64_t> edges;
-  edges.reserve(local.size());
-  for (size_t t = 0; t + 2 < local.size(); t += 3)
-    for (int k = 0; k < 3; k++) {
-      uint32_t a = local[t + size_t(k)], b = local[t + size_t((k + 1) % 3)];
-      edges.push_back(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
-    }
-  std::sort(edges.begin(), edges.end());
   std::vector<uint8_t> kind(globals.size(), kFree);
   std::vector<uint64_t> localOpen;
-  for (size_t i = 0; i < edges.size(); i++) {
-    if (!((i == 0 || edges[i - 1] != edges[i]) && (i + 1 == edges.size() || edges[i + 1] != edges[i]))) continue;
-    const uint32_t a = uint32_t(edges[i] >> 32), b = uint32_t(edges[i]);
+  for (const uint64_t edge : edgesUsedOnce(local, globals.size())) {
+    const uint32_t a = uint32_t(edge >> 32), b = uint32_t(edge);
     const uint64_t global = uint64_t(std::min(globals[a], globals[b])) << 32 | std::max(globals[a], globals[b]);
     if (std::binary_search(openEdges.begin(), openEdges.end(), global)) {
-      localOpen.push_back(edges[i]);
+      localOpen.push_back(edge);
       for (uint32_t v : {a, b})
         if (kind[v] == kFree) kind[v] = kOpen;
     } else {
