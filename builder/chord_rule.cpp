@@ -21,10 +21,15 @@ bool EdgeSet::contains(uint64_t key) const {
 }
 
 bool EdgeSet::insert(uint64_t key) {
+  // A plain load first: a locked compare-and-swap waits for the cache line and keeps the loads of
+  // other keys from overlapping it, and most keys of a cluster are met a second time (both
+  // triangles of an inner edge) or lie in slots already taken.
   for (size_t i = home(key);; i = next(i)) {
-    uint64_t expected = kEmpty;
-    if (__atomic_compare_exchange_n(&slots_[i], &expected, key, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) return true;
-    if (expected == key) return false;
+    uint64_t slot = __atomic_load_n(&slots_[i], __ATOMIC_RELAXED);
+    while (slot == kEmpty) {
+      if (__atomic_compare_exchange_n(&slots_[i], &slot, key, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) return true;
+    }
+    if (slot == key) return false;
   }
 }
 
@@ -36,12 +41,17 @@ bool EdgeSet::insertTriangles(const std::vector<uint32_t>& indices) {
     __atomic_sub_fetch(&promised_, promise, __ATOMIC_RELAXED);
     return false;
   }
-  size_t added = 0;  // counted here, added once: one counter shared by every thread's inserts would not scale
+  // The keys' home slots are all asked for before the first insert, so that their cache misses overlap.
+  thread_local std::vector<uint64_t> keys;
+  keys.resize(indices.size() / 3 * 3);
   for (size_t t = 0; t + 2 < indices.size(); t += 3)
-    for (int k = 0; k < 3; k++) {
-      uint32_t a = indices[t + size_t(k)], b = indices[t + size_t((k + 1) % 3)];
-      added += insert(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
+    for (size_t k = 0; k < 3; k++) {
+      const uint32_t a = indices[t + k], b = indices[t + (k + 1) % 3];
+      keys[t + k] = uint64_t(std::min(a, b)) << 32 | std::max(a, b);
+      __builtin_prefetch(&slots_[home(keys[t + k])]);
     }
+  size_t added = 0;  // counted here, added once: one counter shared by every thread's inserts would not scale
+  for (const uint64_t key : keys) added += insert(key);
   __atomic_add_fetch(&count_, added, __ATOMIC_RELAXED);
   __atomic_sub_fetch(&promised_, promise - added, __ATOMIC_RELAXED);
   return true;
