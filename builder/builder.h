@@ -127,6 +127,9 @@ struct SurfaceTopology {
 };
 // The topology of the surface of `indices` (triangles, any vertex ids).
 SurfaceTopology surfaceTopology(const std::vector<uint32_t>& indices);
+// The edges (min << 32 | max, ascending) that one triangle of `indices` alone has: a cluster's or a
+// group's border and open boundary.
+std::vector<uint64_t> edgesUsedOnce(std::span<const uint32_t> indices);
 
 // ---- shading_normals.cpp ----------------------------------------------------------------------------
 // A vertex's corners grouped by shading normal: wedge w sits at vertex wedgeVertex[w] with normal
@@ -325,10 +328,10 @@ VertexFaces vertexFaces(std::span<const uint32_t> faceStart, std::span<const uin
 // With `shading` that has hard edges, the vertex limit counts wedges and each cluster lists its corners'.
 std::vector<BuildCluster> buildLeafClusters(const PolygonMesh& mesh, int threads,
                                             const ShadingNormals* shading = nullptr);
-// Splits a triangle list (absolute vertex indices) into clusters by edge adjacency; with `shading` as
-// above, each corner takes the wedge nearest its triangle's normal.
-std::vector<BuildCluster> splitIntoClusters(const std::vector<uint32_t>& indices,
-                                            const std::vector<glm::vec3>& positions,
+struct SimplifiedGroup;
+// Splits a simplified group's triangles into clusters (absolute vertex indices) by edge adjacency;
+// with `shading` as above, each corner takes the wedge nearest its triangle's normal.
+std::vector<BuildCluster> splitIntoClusters(const SimplifiedGroup& group, const std::vector<glm::vec3>& positions,
                                             const ShadingNormals* shading = nullptr);
 
 // ---- local_ids.cpp ----------------------------------------------------------------------------------
@@ -362,7 +365,8 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
 
 // ---- simplify.cpp -----------------------------------------------------------------------------------
 struct SimplifiedGroup {
-  std::vector<uint32_t> indices;  // absolute vertex indices of the simplified triangles
+  std::vector<uint32_t> indices;  // the simplified triangles, as positions in `globals`
+  std::vector<uint32_t> globals;  // the group's absolute vertex indices (those the simplifier removed too)
   float error = 0.0f;             // object-space error added by this simplification
   int relaxation = 0;             // 1 when it needed an error above 2% of the group's size to get there
   bool halved = false;            // reached <= 55% of the input triangles

@@ -46,7 +46,12 @@ Graph dualGraph(std::span<const uint32_t> faceStart, std::span<const uint32_t> f
                 int threads) {
   const size_t faceCount = faceStart.size() - 1;
   const VertexFaces around = vertexFaces(faceStart, faceVertices, vertexCount, threads);
-  auto hasVertex = [&](uint32_t f, uint32_t v) {
+  const bool triangles = faceVertices.size() == 3 * faceCount;  // then face f's corners are 3f..3f+2
+  auto hasVertex = [&](uint32_t f, uint32_t v) -> bool {
+    if (triangles) {
+      const uint32_t* c = &faceVertices[3 * size_t(f)];
+      return (c[0] == v) | (c[1] == v) | (c[2] == v);
+    }
     for (uint32_t c = faceStart[f]; c < faceStart[f + 1]; c++)
       if (faceVertices[c] == v) return true;
     return false;
@@ -210,22 +215,21 @@ std::vector<BuildCluster> buildLeafClusters(const PolygonMesh& mesh, int threads
                            hardEdges ? &shading->cornerWedge : nullptr);
 }
 
-std::vector<BuildCluster> splitIntoClusters(const std::vector<uint32_t>& indices,
-                                            const std::vector<glm::vec3>& positions, const ShadingNormals* shading) {
-  // Work on compact local vertex ids: the adjacency arrays are sized by the vertex count.
-  std::vector<uint32_t> globals, local;
-  localIds(indices, globals, local);
+std::vector<BuildCluster> splitIntoClusters(const SimplifiedGroup& group, const std::vector<glm::vec3>& positions,
+                                            const ShadingNormals* shading) {
+  // The group's own vertex ids: the adjacency arrays are sized by the vertex count.
+  const std::vector<uint32_t>&local = group.indices, &globals = group.globals;
   std::vector<glm::vec3> points(globals.size());
   for (size_t i = 0; i < globals.size(); i++) points[i] = positions[globals[i]];
-  std::vector<uint32_t> faceStart(indices.size() / 3 + 1);
+  std::vector<uint32_t> faceStart(local.size() / 3 + 1);
   for (size_t i = 0; i < faceStart.size(); i++) faceStart[i] = uint32_t(3 * i);
   std::vector<uint32_t> wedges;
   if (shading && !shading->oneAVertex) {
-    wedges.resize(indices.size());
-    for (size_t t = 0; t + 2 < indices.size(); t += 3) {
-      const glm::vec3 &a = positions[indices[t]], &b = positions[indices[t + 1]], &d = positions[indices[t + 2]];
+    wedges.resize(local.size());
+    for (size_t t = 0; t + 2 < local.size(); t += 3) {
+      const glm::vec3 &a = points[local[t]], &b = points[local[t + 1]], &d = points[local[t + 2]];
       const glm::vec3 normal = glm::cross(b - a, d - a);
-      for (size_t k = 0; k < 3; k++) wedges[t + k] = shading->nearestWedge(indices[t + k], normal);
+      for (size_t k = 0; k < 3; k++) wedges[t + k] = shading->nearestWedge(globals[local[t + k]], normal);
     }
   }
   std::vector<BuildCluster> clusters =

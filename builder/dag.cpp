@@ -120,8 +120,9 @@ std::vector<GroupOutcome> simplifyGroups(const std::vector<GroupPlan>& plans, co
     outcomes[g].simplified =
         simplifyGroup(indices, positions, chordAllowed, openEdges, simplifyTarget(indices.size() / 3));
     if (outcomes[g].simplified.halved)
-      outcomes[g].produced = splitIntoClusters(outcomes[g].simplified.indices, positions, options.shading);
+      outcomes[g].produced = splitIntoClusters(outcomes[g].simplified, positions, options.shading);
     std::vector<uint32_t>().swap(outcomes[g].simplified.indices);  // held as the clusters now
+    std::vector<uint32_t>().swap(outcomes[g].simplified.globals);
   });
   return outcomes;
 }

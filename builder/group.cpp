@@ -56,22 +56,7 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
   const size_t n = active.size();
   // Border edges of each cluster (edges used once inside it), tagged with the cluster's slot.
   std::vector<std::vector<uint64_t>> clusterBorders(n);
-  parallelFor(n, threads, [&](size_t slot) {
-    const auto& idx = clusters[active[slot]].indices;
-    std::vector<uint64_t> local;
-    for (size_t t = 0; t + 2 < idx.size(); t += 3)
-      for (int i = 0; i < 3; i++) {
-        uint32_t a = idx[t + size_t(i)], b = idx[t + size_t((i + 1) % 3)];
-        local.push_back(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
-      }
-    std::sort(local.begin(), local.end());
-    for (size_t i = 0; i < local.size();) {
-      size_t j = i;
-      while (j < local.size() && local[j] == local[i]) j++;
-      if (j - i == 1) clusterBorders[slot].push_back(local[i]);
-      i = j;
-    }
-  });
+  parallelFor(n, threads, [&](size_t slot) { clusterBorders[slot] = edgesUsedOnce(clusters[active[slot]].indices); });
   std::vector<size_t> borderStart(n + 1, 0);
   for (size_t slot = 0; slot < n; slot++) borderStart[slot + 1] = borderStart[slot] + clusterBorders[slot].size();
   std::vector<std::pair<uint64_t, uint32_t>> borders(borderStart[n]);

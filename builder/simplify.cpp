@@ -59,12 +59,14 @@ enum VertexKind : uint8_t { kFree = 0, kLocked = 1, kOpen = 2 };  // kOpen: on t
 struct Quadric {
   double a[10] = {};  // xx xy xz xw yy yz yw zz zw ww
   double weight = 0.0;
-  void addPlane(glm::dvec3 n, double d, double w) {
+  static Quadric plane(glm::dvec3 n, double d, double w) {
     const double p[4] = {n.x, n.y, n.z, d};
+    Quadric q;
     int k = 0;
     for (int i = 0; i < 4; i++)
-      for (int j = i; j < 4; j++) a[k++] += w * p[i] * p[j];
-    weight += w;
+      for (int j = i; j < 4; j++) q.a[k++] = w * p[i] * p[j];
+    q.weight = w;
+    return q;
   }
   void add(const Quadric& q) {
     for (int i = 0; i < 10; i++) a[i] += q.a[i];
@@ -186,9 +188,10 @@ class Simplifier {
       double len = glm::length(cross);
       glm::dvec3 normal = len > 0.0 ? cross / len : glm::dvec3(0.0);
       double area = 0.5 * len;
+      const Quadric face = Quadric::plane(normal, -glm::dot(normal, a), area + 1e-30);
       for (int k = 0; k < 3; k++) {
         append(tri_[3 * t + k], t);
-        quadric_[tri_[3 * t + k]].addPlane(normal, -glm::dot(normal, a), area + 1e-30);
+        quadric_[tri_[3 * t + k]].add(face);
       }
       if (openEdges.empty()) continue;
       for (int k = 0; k < 3; k++) {
@@ -202,8 +205,9 @@ class Simplifier {
         if (!(length > 0.0)) continue;
         side /= length;
         double weight = kBoundaryWeight * glm::dot(edge, edge);
-        quadric_[e0].addPlane(side, -glm::dot(side, p_[e0]), weight);
-        quadric_[e1].addPlane(side, -glm::dot(side, p_[e0]), weight);
+        const Quadric boundary = Quadric::plane(side, -glm::dot(side, p_[e0]), weight);
+        quadric_[e0].add(boundary);
+        quadric_[e1].add(boundary);
       }
     }
     selfCost_.resize(n);
@@ -441,34 +445,6 @@ class Simplifier {
   double maxCost_ = 0.0;
 };
 
-// The edges (min << 32 | max, ascending) that one triangle of `local` alone has; vertex ids are below
-// `vertices`. Counted into a list of partners for each smaller end, so each end's few are compared.
-std::vector<uint64_t> edgesUsedOnce(const std::vector<uint32_t>& local, size_t vertices) {
-  std::vector<uint32_t> start(vertices + 1, 0), partner(local.size());
-  auto forEdges = [&](auto&& visit) {
-    for (size_t t = 0; t + 2 < local.size(); t += 3)
-      for (size_t k = 0; k < 3; k++) {
-        const uint32_t a = local[t + k], b = local[t + (k + 1) % 3];
-        visit(std::min(a, b), std::max(a, b));
-      }
-  };
-  forEdges([&](uint32_t a, uint32_t) { start[a + 1]++; });
-  for (size_t v = 0; v < vertices; v++) start[v + 1] += start[v];
-  std::vector<uint32_t> next(start.begin(), start.end() - 1);
-  forEdges([&](uint32_t a, uint32_t b) { partner[next[a]++] = b; });
-  std::vector<uint64_t> once;
-  for (uint32_t a = 0; a < vertices; a++) {
-    const auto first = partner.begin() + start[a], last = partner.begin() + start[a + 1];
-    std::sort(first, last);
-    for (auto i = first; i != last;) {
-      const auto j = std::find_if(i, last, [&](uint32_t b) { return b != *i; });
-      if (j - i == 1) once.push_back(uint64_t(a) << 32 | *i);
-      i = j;
-    }
-  }
-  return once;
-}
-
 }  // namespace
 
 SimplifiedGroup simplifyGroup(const std::vector<uint32_t>& indices, const std::vector<glm::vec3>& positions,
@@ -481,7 +457,7 @@ SimplifiedGroup simplifyGroup(const std::vector<uint32_t>& indices, const std::v
   // border); open: vertices on edges of the surface's open boundary and on no locked edge.
   std::vector<uint8_t> kind(globals.size(), kFree);
   std::vector<uint64_t> localOpen;
-  for (const uint64_t edge : edgesUsedOnce(local, globals.size())) {
+  for (const uint64_t edge : edgesUsedOnce(local)) {
     const uint32_t a = uint32_t(edge >> 32), b = uint32_t(edge);
     const uint64_t global = uint64_t(std::min(globals[a], globals[b])) << 32 | std::max(globals[a], globals[b]);
     if (std::binary_search(openEdges.begin(), openEdges.end(), global)) {
@@ -510,7 +486,7 @@ SimplifiedGroup simplifyGroup(const std::vector<uint32_t>& indices, const std::v
   result.halved = s.triangleCount() <= size_t(float(triangles) * kHalvedRatio);
   result.relaxation = error > kBoundedError * glm::distance(lower, upper) ? 1 : 0;
   result.indices = s.triangles();
-  for (uint32_t& v : result.indices) v = globals[v];
+  result.globals = std::move(globals);
   return result;
 }
 
