@@ -12,28 +12,34 @@
 namespace vgeo {
 
 std::vector<uint64_t> edgesUsedOnce(std::span<const uint32_t> indices) {
-  // Counted in an open-addressing table of twice the edges' number, kept by each thread: a cluster's
-  // or a group's few thousand edges stay in cache, where a sort of them was most of the cost.
+  // Counted in an open-addressing table, kept by each thread, of at least one slot a corner (an edge
+  // has two corners on a closed surface: the table is about half full): a cluster's or a group's few
+  // thousand edges stay in cache, where a sort of them was most of the cost.
   constexpr uint64_t kEmpty = ~uint64_t(0);
   const size_t corners = indices.size() / 3 * 3;
   int bits = 6;
-  while ((size_t(1) << bits) < 2 * corners) bits++;
+  while ((size_t(1) << bits) < corners) bits++;
   const size_t mask = (size_t(1) << bits) - 1;
   thread_local std::vector<uint64_t> keys;
-  thread_local std::vector<uint32_t> uses;
+  thread_local std::vector<uint32_t> uses, taken;  // taken: the slots used, in order
   keys.assign(mask + 1, kEmpty);
-  uses.assign(mask + 1, 0);
+  uses.resize(mask + 1);
+  taken.clear();
   for (size_t t = 0; t < corners; t += 3)
     for (size_t k = 0; k < 3; k++) {
       const uint32_t a = indices[t + k], b = indices[t + (k + 1) % 3];
       const uint64_t key = uint64_t(std::min(a, b)) << 32 | std::max(a, b);
       size_t i = size_t((key * 0x9e3779b97f4a7c15ull) >> (64 - bits));
       while (keys[i] != kEmpty && keys[i] != key) i = (i + 1) & mask;
-      keys[i] = key;
+      if (keys[i] == kEmpty) {
+        keys[i] = key;
+        uses[i] = 0;
+        taken.push_back(uint32_t(i));
+      }
       uses[i]++;
     }
   std::vector<uint64_t> once;
-  for (size_t i = 0; i <= mask; i++)
+  for (const uint32_t i : taken)
     if (uses[i] == 1) once.push_back(keys[i]);
   std::sort(once.begin(), once.end());
   return once;
