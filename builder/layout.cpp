@@ -45,6 +45,14 @@ class SectionWriter {
     buffer_.push_back(v);
     if (buffer_.size() == kBatch) flush();
   }
+  void push(const std::vector<T>& values) {
+    for (size_t at = 0; at < values.size();) {
+      const size_t take = std::min(values.size() - at, kBatch - buffer_.size());
+      buffer_.insert(buffer_.end(), values.begin() + long(at), values.begin() + long(at + take));
+      at += take;
+      if (buffer_.size() == kBatch) flush();
+    }
+  }
   // Elements of the section so far, the index of the next one.
   uint32_t count() const { return uint32_t(sink_.count(section_) + buffer_.size()); }
   void flush() {
@@ -110,13 +118,16 @@ void appendGeometry(SectionSink& file, const Dag& dag, const PolygonMesh& leafMe
   // Vertices: one a wedge (shading_normals.cpp), which is one a leaf vertex unless the mesh has hard edges.
   const size_t vertices = shading.wedgeVertex.size();
   {
-    SectionWriter<glm::vec3> positions(file, Section::Positions);
-    SectionWriter<uint32_t> normals(file, Section::Normals);
-    for (size_t w = 0; w < vertices; w++) {
-      positions.push(leafMesh.positions[shading.wedgeVertex[w]]);
-      normals.push(encodeNormal(shading.wedgeNormal[w]));
-    }
-    positions.flush(), normals.flush();
+    FillLaterVector<glm::vec3> positions(vertices);
+    FillLaterVector<uint32_t> normals(vertices);
+    parallelForRanges(vertices, threads, [&](size_t begin, size_t end) {
+      for (size_t w = begin; w < end; w++) {
+        positions[w] = leafMesh.positions[shading.wedgeVertex[w]];
+        normals[w] = encodeNormal(shading.wedgeNormal[w]);
+      }
+    });
+    file.append(Section::Positions, positions.data(), vertices);
+    file.append(Section::Normals, normals.data(), vertices);
   }
 
   // One patch per face of a subdivided cage (its words verbatim: control-point indices relative to the
@@ -223,15 +234,15 @@ void appendGeometry(SectionSink& file, const Dag& dag, const PolygonMesh& leafMe
       lay.cluster.vertexOffset = clusterVertices.count();
       lay.cluster.triangleOffset = clusterTriangles.count();
       lay.cluster.cageFaceOffset = cageFaces.count();
-      for (uint32_t v : lay.vertices) clusterVertices.push(v);
-      for (uint32_t t : lay.triangles) clusterTriangles.push(t);
+      clusterVertices.push(lay.vertices);
+      clusterTriangles.push(lay.triangles);
       const uint32_t faceVertexBase = cageFaceVertices.count();
       for (shaderio::CageFace face : lay.faces) {
         face.firstVertex += faceVertexBase;
         cageFaces.push(face);
       }
-      for (uint32_t v : lay.faceVertices) cageFaceVertices.push(v);
-      for (const shaderio::Patch& patch : lay.patches) filePatches.push(patch);
+      cageFaceVertices.push(lay.faceVertices);
+      filePatches.push(lay.patches);
       clusterCones.push(cones[clusterOrder[first + i]]);
       clusters.push(lay.cluster);
     }
