@@ -85,34 +85,50 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads, OrientedEdges* oriented
     }
   });
   faces = ParityUnionFind(0);
-  // Which way each component keeps more of its area: kept minus turned, summed into the component's
-  // first face in face order (so the sums do not depend on the thread count).
-  FillLaterVector<double> keptMinusTurned(faceCount);
+  // Components, and whether any face turns or any relation conflicts: a mesh already wound one way
+  // (the usual case) has no areas to weigh and no walks to make.
+  size_t components = 0;
+  bool anyTurned = false, anyConflict = false;
   parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {
-    for (size_t f = begin; f < end; f++) keptMinusTurned[f] = flip[f] ? -area(f) : area(f);
+    size_t roots = 0;
+    bool turned = false, conflicted = false;
+    for (size_t f = begin; f < end; f++) {
+      roots += root[f] == f;
+      turned |= flip[f] != 0;
+      conflicted |= conflict[f] != 0;
+    }
+    __atomic_fetch_add(&components, roots, __ATOMIC_RELAXED);
+    if (turned) __atomic_store_n(&anyTurned, true, __ATOMIC_RELAXED);
+    if (conflicted) __atomic_store_n(&anyConflict, true, __ATOMIC_RELAXED);
   });
+  report.components = components;
   FillLaterVector<uint8_t> nonOrientable = parallelFilled(faceCount, uint8_t(0), threads);
-  for (size_t f = 0; f < faceCount; f++) {
-    if (root[f] == f)
-      report.components++;
-    else
-      keptMinusTurned[root[f]] += keptMinusTurned[f];
-    if (conflict[f]) nonOrientable[root[f]] = 1;
+  if (anyTurned || anyConflict) {
+    // Which way each component keeps more of its area: kept minus turned, summed into the component's
+    // first face in face order (so the sums do not depend on the thread count).
+    FillLaterVector<double> keptMinusTurned(faceCount);
+    parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {
+      for (size_t f = begin; f < end; f++) keptMinusTurned[f] = flip[f] ? -area(f) : area(f);
+    });
+    for (size_t f = 0; f < faceCount; f++) {
+      if (root[f] != f) keptMinusTurned[root[f]] += keptMinusTurned[f];
+      if (conflict[f]) nonOrientable[root[f]] = 1;
+    }
+    parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {
+      for (size_t f = begin; f < end; f++)
+        if (!nonOrientable[root[f]] && keptMinusTurned[root[f]] < 0.0) flip[f] ^= 1u;
+    });
   }
   FillLaterVector<uint8_t>().swap(conflict);
-  parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {
-    for (size_t f = begin; f < end; f++)
-      if (!nonOrientable[root[f]] && keptMinusTurned[root[f]] < 0.0) flip[f] ^= 1u;
-  });
-  FillLaterVector<double>().swap(keptMinusTurned);
   // A component that cannot be oriented (a Moebius strip) takes the turns of a walk from its first face,
   // breadth first by edge key: where the walk meets itself with the other sign, repair cuts it.
   constexpr uint8_t kUnseen = 2;
   std::vector<uint32_t> component, stack;
   std::vector<std::pair<uint64_t, uint32_t>> neighbours;  // (edge key, corner) of the face being visited
-  for (size_t f = 0; f < faceCount; f++)
-    if (nonOrientable[root[f]]) flip[f] = kUnseen;
-  for (size_t seed = 0; seed < faceCount; seed++) {
+  if (anyConflict)
+    for (size_t f = 0; f < faceCount; f++)
+      if (nonOrientable[root[f]]) flip[f] = kUnseen;
+  for (size_t seed = 0; seed < faceCount && anyConflict; seed++) {
     if (root[seed] != seed || !nonOrientable[seed]) continue;
     report.nonOrientableComponents++;
     component.clear();
