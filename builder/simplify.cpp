@@ -268,9 +268,17 @@ class Simplifier {
  private:
   bool dead(uint32_t v) const { return removed_[v]; }
 
-  // Neighbours of u (sorted, unique) from its live triangles; drops dead triangles from u's list.
-  void neighbours(uint32_t u, std::vector<uint32_t>& out) {
+  // A stamp no vertex holds in seen_ yet.
+  uint32_t nextStamp() {
+    if (++stamp_ == 0) std::fill(seen_.begin(), seen_.end(), 0), stamp_ = 1;
+    return stamp_;
+  }
+
+  // Neighbours of u (unique, in the order met) from its live triangles, each stamped in seen_ with
+  // the stamp returned; drops dead triangles from u's list.
+  uint32_t neighbours(uint32_t u, std::vector<uint32_t>& out) {
     out.clear();
+    const uint32_t stamp = nextStamp();
     uint32_t* list = &pool_[start_[u]];
     uint32_t kept = 0;
     for (uint32_t i = 0; i < size_[u]; i++) {
@@ -279,15 +287,13 @@ class Simplifier {
       list[kept++] = t;
       for (int k = 0; k < 3; k++) {
         uint32_t w = tri_[3 * t + k];
-        if (w == u) continue;
-        // Insertion into a short sorted list, skipping duplicates.
-        size_t i = out.size();
-        while (i > 0 && out[i - 1] > w) i--;
-        if (i > 0 && out[i - 1] == w) continue;
-        out.insert(out.begin() + long(i), w);
+        if (w == u || seen_[w] == stamp) continue;
+        seen_[w] = stamp;
+        out.push_back(w);
       }
     }
     size_[u] = kept;
+    return stamp;
   }
 
   void append(uint32_t v, uint32_t t) {
@@ -320,14 +326,14 @@ class Simplifier {
     double best = INFINITY;
     uint32_t target = UINT32_MAX;
     const std::vector<uint32_t>& rejected = rejected_[u];
-    if (++stamp_ == 0) std::fill(seen_.begin(), seen_.end(), 0), stamp_ = 1;
+    const uint32_t stamp = nextStamp();
     for (uint32_t i = 0; i < size_[u]; i++) {
       uint32_t t = trianglesOf(u)[i];
       if (!alive_[t]) continue;
       for (int k = 0; k < 3; k++) {
         uint32_t v = tri_[3 * t + k];
-        if (v == u || seen_[v] == stamp_) continue;
-        seen_[v] = stamp_;
+        if (v == u || seen_[v] == stamp) continue;
+        seen_[v] = stamp;
         if (!rejected.empty() && std::find(rejected.begin(), rejected.end(), v) != rejected.end()) continue;
         if (open && !onOneTriangle(u, v)) continue;  // an open vertex moves along the boundary only
         double cost = quadric_[u].meanSquaredDistance(p_[v], quadric_[v], selfCost_[v]);
@@ -349,12 +355,12 @@ class Simplifier {
   }
 
   bool valid(uint32_t u, uint32_t v) {
-    // Link condition: common neighbours == apexes of the triangles on edge uv.
+    // Link condition: common neighbours == apexes of the triangles on edge uv. v's neighbours are
+    // stamped last: a neighbour of u with that stamp is common.
     neighbours(u, scratchA_);
-    neighbours(v, scratchB_);
-    scratchC_.clear();
-    std::set_intersection(scratchA_.begin(), scratchA_.end(), scratchB_.begin(), scratchB_.end(),
-                          std::back_inserter(scratchC_));
+    const uint32_t ofV = neighbours(v, scratchB_);
+    size_t common = 0;
+    for (uint32_t w : scratchA_) common += seen_[w] == ofV;
     size_t apexes = 0;
     for (uint32_t i = 0; i < size_[u]; i++) {
       uint32_t t = trianglesOf(u)[i];
@@ -363,9 +369,9 @@ class Simplifier {
       if (x[0] != v && x[1] != v && x[2] != v) continue;
       apexes++;
       uint32_t apex = x[0] != u && x[0] != v ? x[0] : x[1] != u && x[1] != v ? x[1] : x[2];
-      if (!std::binary_search(scratchC_.begin(), scratchC_.end(), apex)) return false;
+      if (seen_[apex] != ofV) return false;
     }
-    if (apexes == 0 || scratchC_.size() != apexes) return false;
+    if (apexes == 0 || common != apexes) return false;
     // No flipped or degenerate triangle.
     for (uint32_t i = 0; i < size_[u]; i++) {
       uint32_t t = trianglesOf(u)[i];
@@ -388,9 +394,7 @@ class Simplifier {
     // Chords: new edges v-w between two locked vertices.
     if (kind_[v] == kLocked)
       for (uint32_t w : scratchA_)
-        if (w != v && kind_[w] == kLocked && !std::binary_search(scratchB_.begin(), scratchB_.end(), w) &&
-            !chordAllowed_(v, w))
-          return false;
+        if (w != v && kind_[w] == kLocked && seen_[w] != ofV && !chordAllowed_(v, w)) return false;
     return true;
   }
 
@@ -436,12 +440,12 @@ class Simplifier {
   std::vector<uint32_t> pool_, start_, size_, capacity_;
   std::vector<Quadric> quadric_;
   std::vector<double> selfCost_;  // quadric_[v].evaluate(p_[v])
-  std::vector<uint32_t> seen_;    // pushBest's stamp of the neighbours it has tried
+  std::vector<uint32_t> seen_;    // the neighbours met by the latest bestCandidate or neighbours call
   uint32_t stamp_ = 0;
   std::vector<uint32_t> bestTarget_;  // target of each vertex's heap entry
   std::vector<std::vector<uint32_t>> rejected_;
   CandidateHeap heap_;
-  std::vector<uint32_t> scratchA_, scratchB_, scratchC_;
+  std::vector<uint32_t> scratchA_, scratchB_;
   double maxCost_ = 0.0;
 };
 
