@@ -21,27 +21,14 @@ constexpr uint64_t kMedianSplitParts = 64;   // sets of more parts are cut at th
 constexpr uint32_t kParallelNodes = 4096;    // smaller sets are not worth a task of their own
 constexpr uint32_t kParallelSet = 1u << 18;  // larger sets' passes run on the threads too
 
-// Weight and bounds of a set of nodes, and its first node along each axis (by position, then id):
-// what a bisection of the set asks for, made by the pass that made the set.
+// Weight and bounds of a set of nodes.
 struct SetExtent {
   uint64_t weight = 0;
   glm::vec3 lower{INFINITY}, upper{-INFINITY};
-  uint32_t first[3] = {UINT32_MAX, UINT32_MAX, UINT32_MAX};
-  glm::vec3 firstAt{INFINITY};  // first[axis]'s position on that axis
   void add(const SetExtent& o) {
     weight += o.weight;
     lower = glm::min(lower, o.lower);
     upper = glm::max(upper, o.upper);
-    for (int axis = 0; axis < 3; axis++) addFirst(axis, o.first[axis], o.firstAt[axis]);
-  }
-  void addNode(uint32_t node, uint8_t w, glm::vec3 p) {
-    weight += w;
-    lower = glm::min(lower, p);
-    upper = glm::max(upper, p);
-    for (int axis = 0; axis < 3; axis++) addFirst(axis, node, p[axis]);
-  }
-  void addFirst(int axis, uint32_t node, float at) {
-    if (at < firstAt[axis] || (at == firstAt[axis] && node < first[axis])) first[axis] = node, firstAt[axis] = at;
   }
 };
 
@@ -60,12 +47,10 @@ struct Bisector {
   // Sets of kParallelSet nodes or more have their passes on the threads too.
   int threadsFor(uint32_t lo, uint32_t hi) const { return parallel && hi - lo >= kParallelSet ? threads : 1; }
 
-  // The extent of the nodes order[lo, hi), over ranges summed; exact (integer sums, minima and
-  // maxima), so the same on any thread count.
-  SetExtent extentOf(uint32_t lo, uint32_t hi) const {
-    auto fn = [&](uint32_t begin, uint32_t end, SetExtent& e) {
-      for (uint32_t i = begin; i < end; i++) e.addNode(order[i], weights[order[i]], positions[order[i]]);
-    };
+  // fn(begin, end, extent) over ranges of [lo, hi), summed; exact (integer sums, minima and maxima), so
+  // the same on any thread count.
+  template <class Fn>
+  SetExtent extentOf(uint32_t lo, uint32_t hi, Fn&& fn) const {
     SetExtent total;
     if (threadsFor(lo, hi) == 1) {
       fn(lo, hi, total);
@@ -124,9 +109,10 @@ struct Bisector {
   uint32_t load(uint32_t node) const { return __atomic_load_n(&stamp[node], __ATOMIC_RELAXED); }
   void store(uint32_t node, uint32_t value) { __atomic_store_n(&stamp[node], value, __ATOMIC_RELAXED); }
 
-  // Cuts order[lo, hi), of extent `set`.
-  void split(uint32_t lo, uint32_t hi, const SetExtent& set) {
-    const uint64_t w = set.weight;
+  void split(uint32_t lo, uint32_t hi) {
+    const uint64_t w = extentOf(lo, hi, [&](uint32_t begin, uint32_t end, SetExtent& e) {
+                         for (uint32_t i = begin; i < end; i++) e.weight += weights[order[i]];
+                       }).weight;
     if (hi - lo == 1 || (w <= targetWeight && (!fits || fits(&order[lo], hi - lo)))) {
       partHead[lo] = 1;
       return;
@@ -136,7 +122,13 @@ struct Bisector {
     uint64_t targetA = (w * kA + k / 2) / k;
     uint64_t maxA = w <= targetWeight ? w - 1 : kA * targetWeight;
 
-    glm::vec3 extent = set.upper - set.lower;
+    const SetExtent bounds = extentOf(lo, hi, [&](uint32_t begin, uint32_t end, SetExtent& e) {
+      for (uint32_t i = begin; i < end; i++) {
+        e.lower = glm::min(e.lower, positions[order[i]]);
+        e.upper = glm::max(e.upper, positions[order[i]]);
+      }
+    });
+    glm::vec3 extent = bounds.upper - bounds.lower;
     int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
     auto before = [&](uint32_t a, uint32_t b) {
       float pa = positions[a][axis], pb = positions[b][axis];
@@ -148,11 +140,11 @@ struct Bisector {
       // growth over half the set, and the halves run in parallel sooner; the growth cuts below it
       // make the parts connected.
       const uint32_t m = lo + uint32_t(uint64_t(hi - lo) * kA / k);
-      medianCut(lo, hi, m - lo, axis, set.lower[axis], set.upper[axis], before);
+      medianCut(lo, hi, m - lo, axis, bounds.lower[axis], bounds.upper[axis], before);
       parallelForRanges(m - lo, threadsFor(lo, m), [&](size_t begin, size_t end) {
         for (size_t i = begin; i < end; i++) store(order[lo + i], m);
       });
-      recurse(lo, m, hi, extentOf(lo, m), extentOf(m, hi));
+      recurse(lo, m, hi);
       return;
     }
     const uint32_t inSet = hi, taken = hi | kTaken, queued = lo | kTaken;
@@ -180,7 +172,9 @@ struct Bisector {
         }
       }
     };
-    const uint32_t seed = set.first[axis];
+    uint32_t seed = order[lo];
+    for (uint32_t i = lo + 1; i < hi; i++)
+      if (before(order[i], seed)) seed = order[i];
     origin = positions[seed];
     take(seed);
     while (wA < targetA) {
@@ -210,31 +204,24 @@ struct Bisector {
       sideA.pop_back();
     }
     const uint32_t mid = lo + uint32_t(sideA.size());
-    // Rewrite the segment: A in BFS order, then B in its previous order; each side's extent on the way.
-    SetExtent extentA, extentB;
+    // Rewrite the segment: A in BFS order, then B in its previous order.
     std::vector<uint32_t> sideB;
     sideB.reserve(hi - mid);
     for (uint32_t i = lo; i < hi; i++)
-      if (load(order[i]) == inSet) {
-        sideB.push_back(order[i]);
-        extentB.addNode(order[i], weights[order[i]], positions[order[i]]);
-      }
+      if (load(order[i]) == inSet) sideB.push_back(order[i]);
     std::copy(sideA.begin(), sideA.end(), order.begin() + lo);
     std::copy(sideB.begin(), sideB.end(), order.begin() + mid);
-    for (uint32_t node : sideA) {
-      store(node, mid);
-      extentA.addNode(node, weights[node], positions[node]);
-    }
+    for (uint32_t node : sideA) store(node, mid);
     std::vector<uint32_t>().swap(sideA);
     std::vector<uint32_t>().swap(sideB);
     std::vector<uint32_t>().swap(seeds);
 
-    recurse(lo, mid, hi, extentA, extentB);
+    recurse(lo, mid, hi);
   }
 
-  void recurse(uint32_t lo, uint32_t mid, uint32_t hi, const SetExtent& a, const SetExtent& b) {
+  void recurse(uint32_t lo, uint32_t mid, uint32_t hi) {
     parallelInvoke(
-        parallel && hi - lo >= kParallelNodes, [&] { split(lo, mid, a); }, [&] { split(mid, hi, b); });
+        parallel && hi - lo >= kParallelNodes, [&] { split(lo, mid); }, [&] { split(mid, hi); });
   }
 };
 
@@ -361,9 +348,9 @@ Partition partitionGraph(const Graph& graph, const std::vector<uint8_t>& weights
              threads > 1,
              threads};
   if (threads > 1)
-    withThreads(threads, [&] { b.split(0, n, b.extentOf(0, n)); });
+    withThreads(threads, [&] { b.split(0, n); });
   else
-    b.split(0, n, b.extentOf(0, n));
+    b.split(0, n);
   for (uint32_t i = 1; i < n; i++)
     if (b.partHead[i]) result.partStart.push_back(i);
   result.partStart.push_back(n);
