@@ -62,7 +62,7 @@ void addBuildCommand(CLI::App& app, int& exitCode) {
     VgeoFileSink file(args->output);
     buildScene(args->input, options, s, file);
     StageTimer writing(&s.stages, "write");
-    file.commit();
+    file.commit(args->threads);
     writing.stop();
     bar.finish();
     double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

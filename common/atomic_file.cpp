@@ -4,6 +4,7 @@
 // before the process ends.
 #include "atomic_file.h"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -81,6 +82,19 @@ void AtomicFile::writeAt(uint64_t offset, const void* data, size_t size) {
     }
     p += n, size -= size_t(n), offset += uint64_t(n);
   }
+}
+
+void AtomicFile::startWriteback() {
+  if (error_) return;
+  if (std::fflush(file_) != 0) {
+    error_ = errno ? errno : EIO;
+    return;
+  }
+  const long end = std::ftell(file_);
+  if (end <= 0 || uint64_t(end) <= sent_) return;
+  // Only a hint: where the system cannot, fsync in commit() writes it all the same.
+  ::sync_file_range(::fileno(file_), off_t(sent_), off_t(uint64_t(end) - sent_), SYNC_FILE_RANGE_WRITE);
+  sent_ = uint64_t(end);
 }
 
 void AtomicFile::commit() {

@@ -26,12 +26,16 @@ class AtomicFile {
   void write(const void* data, size_t size);
   // Overwrites bytes already written, at `offset`; later writes still append.
   void writeAt(uint64_t offset, const void* data, size_t size);
+  // Starts writing what was written since the last call to disk, without waiting for it: commit()'s
+  // flush then overlaps the writes that follow instead of starting when they end.
+  void startWriteback();
   void commit();
 
  private:
   std::string path_, temp_;
   std::FILE* file_ = nullptr;
-  int error_ = 0;  // errno of the first failed write
+  int error_ = 0;      // errno of the first failed write
+  uint64_t sent_ = 0;  // bytes startWriteback() has sent on
 };
 
 // The whole of `bytes` to `path`, atomically.

@@ -9,13 +9,15 @@
 #include <cstring>
 
 #include "atomic_file.h"
+#include "parallel.h"
 #include "vgeo_head.h"
 
 namespace vgeo {
 namespace {
 
 constexpr size_t kSpoolBuffer = size_t(1) << 20;  // bytes a section collects before a write
-constexpr size_t kCopyChunk = size_t(4) << 20;    // bytes read back at a time by commit()
+constexpr size_t kCopyChunk = size_t(4) << 20;    // bytes read back at a time by commit() to copy
+constexpr size_t kSumChunk = size_t(1) << 20;     // and by each thread to checksum
 
 // A temporary file in `folder` that no name leads to: O_TMPFILE where the file system has it, else a
 // named file unlinked at once.
@@ -30,6 +32,14 @@ int anonymousFile(const std::string& folder, const std::string& path) {
   if (fd < 0) throw OutputError(path, std::string("cannot write a temporary file beside it: ") + std::strerror(errno));
   ::unlink(name.c_str());
   return fd;
+}
+
+// pread, again when interrupted.
+ssize_t readBack(int fd, uint8_t* to, uint64_t size, uint64_t at) {
+  for (;;) {
+    const ssize_t n = ::pread(fd, to, size_t(size), off_t(at));
+    if (n >= 0 || errno != EINTR) return n;
+  }
 }
 
 }  // namespace
@@ -99,7 +109,7 @@ void VgeoFileSink::write(Section s, const void* data, uint64_t count) {
   }
 }
 
-void VgeoFileSink::commit() {
+void VgeoFileSink::commit(int threads) {
   std::vector<VgeoEntry> entries(spools_.size());
   for (uint32_t i = 0; i < entries.size(); i++) {
     flush(spools_[i]);
@@ -107,8 +117,27 @@ void VgeoFileSink::commit() {
     entries[i] = {i + 1, sectionElementSize(Section(i + 1)), 0, counts_[i], 0};
   }
   const uint64_t fileSize = placeVgeoSections(entries);
-  // The sections are copied in, each checksummed on the way; the header and table, which hold the
-  // checksums, go first into the file but are written last.
+  // The checksums first, a section a thread (each reading its spool back); then the sections are
+  // copied in on this thread (the system takes writes to one file one at a time), each chunk sent on
+  // to the disk once written. The header and table, which hold the checksums, go first into the file
+  // but are written last.
+  int readError = 0;
+  parallelFor(entries.size(), threads, [&](size_t i) {
+    const uint64_t bytes = entries[i].count * entries[i].elementSize;
+    std::vector<uint8_t> chunk(size_t(std::min<uint64_t>(kSumChunk, bytes)));
+    VgeoChecksum sum(bytes);
+    for (uint64_t at = 0; at < bytes;) {
+      const ssize_t n = readBack(spools_[i].fd, chunk.data(), std::min<uint64_t>(kSumChunk, bytes - at), at);
+      if (n <= 0) {
+        __atomic_store_n(&readError, n < 0 ? errno : EIO, __ATOMIC_RELAXED);
+        return;
+      }
+      sum.add(chunk.data(), size_t(n));
+      at += uint64_t(n);
+    }
+    entries[i].checksum = sum.finish();
+  });
+  if (readError) throw OutputError(path_, std::string("cannot read back a section: ") + std::strerror(readError));
   AtomicFile out(path_);
   std::vector<uint8_t> chunk(kCopyChunk, 0);
   uint64_t written = kVgeoHeaderSize + kVgeoEntrySize * entries.size();
@@ -117,18 +146,14 @@ void VgeoFileSink::commit() {
     static const uint8_t zeros[16] = {};
     if (entries[i].offset > written) out.write(zeros, size_t(entries[i].offset - written));
     const uint64_t bytes = entries[i].count * entries[i].elementSize;
-    VgeoChecksum sum(bytes);
     for (uint64_t at = 0; at < bytes;) {
-      const ssize_t n =
-          ::pread(spools_[i].fd, chunk.data(), size_t(std::min<uint64_t>(kCopyChunk, bytes - at)), off_t(at));
-      if (n < 0 && errno == EINTR) continue;
+      const ssize_t n = readBack(spools_[i].fd, chunk.data(), std::min<uint64_t>(kCopyChunk, bytes - at), at);
       if (n <= 0)
         throw OutputError(path_, std::string("cannot read back a section: ") + std::strerror(n < 0 ? errno : EIO));
-      sum.add(chunk.data(), size_t(n));
       out.write(chunk.data(), size_t(n));
+      out.startWriteback();
       at += uint64_t(n);
     }
-    entries[i].checksum = sum.finish();
     written = entries[i].offset + bytes;
     ::close(spools_[i].fd);  // its disk space back before the next section is copied
     spools_[i].fd = -1;

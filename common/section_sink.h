@@ -53,7 +53,8 @@ class VgeoFileSink : public SectionSink {
   ~VgeoFileSink() override;
   VgeoFileSink(const VgeoFileSink&) = delete;
   VgeoFileSink& operator=(const VgeoFileSink&) = delete;
-  void commit();
+  // Writes the file from the spools, reading them back on up to `threads` threads.
+  void commit(int threads = 1);
 
  private:
   struct Spool {

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 #include "test_util.h"
 
@@ -175,14 +176,15 @@ TEST(Format, MalformedPatchWordsAreRejected) {
 TEST(Format, TheFileWrittenAsItIsBuiltIsTheOneBuiltInMemory) {
   // `vgeo build` spools each section to disk as the layout makes it (VgeoFileSink) and assembles the file
   // at the end: the same bytes as the in-memory build writes, for a subdivided cage (patches), a flat
-  // mesh, and a glTF of many meshes (each section holds every geometry's part, in order); the spools
-  // leave nothing behind.
+  // mesh, and a glTF of many meshes (each section holds every geometry's part, in order), whether the
+  // spools are read back on one thread or several; the spools leave nothing behind.
   const std::string dir = test::tempDir();
-  for (const auto& [path, subdiv] : std::vector<std::pair<std::string, int>>{
-           {test::asset("horned_cube.obj"), 2},
-           {test::cgalMesh("cow.off"), 0},
-           {test::assimpModel("2CylinderEngine-glTF-Binary/2CylinderEngine.glb"), 0}}) {
-    SCOPED_TRACE(path);
+  for (const auto& [path, subdiv, commitThreads] : std::vector<std::tuple<std::string, int, int>>{
+           {test::asset("horned_cube.obj"), 2, 1},
+           {test::cgalMesh("cow.off"), 0, 3},
+           {test::assimpModel("2CylinderEngine-glTF-Binary/2CylinderEngine.glb"), 0, 1},
+           {test::assimpModel("2CylinderEngine-glTF-Binary/2CylinderEngine.glb"), 0, 4}}) {
+    SCOPED_TRACE(path + " read back on " + std::to_string(commitThreads) + " threads");
     SceneBuildOptions options;
     options.subdivisionLevels = subdiv;
     options.threads = 2;
@@ -190,7 +192,7 @@ TEST(Format, TheFileWrittenAsItIsBuiltIsTheOneBuiltInMemory) {
     {
       VgeoFileSink file(dir + "/spooled.vgeo");
       buildScene(path, options, stats, file);
-      file.commit();
+      file.commit(commitThreads);
     }
     const std::vector<uint8_t> expected = serializeVgeo(test::build(path, subdiv));
     EXPECT_EQ(test::readFile(dir + "/spooled.vgeo"), std::string(expected.begin(), expected.end()));
