@@ -28,20 +28,29 @@ constexpr float kMaxCoordinate = 1e12f;
 
 // The faces of `mesh` that keep(f, corners, normals) keeps, with the corners (and, where the mesh has
 // them, normals) it leaves in those arrays, in face order, made on up to `threads` threads: sized in a
-// first pass, filled in a second (keep runs twice a face). Takes the positions from `mesh`.
+// first pass, filled in a second (keep runs twice a face). Where every face is kept as it was, the
+// mesh itself is returned (no second pass). Takes the positions from `mesh`.
 template <class Keep>
 PolygonMesh keptFaces(PolygonMesh& mesh, int threads, Keep&& keep) {
   const size_t n = mesh.faceCount();
   const bool withNormals = !mesh.cornerNormals.empty();
   std::vector<uint32_t> size(n);
+  bool changed = false;
   parallelForRanges(n, threads, [&](size_t begin, size_t end) {
     std::vector<uint32_t> corners;
     std::vector<glm::vec3> normals;
+    bool changedHere = false;
     for (size_t f = begin; f < end; f++) {
       corners.clear(), normals.clear();
-      size[f] = keep(f, corners, normals) ? uint32_t(corners.size()) : 0u;
+      const bool kept = keep(f, corners, normals);
+      size[f] = kept ? uint32_t(corners.size()) : 0u;
+      changedHere = changedHere || !kept || corners.size() != mesh.faceSize(f) ||
+                    !std::equal(corners.begin(), corners.end(), mesh.face(f)) ||
+                    (withNormals && !std::equal(normals.begin(), normals.end(), mesh.faceNormals(f)));
     }
+    if (changedHere) __atomic_store_n(&changed, true, __ATOMIC_RELAXED);
   });
+  if (!changed) return std::move(mesh);
   PolygonMesh kept;
   kept.positions = std::move(mesh.positions);
   std::vector<uint32_t> at(n);  // a kept face's first corner in `kept`
@@ -236,6 +245,7 @@ std::vector<uint32_t> weldPositions(const PolygonMesh& mesh, const std::vector<u
 // (counted in `degenerate`). Takes the positions from `mesh`.
 PolygonMesh weldFaces(PolygonMesh& mesh, const std::vector<uint32_t>& weld, size_t& degenerate, int threads) {
   const bool withNormals = !mesh.cornerNormals.empty();
+  const size_t before = mesh.faceCount();
   PolygonMesh faces =
       keptFaces(mesh, threads, [&](size_t f, std::vector<uint32_t>& corners, std::vector<glm::vec3>& normals) {
         for (uint32_t i = 0; i < mesh.faceSize(f); i++) {
@@ -259,7 +269,7 @@ PolygonMesh weldFaces(PolygonMesh& mesh, const std::vector<uint32_t>& weld, size
             if (corners[i] == corners[j]) return false;
         return true;
       });
-  degenerate += mesh.faceCount() - faces.faceCount();
+  degenerate += before - faces.faceCount();
   return faces;
 }
 
@@ -419,6 +429,12 @@ size_t dropUnusedVertices(PolygonMesh& out, size_t welded, int threads) {
   parallelForRanges(out.faceVertices.size(), threads, [&](size_t begin, size_t end) {
     for (size_t c = begin; c < end; c++) __atomic_store_n(&remap[out.faceVertices[c]], 0u, __ATOMIC_RELAXED);
   });
+  bool anyUnused = false;
+  parallelForRanges(out.positions.size(), threads, [&](size_t begin, size_t end) {
+    if (std::find(remap.begin() + long(begin), remap.begin() + long(end), UINT32_MAX) != remap.begin() + long(end))
+      __atomic_store_n(&anyUnused, true, __ATOMIC_RELAXED);
+  });
+  if (!anyUnused) return 0;  // every vertex used (so none welded either): nothing to renumber
   std::vector<glm::vec3> compact;
   const size_t kept = parallelNumber(
       out.positions.size(), threads, [&](size_t v) { return remap[v] == 0; }, [&](size_t n) { compact.resize(n); },
