@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <csignal>
 #include <cstdlib>
+#include <span>
 
 #include "../common/parallel.h"
 
@@ -87,24 +88,45 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
     if (openEdges) openEdges->insert(openEdges->end(), openOf[r].begin(), openOf[r].end());
   }
   parallelSort(pairs, threads);
-  std::vector<std::vector<std::pair<uint32_t, int>>> neighbours(n);
-  for (size_t i = 0; i < pairs.size();) {
-    size_t j = i;
-    while (j < pairs.size() && pairs[j] == pairs[i]) j++;
-    uint32_t a = uint32_t(pairs[i] >> 32), b = uint32_t(pairs[i]);
-    neighbours[a].push_back({b, int(j - i)});
-    neighbours[b].push_back({a, int(j - i)});
-    i = j;
+  // Each cluster's neighbours (slot, edges shared) in ascending order of slot, as a graph: the runs of
+  // equal pairs counted into both ends, then placed, then each node's list sorted.
+  auto pairRuns = [&](auto&& fn) {
+    parallelForRuns(
+        pairs.size(), threads, [&](size_t i, size_t j) { return pairs[i] == pairs[j]; },
+        [&](size_t i, size_t j) { fn(uint32_t(pairs[i] >> 32), uint32_t(pairs[i]), int(j - i)); });
+  };
+  std::vector<uint32_t> neighbourStart(n + 1, 0);
+  pairRuns([&](uint32_t a, uint32_t b, int) {
+    __atomic_fetch_add(&neighbourStart[a + 1], 1u, __ATOMIC_RELAXED);
+    __atomic_fetch_add(&neighbourStart[b + 1], 1u, __ATOMIC_RELAXED);
+  });
+  for (size_t i = 0; i < n; i++) neighbourStart[i + 1] += neighbourStart[i];
+  std::vector<std::pair<uint32_t, int>> neighbourList(neighbourStart[n]);
+  {
+    std::vector<uint32_t> filled(neighbourStart.begin(), neighbourStart.end() - 1);
+    pairRuns([&](uint32_t a, uint32_t b, int w) {
+      neighbourList[__atomic_fetch_add(&filled[a], 1u, __ATOMIC_RELAXED)] = {b, w};
+      neighbourList[__atomic_fetch_add(&filled[b], 1u, __ATOMIC_RELAXED)] = {a, w};
+    });
   }
+  std::vector<uint64_t>().swap(pairs);
+  parallelFor(n, threads, [&](size_t i) {
+    std::sort(neighbourList.begin() + neighbourStart[i], neighbourList.begin() + neighbourStart[i + 1]);
+  });
+  auto neighbours = [&](size_t i) {
+    return std::span<const std::pair<uint32_t, int>>(neighbourList.data() + neighbourStart[i],
+                                                     neighbourStart[i + 1] - neighbourStart[i]);
+  };
 
   // The pieces METIS partitions one at a time: the whole level, or compact pieces of a large one.
   Partition pieces;
   if (n > 2 * size_t(kGroupingPiece)) {
     Graph graph;
-    for (size_t i = 0; i < n; i++) {
-      for (auto [j, w] : neighbours[i]) graph.adjacency.push_back(j);
-      graph.offsets.push_back(uint32_t(graph.adjacency.size()));
-    }
+    graph.offsets.assign(neighbourStart.begin(), neighbourStart.end());
+    graph.adjacency.resize(neighbourList.size());
+    parallelForRanges(neighbourList.size(), threads, [&](size_t begin, size_t end) {
+      for (size_t k = begin; k < end; k++) graph.adjacency[k] = neighbourList[k].first;
+    });
     FillLaterVector<glm::vec3> centroids(n);
     parallelFor(n, threads, [&](size_t slot) {
       glm::dvec3 sum(0.0);
@@ -140,7 +162,7 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
       // The piece's own graph: its clusters and the edges between them.
       std::vector<idx_t> xadj{0}, adjncy, adjwgt;
       for (idx_t k = 0; k < count; k++) {
-        for (auto [j, w] : neighbours[slots[k]]) {
+        for (auto [j, w] : neighbours(slots[k])) {
           const uint32_t at = localOf[j];
           if (at >= uint32_t(count) || pieces.order[pieces.partStart[p] + at] != j) continue;  // in another piece
           adjncy.push_back(idx_t(at));
@@ -166,7 +188,7 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
   std::vector<bool> touchesOther(groups.size(), false);
   for (size_t i = 0; i < n; i++) {
     groups[size_t(part[i])].clusters.push_back(active[i]);
-    for (auto [j, w] : neighbours[i])
+    for (auto [j, w] : neighbours(i))
       if (part[j] != part[i]) touchesOther[size_t(part[i])] = true;
   }
   std::vector<GroupPlan> result;
