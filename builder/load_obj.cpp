@@ -134,8 +134,8 @@ ObjPiece parsePiece(std::string_view text, const std::string& path, size_t first
 SourceScene loadObj(const std::string& path, int threads) {
   const FillLaterVector<char> bytes = readWholeFile(path, threads);
   const std::string_view data(bytes.data(), bytes.size());
-  // Pieces of at least 4 MB, ending after a newline.
-  const size_t pieceCount = std::max<size_t>(1, std::min<size_t>(size_t(std::max(threads, 1)) * 4, data.size() >> 22));
+  // Four pieces a thread (they parse at different speeds), of at least 1 MB, each ending after a newline.
+  const size_t pieceCount = std::max<size_t>(1, std::min<size_t>(size_t(std::max(threads, 1)) * 4, data.size() >> 20));
   std::vector<size_t> bounds{0};
   for (size_t k = 1; k < pieceCount; k++) {
     const size_t at = data.find('\n', std::max(bounds.back(), data.size() * k / pieceCount));
