@@ -108,30 +108,29 @@ Graph dualGraph(std::span<const uint32_t> faceStart, std::span<const uint32_t> f
   return g;
 }
 
-// True when the faces use at most VGEO_MAX_CLUSTER_VERTICES distinct vertices (counted with a marker
-// array per thread, stamped so that it never needs clearing).
+// True when the faces use at most VGEO_MAX_CLUSTER_VERTICES distinct vertices. They are counted in a
+// small open-addressing table per thread, twice the corners' size, not in an array over all vertex
+// ids: on a large mesh every mark in such an array missed the cache. The count stops past the limit.
 bool fitsVertexLimit(std::span<const uint32_t> faceStart, std::span<const uint32_t> faceVertices, const uint32_t* faces,
                      size_t count) {
   size_t corners = 0;
   for (size_t i = 0; i < count; i++) corners += faceStart[faces[i] + 1] - faceStart[faces[i]];
   if (corners <= VGEO_MAX_CLUSTER_VERTICES) return true;
-  thread_local std::vector<uint32_t> mark;
-  thread_local uint32_t stamp = 0;
-  if (++stamp == 0) {
-    std::fill(mark.begin(), mark.end(), 0u);
-    stamp = 1;
-  }
+  thread_local std::vector<uint32_t> table;
+  const int bits = bitsFor(2 * corners);
+  table.assign(size_t(1) << bits, UINT32_MAX);
+  const uint32_t mask = (1u << bits) - 1;
   size_t distinct = 0;
   for (size_t i = 0; i < count; i++)
     for (uint32_t c = faceStart[faces[i]]; c < faceStart[faces[i] + 1]; c++) {
-      uint32_t v = faceVertices[c];
-      if (v >= mark.size()) mark.resize(size_t(v) + 1 + mark.size() / 2, 0u);
-      if (mark[v] != stamp) {
-        mark[v] = stamp;
-        distinct++;
-      }
+      const uint32_t v = faceVertices[c];
+      uint32_t slot = (v * 0x9e3779b1u) >> (32 - bits);
+      while (table[slot] != UINT32_MAX && table[slot] != v) slot = (slot + 1) & mask;
+      if (table[slot] == v) continue;
+      table[slot] = v;
+      if (++distinct > VGEO_MAX_CLUSTER_VERTICES) return false;
     }
-  return distinct <= VGEO_MAX_CLUSTER_VERTICES;
+  return true;
 }
 
 // `wedges`, when given (one a corner, like faceVertices), are what the vertex limit counts, and each

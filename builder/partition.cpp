@@ -228,7 +228,8 @@ struct Bisector {
 // Moves the fragments of parts (every connected piece but the largest) into the neighbouring part they
 // share most edges with, when it has room and still fits; parts keep their order, moved nodes go last.
 // A piece once moved is not looked at again, so a part's pieces at its turn are those it was made
-// with: they are found for all parts at once, on the threads, and only parts in pieces take a turn.
+// with: they are found for all parts at once, on the threads, and kept for the turns of the parts in
+// pieces, the only ones that take a turn.
 void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uint32_t maxWeight,
                     const std::function<bool(const uint32_t*, size_t)>& fits, int threads, Partition& p) {
   const size_t n = p.order.size(), parts = p.partCount();
@@ -266,12 +267,14 @@ void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uin
     for (uint32_t u : members[q]) piece[u] = UINT32_MAX;
     return pieces;
   };
-  std::vector<uint8_t> inPieces(parts, 0);
-  parallelFor(parts, threads, [&](size_t q) { inPieces[q] = piecesOf(uint32_t(q)).size() > 1; });
+  std::vector<std::vector<std::vector<uint32_t>>> piecesOfPart(parts);  // kept for parts in pieces only
+  parallelFor(parts, threads, [&](size_t q) {
+    std::vector<std::vector<uint32_t>> pieces = piecesOf(uint32_t(q));
+    if (pieces.size() > 1) piecesOfPart[q] = std::move(pieces);
+  });
   bool anyMoved = false;
   for (uint32_t q = 0; q < parts; q++) {
-    if (!inPieces[q]) continue;
-    std::vector<std::vector<uint32_t>> pieces = piecesOf(q);
+    std::vector<std::vector<uint32_t>> pieces = std::move(piecesOfPart[q]);
     if (pieces.size() < 2) continue;
     size_t largest = 0;
     for (size_t i = 1; i < pieces.size(); i++)
