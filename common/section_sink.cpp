@@ -34,12 +34,18 @@ int anonymousFile(const std::string& folder, const std::string& path) {
   return fd;
 }
 
-// pread, again when interrupted.
-ssize_t readBack(int fd, uint8_t* to, uint64_t size, uint64_t at) {
-  for (;;) {
-    const ssize_t n = ::pread(fd, to, size_t(size), off_t(at));
-    if (n >= 0 || errno != EINTR) return n;
+// The first `bytes` of spool `fd` read back a buffer's size at a time, each piece handed to
+// use(data, size); returns 0, or the errno of a failed read (EIO where the spool is shorter).
+template <class Use>
+int readBack(int fd, uint64_t bytes, std::vector<uint8_t>& buffer, Use&& use) {
+  for (uint64_t at = 0; at < bytes;) {
+    const ssize_t n = ::pread(fd, buffer.data(), size_t(std::min<uint64_t>(buffer.size(), bytes - at)), off_t(at));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return n < 0 ? errno : EIO;
+    use(buffer.data(), size_t(n));
+    at += uint64_t(n);
   }
+  return 0;
 }
 
 }  // namespace
@@ -121,23 +127,19 @@ void VgeoFileSink::commit(int threads) {
   // copied in on this thread (the system takes writes to one file one at a time), each chunk sent on
   // to the disk once written. The header and table, which hold the checksums, go first into the file
   // but are written last.
+  auto failed = [&](int error) {
+    return OutputError(path_, std::string("cannot read back a section: ") + std::strerror(error));
+  };
   int readError = 0;
   parallelFor(entries.size(), threads, [&](size_t i) {
     const uint64_t bytes = entries[i].count * entries[i].elementSize;
     std::vector<uint8_t> chunk(size_t(std::min<uint64_t>(kSumChunk, bytes)));
     VgeoChecksum sum(bytes);
-    for (uint64_t at = 0; at < bytes;) {
-      const ssize_t n = readBack(spools_[i].fd, chunk.data(), std::min<uint64_t>(kSumChunk, bytes - at), at);
-      if (n <= 0) {
-        __atomic_store_n(&readError, n < 0 ? errno : EIO, __ATOMIC_RELAXED);
-        return;
-      }
-      sum.add(chunk.data(), size_t(n));
-      at += uint64_t(n);
-    }
+    if (const int error = readBack(spools_[i].fd, bytes, chunk, [&](const uint8_t* p, size_t n) { sum.add(p, n); }))
+      __atomic_store_n(&readError, error, __ATOMIC_RELAXED);
     entries[i].checksum = sum.finish();
   });
-  if (readError) throw OutputError(path_, std::string("cannot read back a section: ") + std::strerror(readError));
+  if (readError) throw failed(readError);
   AtomicFile out(path_);
   std::vector<uint8_t> chunk(kCopyChunk, 0);
   uint64_t written = kVgeoHeaderSize + kVgeoEntrySize * entries.size();
@@ -146,14 +148,11 @@ void VgeoFileSink::commit(int threads) {
     static const uint8_t zeros[16] = {};
     if (entries[i].offset > written) out.write(zeros, size_t(entries[i].offset - written));
     const uint64_t bytes = entries[i].count * entries[i].elementSize;
-    for (uint64_t at = 0; at < bytes;) {
-      const ssize_t n = readBack(spools_[i].fd, chunk.data(), std::min<uint64_t>(kCopyChunk, bytes - at), at);
-      if (n <= 0)
-        throw OutputError(path_, std::string("cannot read back a section: ") + std::strerror(n < 0 ? errno : EIO));
-      out.write(chunk.data(), size_t(n));
-      out.startWriteback();
-      at += uint64_t(n);
-    }
+    if (const int error = readBack(spools_[i].fd, bytes, chunk, [&](const uint8_t* p, size_t n) {
+          out.write(p, n);
+          out.startWriteback();
+        }))
+      throw failed(error);
     written = entries[i].offset + bytes;
     ::close(spools_[i].fd);  // its disk space back before the next section is copied
     spools_[i].fd = -1;
