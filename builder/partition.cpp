@@ -8,6 +8,8 @@
 // part in pieces; a last pass moves each cut-off piece into the neighbour it shares most edges with.
 // The two halves are independent, so they run as tasks of their own down to sets of kParallelNodes;
 // a part's place in the output depends only on the recursion tree, never on which thread ran it.
+// A set of up to kLocalNodes nodes is copied out with the edges inside it and split on the copy: the
+// recursion below it then works in cache instead of gathering from arrays over the whole graph.
 #include <algorithm>
 
 #include "../common/parallel.h"
@@ -20,6 +22,7 @@ constexpr uint32_t kTaken = 0x80000000u;
 constexpr uint64_t kMedianSplitParts = 64;   // sets of more parts are cut at the weighted median
 constexpr uint32_t kParallelNodes = 4096;    // smaller sets are not worth a task of their own
 constexpr uint32_t kParallelSet = 1u << 18;  // larger sets' passes run on the threads too
+constexpr uint32_t kLocalNodes = 16384;      // a set this small is copied out and split in cache
 
 // Weight and bounds of a set of nodes.
 struct SetExtent {
@@ -43,6 +46,20 @@ struct Bisector {
   FillLaterVector<uint8_t> partHead;  // 1 at the first position of every part
   bool parallel = false;              // halves as tasks (inside withThreads)
   int threads = 1;
+  // On a set's copy (splitCopy): the node ids of the whole graph, which break ties as they would there.
+  const uint32_t* ids = nullptr;
+  // The local id of each node of a set being copied (splitCopy), over the whole graph; empty where the
+  // graph is small enough to stay in cache as it is.
+  FillLaterVector<uint32_t>* localOf = nullptr;
+
+  uint32_t id(uint32_t node) const { return ids ? ids[node] : node; }
+  bool fitsNodes(const uint32_t* nodes, size_t count) const {
+    if (!ids) return fits(nodes, count);
+    thread_local std::vector<uint32_t> named;
+    named.resize(count);
+    for (size_t i = 0; i < count; i++) named[i] = ids[nodes[i]];
+    return fits(named.data(), count);
+  }
 
   // Sets of kParallelSet nodes or more have their passes on the threads too.
   int threadsFor(uint32_t lo, uint32_t hi) const { return parallel && hi - lo >= kParallelSet ? threads : 1; }
@@ -113,8 +130,12 @@ struct Bisector {
     const uint64_t w = extentOf(lo, hi, [&](uint32_t begin, uint32_t end, SetExtent& e) {
                          for (uint32_t i = begin; i < end; i++) e.weight += weights[order[i]];
                        }).weight;
-    if (hi - lo == 1 || (w <= targetWeight && (!fits || fits(&order[lo], hi - lo)))) {
+    if (hi - lo == 1 || (w <= targetWeight && (!fits || fitsNodes(&order[lo], hi - lo)))) {
       partHead[lo] = 1;
+      return;
+    }
+    if (localOf && hi - lo <= kLocalNodes) {
+      splitCopy(lo, hi);
       return;
     }
     uint64_t k = std::max<uint64_t>(2, (w + targetWeight - 1) / targetWeight);
@@ -132,7 +153,7 @@ struct Bisector {
     int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
     auto before = [&](uint32_t a, uint32_t b) {
       float pa = positions[a][axis], pb = positions[b][axis];
-      return pa != pb ? pa < pb : a < b;
+      return pa != pb ? pa < pb : id(a) < id(b);
     };
 
     if (k > kMedianSplitParts) {
@@ -155,8 +176,8 @@ struct Bisector {
     uint64_t wA = 0;
     // Frontier ordered by distance to the seed: regions grow round, not in the diamonds of BFS.
     std::vector<std::pair<float, uint32_t>> frontier;
-    auto byDistance = [](const std::pair<float, uint32_t>& a, const std::pair<float, uint32_t>& b) {
-      return a.first != b.first ? a.first > b.first : a.second > b.second;
+    auto byDistance = [&](const std::pair<float, uint32_t>& a, const std::pair<float, uint32_t>& b) {
+      return a.first != b.first ? a.first > b.first : id(a.second) > id(b.second);
     };
     glm::vec3 origin(0.0f);
     auto take = [&](uint32_t node) {
@@ -217,6 +238,50 @@ struct Bisector {
     std::vector<uint32_t>().swap(seeds);
 
     recurse(lo, mid, hi);
+  }
+
+  // Splits set [lo, hi) as split() would, on a copy of its nodes and of the edges between them
+  // (numbered in the set's order, ties broken by the graph's ids): every pass of the recursion below
+  // then reads a few hundred kilobytes instead of gathering from arrays over the whole graph.
+  void splitCopy(uint32_t lo, uint32_t hi) {
+    const uint32_t m = hi - lo;
+    std::vector<uint32_t> global(order.begin() + lo, order.begin() + hi);
+    for (uint32_t i = 0; i < m; i++) (*localOf)[global[i]] = i;
+    Graph copy;
+    copy.offsets.resize(m + 1);
+    copy.offsets[0] = 0;
+    std::vector<uint8_t> copyWeights(m);
+    FillLaterVector<glm::vec3> copyPositions(m);
+    for (uint32_t i = 0; i < m; i++) {
+      const uint32_t node = global[i];
+      copyWeights[i] = weights[node];
+      copyPositions[i] = positions[node];
+      for (uint32_t e = graph.offsets[node]; e < graph.offsets[node + 1]; e++) {
+        const uint32_t next = graph.adjacency[e];
+        if (load(next) == hi) copy.adjacency.push_back((*localOf)[next]);  // in this set
+      }
+      copy.offsets[i + 1] = uint32_t(copy.adjacency.size());
+    }
+    FillLaterVector<uint32_t> copyOrder(m);
+    for (uint32_t i = 0; i < m; i++) copyOrder[i] = i;
+    Bisector local{copy,
+                   copyWeights,
+                   copyPositions,
+                   targetWeight,
+                   fits,
+                   copyOrder,
+                   FillLaterVector<uint32_t>(m),
+                   FillLaterVector<uint8_t>(m)};
+    std::fill(local.stamp.begin(), local.stamp.end(), m);
+    std::fill(local.partHead.begin(), local.partHead.end(), uint8_t(0));
+    local.ids = global.data();
+    local.parallel = parallel;  // halves of 4,096 nodes or more still run as tasks of their own
+    local.threads = threads;
+    local.split(0, m);
+    for (uint32_t i = 0; i < m; i++) {
+      order[lo + i] = global[copyOrder[i]];
+      partHead[lo + i] = local.partHead[i];
+    }
   }
 
   void recurse(uint32_t lo, uint32_t mid, uint32_t hi) {
@@ -350,6 +415,11 @@ Partition partitionGraph(const Graph& graph, const std::vector<uint8_t>& weights
              parallelFilled(n, uint8_t(0), threads),
              threads > 1,
              threads};
+  FillLaterVector<uint32_t> localOf;  // every entry written before it is read (splitCopy)
+  if (n > kLocalNodes) {
+    localOf.resize(n);
+    b.localOf = &localOf;
+  }
   if (threads > 1)
     withThreads(threads, [&] { b.split(0, n); });
   else
