@@ -1,9 +1,15 @@
 // main.cpp: the `vgeo` executable: `vgeo build`, `vgeo check`, `vgeo render`, `vgeo bench`.
 // Every error ends here as one line on stderr and an exit code of options.h's ExitCode: the cause
 // decides the code, so scripts can tell a bad command line from a bad file from a machine limit.
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <exception>
+#include <fstream>
+#include <string>
 
 #include "../common/atomic_file.h"
 #include "../common/input_error.h"
@@ -11,7 +17,35 @@
 #include "options.h"
 #include "vgeo_commit.h"
 
+namespace {
+
+// Large blocks on 2 MB pages. The build fills and gathers from arrays of tens to hundreds of
+// megabytes (positions, graphs, sorted edges, the hash set of edges): on 4 KB pages each gather
+// misses the TLB and each 4 KB first touched is a page fault. Where the kernel hands transparent huge
+// pages only to memory that asks for them ("madvise", Debian's default), glibc asks for them when its
+// hugetlb tunable is set, and it reads tunables once, at start: so the process starts itself again
+// with the tunable added. A hugetlb tunable already set, to any value, is left as it is.
+void restartWithHugePages(char** argv) {
+  const char* tunables = std::getenv("GLIBC_TUNABLES");
+  if (tunables && std::strstr(tunables, "glibc.malloc.hugetlb")) return;
+  std::ifstream policy("/sys/kernel/mm/transparent_hugepage/enabled");
+  std::string line;
+  if (!std::getline(policy, line) || line.find("[madvise]") == std::string::npos) return;
+  const std::string before = tunables ? tunables : "";
+  const std::string with = before.empty() ? "glibc.malloc.hugetlb=1" : before + ":glibc.malloc.hugetlb=1";
+  if (setenv("GLIBC_TUNABLES", with.c_str(), 1) != 0) return;
+  execv("/proc/self/exe", argv);
+  // Not restarted: go on as started.
+  if (tunables)
+    setenv("GLIBC_TUNABLES", before.c_str(), 1);
+  else
+    unsetenv("GLIBC_TUNABLES");
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+  restartWithHugePages(argv);
   CLI::App app{"vgeo: a virtual-geometry builder and renderer"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("vgeo " VGEO_VERSION " (commit " VGEO_COMMIT ")"));
