@@ -52,6 +52,29 @@ struct Bisector {
   // graph is small enough to stay in cache as it is.
   FillLaterVector<uint32_t>* localOf = nullptr;
 
+  // A bisector over all of `graph`'s nodes as one set: `order` made the identity, every stamp the
+  // set's end, no part heads yet.
+  static Bisector over(const Graph& graph, const std::vector<uint8_t>& weights,
+                       const FillLaterVector<glm::vec3>& positions, uint32_t targetWeight,
+                       const std::function<bool(const uint32_t*, size_t)>& fits, FillLaterVector<uint32_t>& order,
+                       int threads) {
+    const uint32_t n = uint32_t(graph.nodeCount());
+    order.resize(n);
+    parallelForRanges(n, threads, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; i++) order[i] = uint32_t(i);
+    });
+    return Bisector{graph,
+                    weights,
+                    positions,
+                    targetWeight,
+                    fits,
+                    order,
+                    parallelFilled(n, n, threads),
+                    parallelFilled(n, uint8_t(0), threads),
+                    threads > 1,
+                    threads};
+  }
+
   uint32_t id(uint32_t node) const { return ids ? ids[node] : node; }
   bool fitsNodes(const uint32_t* nodes, size_t count) const {
     if (!ids) return fits(nodes, count);
@@ -249,7 +272,6 @@ struct Bisector {
     for (uint32_t i = 0; i < m; i++) (*localOf)[global[i]] = i;
     Graph copy;
     copy.offsets.resize(m + 1);
-    copy.offsets[0] = 0;
     std::vector<uint8_t> copyWeights(m);
     FillLaterVector<glm::vec3> copyPositions(m);
     for (uint32_t i = 0; i < m; i++) {
@@ -262,21 +284,10 @@ struct Bisector {
       }
       copy.offsets[i + 1] = uint32_t(copy.adjacency.size());
     }
-    FillLaterVector<uint32_t> copyOrder(m);
-    for (uint32_t i = 0; i < m; i++) copyOrder[i] = i;
-    Bisector local{copy,
-                   copyWeights,
-                   copyPositions,
-                   targetWeight,
-                   fits,
-                   copyOrder,
-                   FillLaterVector<uint32_t>(m),
-                   FillLaterVector<uint8_t>(m)};
-    std::fill(local.stamp.begin(), local.stamp.end(), m);
-    std::fill(local.partHead.begin(), local.partHead.end(), uint8_t(0));
+    FillLaterVector<uint32_t> copyOrder;
+    // Its halves of kParallelNodes or more still run as tasks of their own.
+    Bisector local = over(copy, copyWeights, copyPositions, targetWeight, fits, copyOrder, threads);
     local.ids = global.data();
-    local.parallel = parallel;  // halves of 4,096 nodes or more still run as tasks of their own
-    local.threads = threads;
     local.split(0, m);
     for (uint32_t i = 0; i < m; i++) {
       order[lo + i] = global[copyOrder[i]];
@@ -401,20 +412,7 @@ Partition partitionGraph(const Graph& graph, const std::vector<uint8_t>& weights
   const uint32_t n = uint32_t(graph.nodeCount());
   Partition result;
   if (n == 0) return result;
-  result.order.resize(n);
-  parallelForRanges(n, threads, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; i++) result.order[i] = uint32_t(i);
-  });
-  Bisector b{graph,
-             weights,
-             positions,
-             targetWeight,
-             fits,
-             result.order,
-             parallelFilled(n, n, threads),
-             parallelFilled(n, uint8_t(0), threads),
-             threads > 1,
-             threads};
+  Bisector b = Bisector::over(graph, weights, positions, targetWeight, fits, result.order, threads);
   FillLaterVector<uint32_t> localOf;  // every entry written before it is read (splitCopy)
   if (n > kLocalNodes) {
     localOf.resize(n);
