@@ -355,7 +355,9 @@ struct GroupPlan {
 // borders (the locked part of the next simplification). A level of more than kGroupingPiece * 2
 // clusters is first cut into compact pieces of about kGroupingPiece (partitionGraph, by the clusters'
 // centroids over `positions`), each partitioned by METIS on its own (the pieces' graphs made side by
-// side). Deterministic (fixed METIS seed) for any thread count. `openEdges`, when given, receives the
+// side), and a piece of many groups is bisected by METIS a cut at a time, the two sides of each cut
+// partitioned side by side. Deterministic (fixed METIS seed, cuts that depend on the graph alone) for
+// any thread count. `openEdges`, when given, receives the
 // edges (min << 32 | max, ascending) on the border of one cluster only: the open boundary of the
 // surface, which is no group's shared border.
 constexpr uint32_t kGroupingPiece = 2048;

@@ -51,6 +51,75 @@ extern "C" int rand() noexcept {
 
 namespace vgeo {
 
+namespace {
+
+struct MetisGraph {
+  std::vector<idx_t> xadj{0}, adjncy, adjwgt;
+  idx_t nodes() const { return idx_t(xadj.size() - 1); }
+};
+
+// METIS_PartGraphRecursive on `graph` into `parts` parts of the given shares (equal when null).
+void partGraph(const MetisGraph& graph, idx_t parts, real_t* shares, idx_t* part) {
+  idx_t nvtxs = graph.nodes(), ncon = 1, objval = 0;
+  idx_t options[METIS_NOPTIONS];
+  METIS_SetDefaultOptions(options);
+  options[METIS_OPTION_SEED] = 1;
+  options[METIS_OPTION_NUMBERING] = 0;
+  // Recursive bisection rather than k-way: with ~16 clusters a part, k-way cannot coarsen the graph
+  // and was 6x slower; recursive bisection also gave shorter borders (armadillo, --subdiv 2).
+  const int status = METIS_PartGraphRecursive(
+      &nvtxs, &ncon, const_cast<idx_t*>(graph.xadj.data()), const_cast<idx_t*>(graph.adjncy.data()), nullptr, nullptr,
+      const_cast<idx_t*>(graph.adjwgt.data()), &parts, shares, nullptr, options, &objval, part);
+  if (status != METIS_OK)
+    throw std::runtime_error("METIS_PartGraphRecursive failed with status " + std::to_string(status));
+}
+
+// Parts this few are left to one METIS call; only the cuts above it run side by side.
+constexpr idx_t kOneCallParts = 8;
+
+// `parts` parts of `graph` by recursive bisection, as METIS_PartGraphRecursive makes them (each cut
+// gives the two sides the shares of the parts they will hold), but with each cut's two sides
+// partitioned side by side when `together`: one METIS call over a level of thousands of clusters was
+// the serial part of the build. The cuts depend on the graph alone, never on the threads.
+void bisectRecursively(const MetisGraph& graph, idx_t parts, idx_t* part, bool together) {
+  if (parts <= kOneCallParts) {
+    partGraph(graph, parts, nullptr, part);
+    return;
+  }
+  const idx_t n = graph.nodes(), leftParts = parts / 2;
+  real_t shares[2] = {real_t(leftParts) / real_t(parts), 0};
+  shares[1] = 1 - shares[0];
+  std::vector<idx_t> side(size_t(n), 0), at(size_t(n), 0);
+  partGraph(graph, 2, shares, side.data());
+  MetisGraph halves[2];
+  std::vector<idx_t> members[2];
+  for (idx_t v = 0; v < n; v++) {
+    at[size_t(v)] = idx_t(members[side[size_t(v)]].size());
+    members[side[size_t(v)]].push_back(v);
+  }
+  for (int s = 0; s < 2; s++)
+    for (const idx_t v : members[s]) {
+      for (idx_t e = graph.xadj[size_t(v)]; e < graph.xadj[size_t(v) + 1]; e++) {
+        const idx_t u = graph.adjncy[size_t(e)];
+        if (side[size_t(u)] != s) continue;
+        halves[s].adjncy.push_back(at[size_t(u)]);
+        halves[s].adjwgt.push_back(graph.adjwgt[size_t(e)]);
+      }
+      halves[s].xadj.push_back(idx_t(halves[s].adjncy.size()));
+    }
+  std::vector<idx_t> halfPart[2] = {std::vector<idx_t>(members[0].size()), std::vector<idx_t>(members[1].size())};
+  auto partitionHalf = [&](int s) {
+    if (!members[s].empty())
+      bisectRecursively(halves[s], s ? parts - leftParts : leftParts, halfPart[s].data(), together);
+  };
+  parallelInvoke(
+      together, [&] { partitionHalf(0); }, [&] { partitionHalf(1); });
+  for (int s = 0; s < 2; s++)
+    for (size_t i = 0; i < members[s].size(); i++) part[members[s][i]] = halfPart[s][i] + (s ? leftParts : 0);
+}
+
+}  // namespace
+
 std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, const std::vector<uint32_t>& active,
                                      const std::vector<glm::vec3>& positions, uint32_t targetSize, int threads,
                                      std::vector<uint64_t>* openEdges) {
@@ -153,37 +222,31 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
     for (uint32_t k = pieces.partStart[p]; k < pieces.partStart[p + 1]; k++)
       localOf[pieces.order[k]] = k - pieces.partStart[p];
   const KeptSignalHandlers keptSignalHandlers;
-  parallelFor(pieces.partCount(), threads, [&](size_t p) {
+  auto partitionPiece = [&](size_t p) {
     const uint32_t* slots = &pieces.order[pieces.partStart[p]];
     const idx_t count = idx_t(pieces.partStart[p + 1] - pieces.partStart[p]);
-    idx_t pieceParts = partBase[p + 1] - partBase[p];
+    const idx_t pieceParts = partBase[p + 1] - partBase[p];
     std::vector<idx_t> local(size_t(count), 0);
     if (pieceParts > 1) {
       // The piece's own graph: its clusters and the edges between them.
-      std::vector<idx_t> xadj{0}, adjncy, adjwgt;
+      MetisGraph piece;
       for (idx_t k = 0; k < count; k++) {
         for (auto [j, w] : neighbours(slots[k])) {
           const uint32_t at = localOf[j];
           if (at >= uint32_t(count) || pieces.order[pieces.partStart[p] + at] != j) continue;  // in another piece
-          adjncy.push_back(idx_t(at));
-          adjwgt.push_back(idx_t(w));
+          piece.adjncy.push_back(idx_t(at));
+          piece.adjwgt.push_back(idx_t(w));
         }
-        xadj.push_back(idx_t(adjncy.size()));
+        piece.xadj.push_back(idx_t(piece.adjncy.size()));
       }
-      idx_t nvtxs = count, ncon = 1, objval = 0;
-      idx_t options[METIS_NOPTIONS];
-      METIS_SetDefaultOptions(options);
-      options[METIS_OPTION_SEED] = 1;
-      options[METIS_OPTION_NUMBERING] = 0;
-      // Recursive bisection rather than k-way: with ~16 clusters a part, k-way cannot coarsen the graph
-      // and was 6x slower; recursive bisection also gave shorter borders (armadillo, --subdiv 2).
-      int status = METIS_PartGraphRecursive(&nvtxs, &ncon, xadj.data(), adjncy.data(), nullptr, nullptr, adjwgt.data(),
-                                            &pieceParts, nullptr, nullptr, options, &objval, local.data());
-      if (status != METIS_OK)
-        throw std::runtime_error("METIS_PartGraphRecursive failed with status " + std::to_string(status));
+      bisectRecursively(piece, pieceParts, local.data(), threads > 1);
     }
     for (idx_t k = 0; k < count; k++) part[slots[k]] = partBase[p] + local[size_t(k)];
-  });
+  };
+  if (threads > 1)
+    withThreads(threads, [&] { parallelFor(pieces.partCount(), threads, partitionPiece); });
+  else
+    for (size_t p = 0; p < pieces.partCount(); p++) partitionPiece(p);
   std::vector<GroupPlan> groups(size_t(std::max<idx_t>(nparts, 1)));
   std::vector<bool> touchesOther(groups.size(), false);
   for (size_t i = 0; i < n; i++) {
