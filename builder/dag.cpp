@@ -112,7 +112,12 @@ std::vector<GroupOutcome> simplifyGroups(const std::vector<GroupPlan>& plans, co
                                          const std::vector<glm::vec3>& positions, const ChordRule& chords,
                                          const std::vector<uint64_t>& openEdges, const BuildOptions& options) {
   std::vector<GroupOutcome> outcomes(plans.size());
-  parallelFor(plans.size(), options.threads, [&](size_t g) {
+  // Largest groups first, so that the round does not end waiting on a large one started last.
+  std::vector<std::pair<uint64_t, uint32_t>> bySize(plans.size());
+  for (uint32_t g = 0; g < plans.size(); g++) bySize[g] = {~triangleCount(clusters, plans[g].clusters), g};
+  std::sort(bySize.begin(), bySize.end());
+  parallelForInOrder(plans.size(), options.threads, [&](size_t i) {
+    const size_t g = bySize[i].second;
     std::vector<uint32_t> indices;
     for (uint32_t m : plans[g].clusters)
       indices.insert(indices.end(), clusters[m].indices.begin(), clusters[m].indices.end());

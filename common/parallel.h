@@ -12,6 +12,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <atomic>
 #include <functional>
 #include <type_traits>
 #include <vector>
@@ -38,6 +39,26 @@ void parallelFor(size_t count, int threads, Fn&& fn) {
     return;
   }
   withThreads(threads, [&] { tbb::parallel_for(size_t(0), count, [&](size_t i) { fn(i); }); });
+}
+
+// fn(i) for every i in [0, count), on up to `threads` threads, each thread taking the next i as it
+// gets free: for few, heavy items of unequal cost, listed heaviest first, so that none of the heavy
+// ones is left to start last. An exception thrown by fn stops the loop and is rethrown here.
+template <class Fn>
+void parallelForInOrder(size_t count, int threads, Fn&& fn) {
+  if (threads <= 1 || count <= 1) {
+    for (size_t i = 0; i < count; i++) fn(i);
+    return;
+  }
+  std::atomic<size_t> next{0};
+  withThreads(threads, [&] {
+    tbb::parallel_for(
+        0, threads,
+        [&](int) {
+          for (size_t i = next++; i < count && !tbb::is_current_task_group_canceling(); i = next++) fn(i);
+        },
+        tbb::simple_partitioner());
+  });
 }
 
 // Lowers `target` to `value` when smaller, from any thread (the smallest of all offered wins).
