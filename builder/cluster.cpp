@@ -39,6 +39,52 @@ VertexFaces vertexFaces(std::span<const uint32_t> faceStart, std::span<const uin
 
 namespace {
 
+constexpr size_t kSmallSoupFaces = 65536;  // triangle soups this small take smallTriangleDualGraph
+
+// The dual graph of a small triangle soup (a simplified group on its way to clusters), the same as
+// dualGraph's below but found through lists of each vertex's edges (an edge listed at its lower
+// vertex): this is called once a group, where dualGraph's sort of every vertex's faces cost several
+// times the work itself. Returns false, leaving `g` alone, where an edge has more than two triangles
+// or a triangle a repeated vertex (dualGraph keeps its own order of neighbours there).
+bool smallTriangleDualGraph(std::span<const uint32_t> corners, size_t vertexCount, Graph& g) {
+  const size_t faceCount = corners.size() / 3;
+  constexpr uint32_t kNone = UINT32_MAX;
+  // edgesAt[v]: the first corner of each edge whose lower vertex is v, linked through nextEdge;
+  // partner[c]: the other triangle's corner on c's edge.
+  thread_local std::vector<uint32_t> edgesAt, nextEdge, partner;
+  edgesAt.assign(vertexCount, kNone);
+  nextEdge.resize(corners.size());
+  partner.assign(corners.size(), kNone);
+  auto upper = [&](size_t c) { return std::max(corners[c], corners[c % 3 == 2 ? c - 2 : c + 1]); };
+  for (size_t c = 0; c < corners.size(); c++) {
+    const uint32_t a = corners[c], b = corners[c % 3 == 2 ? c - 2 : c + 1];
+    if (a == b) return false;
+    const uint32_t low = std::min(a, b), high = std::max(a, b);
+    uint32_t e = edgesAt[low];
+    while (e != kNone && upper(e) != high) e = nextEdge[e];
+    if (e == kNone) {
+      nextEdge[c] = edgesAt[low];
+      edgesAt[low] = uint32_t(c);
+    } else if (partner[e] == kNone) {
+      partner[e] = uint32_t(c);
+      partner[c] = e;
+    } else {
+      return false;  // a third triangle on the edge
+    }
+  }
+  // A face's neighbours: the other triangle on each of its edges, in corner order.
+  auto across = [&](size_t c) { return partner[c] == kNone ? kNone : partner[c] / 3; };
+  g.offsets.resize(faceCount + 1);
+  g.offsets[0] = 0;
+  for (size_t f = 0; f < faceCount; f++)
+    g.offsets[f + 1] =
+        g.offsets[f] + (across(3 * f) != kNone) + (across(3 * f + 1) != kNone) + (across(3 * f + 2) != kNone);
+  g.adjacency.resize(g.offsets[faceCount]);
+  for (size_t c = 0, at = 0; c < corners.size(); c++)
+    if (const uint32_t o = across(c); o != kNone) g.adjacency[at++] = o;
+  return true;
+}
+
 // Faces sharing an edge are neighbours (all of them, should an edge have more than two faces). Found
 // through each vertex's faces rather than by sorting edges: linear, ~3x faster on large meshes, and
 // every pass parallel over faces.
@@ -141,7 +187,10 @@ std::vector<BuildCluster> clustersFromFaces(std::span<const uint32_t> faceStart,
   const size_t faceCount = faceStart.size() - 1;
   Partition parts;
   {  // the graph and its node data are freed before the clusters are made
-    Graph graph = dualGraph(faceStart, faceVertices, positions.size(), threads);
+    Graph graph;
+    const bool smallSoup = faceVertices.size() == 3 * faceCount && faceCount <= kSmallSoupFaces;
+    if (!smallSoup || !smallTriangleDualGraph(faceVertices, positions.size(), graph))
+      graph = dualGraph(faceStart, faceVertices, positions.size(), threads);
     std::vector<uint8_t> weights(faceCount);
     FillLaterVector<glm::vec3> centroids(faceCount);
     parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {
