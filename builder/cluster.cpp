@@ -39,19 +39,25 @@ VertexFaces vertexFaces(std::span<const uint32_t> faceStart, std::span<const uin
 
 namespace {
 
-constexpr size_t kSmallSoupFaces = 65536;  // triangle soups this small take smallTriangleDualGraph
+constexpr size_t kSmallSoupFaces = 65536;  // smaller soups keep their scratch arrays for the next one
 
-// The dual graph of a small triangle soup (a simplified group on its way to clusters), the same as
-// dualGraph's below but found through lists of each vertex's edges (an edge listed at its lower
-// vertex): this is called once a group, where dualGraph's sort of every vertex's faces cost several
-// times the work itself. Returns false, leaving `g` alone, where an edge has more than two triangles
-// or a triangle a repeated vertex (dualGraph keeps its own order of neighbours there).
-bool smallTriangleDualGraph(std::span<const uint32_t> corners, size_t vertexCount, Graph& g) {
+// The dual graph of a triangle soup, the same as dualGraph's below but found through lists of each
+// vertex's edges (an edge listed at its lower vertex) in one pass on one thread. It serves every
+// simplified group on its way to clusters, where dualGraph's sort of every vertex's faces cost several
+// times the work itself, and a one-thread build's leaves (a third of dualGraph's time there). Returns
+// false, leaving `g` alone, where an edge has more than two triangles or a triangle a repeated vertex
+// (dualGraph keeps its own order of neighbours there).
+bool triangleDualGraph(std::span<const uint32_t> corners, size_t vertexCount, Graph& g) {
   const size_t faceCount = corners.size() / 3;
   constexpr uint32_t kNone = UINT32_MAX;
   // edgesAt[v]: the first corner of each edge whose lower vertex is v, linked through nextEdge;
   // partner[c]: the other triangle's corner on c's edge.
-  thread_local std::vector<uint32_t> edgesAt, nextEdge, partner;
+  thread_local std::vector<uint32_t> keptEdgesAt, keptNextEdge, keptPartner;
+  std::vector<uint32_t> ownEdgesAt, ownNextEdge, ownPartner;
+  const bool small = faceCount <= kSmallSoupFaces;
+  std::vector<uint32_t>& edgesAt = small ? keptEdgesAt : ownEdgesAt;
+  std::vector<uint32_t>& nextEdge = small ? keptNextEdge : ownNextEdge;
+  std::vector<uint32_t>& partner = small ? keptPartner : ownPartner;
   edgesAt.assign(vertexCount, kNone);
   nextEdge.resize(corners.size());
   partner.assign(corners.size(), kNone);
@@ -188,8 +194,8 @@ std::vector<BuildCluster> clustersFromFaces(std::span<const uint32_t> faceStart,
   Partition parts;
   {  // the graph and its node data are freed before the clusters are made
     Graph graph;
-    const bool smallSoup = faceVertices.size() == 3 * faceCount && faceCount <= kSmallSoupFaces;
-    if (!smallSoup || !smallTriangleDualGraph(faceVertices, positions.size(), graph))
+    const bool listed = faceVertices.size() == 3 * faceCount && (faceCount <= kSmallSoupFaces || threads <= 1);
+    if (!listed || !triangleDualGraph(faceVertices, positions.size(), graph))
       graph = dualGraph(faceStart, faceVertices, positions.size(), threads);
     std::vector<uint8_t> weights(faceCount);
     FillLaterVector<glm::vec3> centroids(faceCount);
