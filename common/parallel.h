@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <atomic>
 #include <functional>
+#include <mutex>
 #include <type_traits>
 #include <vector>
 
@@ -24,10 +25,20 @@ namespace vgeo {
 // Runs fn() with at most `threads` threads (the caller's among them) for the parallel calls inside it;
 // no more than the machine has (oneTBB warns on stderr when asked for more, and results do not depend
 // on the count).
+// The arenas are made once for each size and kept for the run (never freed: they outlive every
+// caller): an arena made for each parallel loop cost tens of microseconds a loop, and a build runs
+// hundreds of loops, most of them short.
+inline tbb::task_arena& arenaOfSize(int concurrency) {
+  static std::mutex lock;
+  static std::vector<tbb::task_arena*> arenas;  // by size
+  const std::lock_guard<std::mutex> hold(lock);
+  if (arenas.size() <= size_t(concurrency)) arenas.resize(size_t(concurrency) + 1, nullptr);
+  if (!arenas[size_t(concurrency)]) arenas[size_t(concurrency)] = new tbb::task_arena(concurrency);
+  return *arenas[size_t(concurrency)];
+}
 template <class Fn>
 void withThreads(int threads, Fn&& fn) {
-  tbb::task_arena arena(std::clamp(threads, 1, std::max(tbb::info::default_concurrency(), 1)));
-  arena.execute(std::forward<Fn>(fn));
+  arenaOfSize(std::clamp(threads, 1, std::max(tbb::info::default_concurrency(), 1))).execute(std::forward<Fn>(fn));
 }
 
 // fn(i) for every i in [0, count), on up to `threads` threads; an exception thrown by fn stops the
