@@ -30,7 +30,8 @@ namespace vgeo {
 // hundreds of loops, most of them short.
 inline tbb::task_arena& arenaOfSize(int concurrency) {
   static std::mutex lock;
-  static std::vector<tbb::task_arena*> arenas;  // by size
+  // By size; the list too is never freed, so that the arenas stay reachable (no leak to report).
+  static std::vector<tbb::task_arena*>& arenas = *new std::vector<tbb::task_arena*>();
   const std::lock_guard<std::mutex> hold(lock);
   if (arenas.size() <= size_t(concurrency)) arenas.resize(size_t(concurrency) + 1, nullptr);
   if (!arenas[size_t(concurrency)]) arenas[size_t(concurrency)] = new tbb::task_arena(concurrency);
