@@ -61,9 +61,10 @@ bool triangleDualGraph(std::span<const uint32_t> corners, size_t vertexCount, Gr
   edgesAt.assign(vertexCount, kNone);
   nextEdge.resize(corners.size());
   partner.assign(corners.size(), kNone);
-  auto upper = [&](size_t c) { return std::max(corners[c], corners[c % 3 == 2 ? c - 2 : c + 1]); };
+  auto next = [&](size_t c) { return corners[c % 3 == 2 ? c - 2 : c + 1]; };  // the corner's edge's far end
+  auto upper = [&](size_t c) { return std::max(corners[c], next(c)); };
   for (size_t c = 0; c < corners.size(); c++) {
-    const uint32_t a = corners[c], b = corners[c % 3 == 2 ? c - 2 : c + 1];
+    const uint32_t a = corners[c], b = next(c);
     if (a == b) return false;
     const uint32_t low = std::min(a, b), high = std::max(a, b);
     uint32_t e = edgesAt[low];

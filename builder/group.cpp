@@ -243,6 +243,7 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
     }
     for (idx_t k = 0; k < count; k++) part[slots[k]] = partBase[p] + local[size_t(k)];
   };
+  // Inside the arena even for one piece: its bisections' sides run as tasks.
   if (threads > 1)
     withThreads(threads, [&] { parallelFor(pieces.partCount(), threads, partitionPiece); });
   else

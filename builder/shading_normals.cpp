@@ -33,8 +33,8 @@ constexpr int kSerialNormalThreads = 2;  // the lists below cost a 2-thread buil
 
 // Each vertex's faces' area vectors summed in face order, as one walk over the faces sums them. On
 // more threads, the vertices are cut into blocks, one or two a thread: every face is listed, in face
-// order, under each block its corners fall in (counted, then placed, a range of faces at a time), and each block then
-// walks its own list. A table of every vertex's faces, sorted, cost more than the sums.
+// order, under each block its corners fall in (counted, then placed, a range of faces at a time), and
+// each block then walks its own list. A table of every vertex's faces, sorted, cost more than the sums.
 std::vector<glm::vec3> faceSummedNormals(const PolygonMesh& mesh, int threads) {
   const size_t vertexCount = mesh.positions.size(), faceCount = mesh.faceCount();
   std::vector<glm::vec3> normals(vertexCount);
@@ -56,14 +56,10 @@ std::vector<glm::vec3> faceSummedNormals(const PolygonMesh& mesh, int threads) {
   // For each block, face f once if any of its corners is in it.
   auto forBlocksOf = [&](size_t f, auto&& visit) {
     const uint32_t* c = mesh.face(f);
-    size_t last = SIZE_MAX;
     for (uint32_t k = 0; k < mesh.faceSize(f); k++) {
-      const size_t b = blockOf(c[k]);
-      if (b == last) continue;  // corners of one face mostly share a block; a repeat is skipped below
-      last = b;
       bool earlier = false;
-      for (uint32_t j = 0; j < k && !earlier; j++) earlier = blockOf(c[j]) == b;
-      if (!earlier) visit(b);
+      for (uint32_t j = 0; j < k && !earlier; j++) earlier = blockOf(c[j]) == blockOf(c[k]);
+      if (!earlier) visit(blockOf(c[k]));
     }
   };
   const size_t ranges = parallelRangeCount(faceCount);

@@ -22,9 +22,6 @@
 
 namespace vgeo {
 
-// Runs fn() with at most `threads` threads (the caller's among them) for the parallel calls inside it;
-// no more than the machine has (oneTBB warns on stderr when asked for more, and results do not depend
-// on the count).
 // The arenas are made once for each size and kept for the run (never freed: they outlive every
 // caller): an arena made for each parallel loop cost tens of microseconds a loop, and a build runs
 // hundreds of loops, most of them short.
@@ -37,6 +34,9 @@ inline tbb::task_arena& arenaOfSize(int concurrency) {
   if (!arenas[size_t(concurrency)]) arenas[size_t(concurrency)] = new tbb::task_arena(concurrency);
   return *arenas[size_t(concurrency)];
 }
+// Runs fn() with at most `threads` threads (the caller's among them) for the parallel calls inside it;
+// no more than the machine has (oneTBB warns on stderr when asked for more, and results do not depend
+// on the count).
 template <class Fn>
 void withThreads(int threads, Fn&& fn) {
   arenaOfSize(std::clamp(threads, 1, std::max(tbb::info::default_concurrency(), 1))).execute(std::forward<Fn>(fn));
