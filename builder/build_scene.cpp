@@ -116,6 +116,7 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
       moveToLimit(leaves, leafNormals);
       patchErrors = patchChordErrors(leaves, patches, threads);
     }
+    const bool trianglesOnly = leaves.faceVertices.size() == 3 * leaves.faceCount();  // before any fan
     fanLargeFaces(leaves);
     stats.leafTriangles += leaves.triangleCount();
     subdividing.stop();
@@ -129,6 +130,7 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
     BuildOptions bo;
     bo.threads = options.threads;
     bo.leafFaceErrors = &patchErrors;
+    bo.leavesAreRepairedFaces = trianglesOnly;
     bo.times = &stats.stages;
     if (options.progress)
       bo.progress = [&, m](double f, const char* stage) {

@@ -392,6 +392,9 @@ struct BuildOptions {
   const std::vector<PatchErrors>* leafFaceErrors = nullptr;
   // The leaf mesh's wedges; clusters list them only where some vertex has two (a hard edge).
   const ShadingNormals* shading = nullptr;
+  // Every leaf triangle is a face that repair checked, none split along a diagonal: repair left each
+  // directed edge on one face at most, so no leaf triangles can fold onto each other.
+  bool leavesAreRepairedFaces = false;
   std::function<void(double fraction, const char* stage)> progress;
   StageTimes* times = nullptr;  // where the DAG's steps add their seconds (leaves, grouping, ...)
 };
