@@ -12,35 +12,44 @@
 namespace vgeo {
 
 std::vector<uint64_t> edgesUsedOnce(std::span<const uint32_t> indices) {
-  // Counted in an open-addressing table, kept by each thread, of at least one slot a corner (an edge
-  // has two corners on a closed surface: the table is about half full): a cluster's or a group's few
-  // thousand edges stay in cache, where a sort of them was most of the cost.
+  // Counted in an open-addressing table kept by each thread, at most a quarter full (a sort of a
+  // cluster's few hundred edges was most of the cost): so sparse that a probe nearly always ends at
+  // its first slot, and a corner's edge is counted without a branch on whether it was new. Only the
+  // slots taken are emptied again.
   constexpr uint64_t kEmpty = ~uint64_t(0);
   const size_t corners = indices.size() / 3 * 3;
-  int bits = 6;
-  while ((size_t(1) << bits) < corners) bits++;
+  int bits = 8;
+  while ((size_t(1) << bits) < 4 * corners) bits++;
   const size_t mask = (size_t(1) << bits) - 1;
-  thread_local std::vector<uint64_t> keys;
-  thread_local std::vector<uint32_t> uses, taken;  // taken: the slots used, in order
-  keys.assign(mask + 1, kEmpty);
-  uses.resize(mask + 1);
-  taken.clear();
+  struct Table {
+    std::vector<uint64_t> keys;
+    std::vector<uint32_t> uses, taken;  // taken: the slots used, in order
+  };
+  thread_local Table table;
+  if (table.keys.size() <= mask) table.keys.assign(mask + 1, kEmpty), table.uses.assign(mask + 1, 0);
+  table.taken.resize(corners);
+  uint64_t* keys = table.keys.data();
+  uint32_t *uses = table.uses.data(), *taken = table.taken.data();
+  size_t takenCount = 0;
   for (size_t t = 0; t < corners; t += 3)
     for (size_t k = 0; k < 3; k++) {
       const uint32_t a = indices[t + k], b = indices[t + (k + 1) % 3];
       const uint64_t key = uint64_t(std::min(a, b)) << 32 | std::max(a, b);
       size_t i = size_t((key * 0x9e3779b97f4a7c15ull) >> (64 - bits));
       while (keys[i] != kEmpty && keys[i] != key) i = (i + 1) & mask;
-      if (keys[i] == kEmpty) {
-        keys[i] = key;
-        uses[i] = 0;
-        taken.push_back(uint32_t(i));
-      }
+      const bool fresh = keys[i] == kEmpty;
+      keys[i] = key;
       uses[i]++;
+      taken[takenCount] = uint32_t(i);
+      takenCount += fresh;
     }
   std::vector<uint64_t> once;
-  for (const uint32_t i : taken)
+  for (size_t j = 0; j < takenCount; j++) {
+    const uint32_t i = taken[j];
     if (uses[i] == 1) once.push_back(keys[i]);
+    keys[i] = kEmpty;
+    uses[i] = 0;
+  }
   std::sort(once.begin(), once.end());
   return once;
 }
