@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "../common/parallel.h"
 #include "layout.h"
 
 namespace vgeo {
@@ -42,15 +43,22 @@ void predictSize(const PolygonMesh& mesh, size_t boundaryEdges, int levels, doub
   triangles = levels > 0 ? 2.0 * f : double(mesh.triangleCount());
 }
 
-// Six times the signed volume enclosed by the faces (fanned from their first corner).
-double signedVolume(const PolygonMesh& mesh) {
+// Six times the signed volume enclosed by the faces (fanned from their first corner), summed a fixed
+// range of faces at a time and the ranges in order: the same sum on any number of threads.
+double signedVolume(const PolygonMesh& mesh, int threads) {
+  std::vector<double> rangeVolume(parallelRangeCount(mesh.faceCount()), 0.0);
+  parallelForRanges(mesh.faceCount(), threads, [&](size_t begin, size_t end) {
+    double volume = 0.0;
+    for (size_t f = begin; f < end; f++) {
+      const uint32_t* c = mesh.face(f);
+      glm::dvec3 a(mesh.positions[c[0]]);
+      for (uint32_t k = 1; k + 1 < mesh.faceSize(f); k++)
+        volume += glm::dot(a, glm::cross(glm::dvec3(mesh.positions[c[k]]), glm::dvec3(mesh.positions[c[k + 1]])));
+    }
+    rangeVolume[begin / kParallelRange] = volume;
+  });
   double volume = 0.0;
-  for (size_t f = 0; f < mesh.faceCount(); f++) {
-    const uint32_t* c = mesh.face(f);
-    glm::dvec3 a(mesh.positions[c[0]]);
-    for (uint32_t k = 1; k + 1 < mesh.faceSize(f); k++)
-      volume += glm::dot(a, glm::cross(glm::dvec3(mesh.positions[c[k]]), glm::dvec3(mesh.positions[c[k + 1]])));
-  }
+  for (const double v : rangeVolume) volume += v;
   return volume;
 }
 
@@ -86,7 +94,7 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
     // Closed: no boundary edge, no vertex split by repair (so positions identify vertices), and facing
     // out (positive signed volume): the renderer drops back faces of closed instances, which would drop
     // the visible side of a mesh that is inside out.
-    closed[m] = report.boundaryEdges == 0 && report.splitVertices == 0 && signedVolume(mesh) > 0.0;
+    closed[m] = report.boundaryEdges == 0 && report.splitVertices == 0 && signedVolume(mesh, options.threads) > 0.0;
     double vertices = 0, triangles = 0;
     predictSize(mesh, report.boundaryEdges, options.subdivisionLevels, vertices, triangles);
     // Cluster triangles over all levels (~2x the leaves) and vertices must stay addressable by uint32.
