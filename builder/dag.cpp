@@ -21,10 +21,12 @@ uint64_t triangleCount(const std::vector<BuildCluster>& clusters, const std::vec
   return n;
 }
 
+// The sphere of a cluster's distinct vertices, in ascending order: found by hashing (localIds), so that
+// the sort is of its vertices rather than of all its corners (three times as many, most repeated).
 glm::vec4 sphereOfClusterVertices(const BuildCluster& c, const std::vector<glm::vec3>& positions) {
-  std::vector<uint32_t> v(c.indices);
+  std::vector<uint32_t> v, local;
+  localIds(c.indices, v, local);
   std::sort(v.begin(), v.end());
-  v.erase(std::unique(v.begin(), v.end()), v.end());
   return sphereOfPoints(positions, v.data(), v.size());
 }
 
