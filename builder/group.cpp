@@ -136,52 +136,58 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
     std::vector<uint64_t>().swap(clusterBorders[slot]);
   });
   parallelSort(borders, threads);
-  // Cluster pairs sharing an edge, counted; an edge on one cluster's border only is open. Kept a
-  // range of the sorted borders at a time, joined in order (the open edges stay ascending).
-  const size_t ranges = parallelRangeCount(borders.size());
-  std::vector<std::vector<uint64_t>> pairsOf(ranges), openOf(ranges);
-  parallelForRuns(
-      borders.size(), threads, [&](size_t a, size_t b) { return borders[a].first == borders[b].first; },
-      [&](size_t i, size_t j, size_t range) {
-        if (j - i == 1) openOf[range].push_back(borders[i].first);
-        for (size_t a = i; a < j; a++)
-          for (size_t b = a + 1; b < j; b++)
-            if (borders[a].second != borders[b].second)
-              pairsOf[range].push_back(uint64_t(std::min(borders[a].second, borders[b].second)) << 32 |
-                                       std::max(borders[a].second, borders[b].second));
-      });
-  std::vector<uint64_t> pairs;
-  if (openEdges) openEdges->clear();
-  for (size_t r = 0; r < ranges; r++) {
-    pairs.insert(pairs.end(), pairsOf[r].begin(), pairsOf[r].end());
-    if (openEdges) openEdges->insert(openEdges->end(), openOf[r].begin(), openOf[r].end());
-  }
-  parallelSort(pairs, threads);
-  // Each cluster's neighbours (slot, edges shared) in ascending order of slot, as a graph: the runs of
-  // equal pairs counted into both ends, then placed, then each node's list sorted.
-  auto pairRuns = [&](auto&& fn) {
-    parallelForRuns(
-        pairs.size(), threads, [&](size_t i, size_t j) { return pairs[i] == pairs[j]; },
-        [&](size_t i, size_t j) { fn(uint32_t(pairs[i] >> 32), uint32_t(pairs[i]), int(j - i)); });
+  // An edge on one cluster's border only is open: kept a range of the sorted borders at a time,
+  // joined in order (the open edges stay ascending). Each edge two clusters share gives each of them
+  // an entry naming the other, counted for each cluster and then placed.
+  auto sameEdge = [&](size_t a, size_t b) { return borders[a].first == borders[b].first; };
+  auto clusterPairs = [&](size_t i, size_t j, auto&& fn) {  // fn(a, b) for the clusters of edge run [i, j)
+    for (size_t a = i; a < j; a++)
+      for (size_t b = a + 1; b < j; b++)
+        if (borders[a].second != borders[b].second) fn(borders[a].second, borders[b].second);
   };
+  std::vector<std::vector<uint64_t>> openOf(parallelRangeCount(borders.size()));
+  std::vector<uint32_t> entryStart(n + 1, 0);
+  parallelForRuns(borders.size(), threads, sameEdge, [&](size_t i, size_t j, size_t range) {
+    if (j - i == 1) openOf[range].push_back(borders[i].first);
+    clusterPairs(i, j, [&](uint32_t a, uint32_t b) {
+      __atomic_fetch_add(&entryStart[a + 1], 1u, __ATOMIC_RELAXED);
+      __atomic_fetch_add(&entryStart[b + 1], 1u, __ATOMIC_RELAXED);
+    });
+  });
+  if (openEdges) {
+    openEdges->clear();
+    for (const std::vector<uint64_t>& open : openOf) openEdges->insert(openEdges->end(), open.begin(), open.end());
+  }
+  for (size_t i = 0; i < n; i++) entryStart[i + 1] += entryStart[i];
+  std::vector<uint32_t> entries(entryStart[n]);
+  {
+    std::vector<uint32_t> filled(entryStart.begin(), entryStart.end() - 1);
+    parallelForRuns(borders.size(), threads, sameEdge, [&](size_t i, size_t j) {
+      clusterPairs(i, j, [&](uint32_t a, uint32_t b) {
+        entries[__atomic_fetch_add(&filled[a], 1u, __ATOMIC_RELAXED)] = b;
+        entries[__atomic_fetch_add(&filled[b], 1u, __ATOMIC_RELAXED)] = a;
+      });
+    });
+  }
+  std::vector<std::pair<uint64_t, uint32_t>>().swap(borders);
+  // Each cluster's neighbours (slot, edges shared) in ascending order of slot, as a graph: its entries
+  // sorted, and a run of equal ones one neighbour (no sort of every pair of the level).
   std::vector<uint32_t> neighbourStart(n + 1, 0);
-  pairRuns([&](uint32_t a, uint32_t b, int) {
-    __atomic_fetch_add(&neighbourStart[a + 1], 1u, __ATOMIC_RELAXED);
-    __atomic_fetch_add(&neighbourStart[b + 1], 1u, __ATOMIC_RELAXED);
+  parallelFor(n, threads, [&](size_t i) {
+    std::sort(entries.begin() + entryStart[i], entries.begin() + entryStart[i + 1]);
+    for (uint32_t e = entryStart[i]; e < entryStart[i + 1]; e++)
+      neighbourStart[i + 1] += e == entryStart[i] || entries[e] != entries[e - 1];
   });
   for (size_t i = 0; i < n; i++) neighbourStart[i + 1] += neighbourStart[i];
   std::vector<std::pair<uint32_t, int>> neighbourList(neighbourStart[n]);
-  {
-    std::vector<uint32_t> filled(neighbourStart.begin(), neighbourStart.end() - 1);
-    pairRuns([&](uint32_t a, uint32_t b, int w) {
-      neighbourList[__atomic_fetch_add(&filled[a], 1u, __ATOMIC_RELAXED)] = {b, w};
-      neighbourList[__atomic_fetch_add(&filled[b], 1u, __ATOMIC_RELAXED)] = {a, w};
-    });
-  }
-  std::vector<uint64_t>().swap(pairs);
   parallelFor(n, threads, [&](size_t i) {
-    std::sort(neighbourList.begin() + neighbourStart[i], neighbourList.begin() + neighbourStart[i + 1]);
+    uint32_t at = neighbourStart[i];
+    for (uint32_t e = entryStart[i], run = e; e < entryStart[i + 1]; e = run) {
+      while (run < entryStart[i + 1] && entries[run] == entries[e]) run++;
+      neighbourList[at++] = {entries[e], int(run - e)};
+    }
   });
+  std::vector<uint32_t>().swap(entries);
   auto neighbours = [&](size_t i) {
     return std::span<const std::pair<uint32_t, int>>(neighbourList.data() + neighbourStart[i],
                                                      neighbourStart[i + 1] - neighbourStart[i]);
