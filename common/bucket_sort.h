@@ -75,19 +75,28 @@ FillLaterVector<T> bucketSorted(size_t sources, int keyBits, int bucketBits, int
         buckets, threads, [&](size_t b) { return next[b]; }, [](size_t) {},
         [&](size_t b, size_t at, size_t) { bucketStart[b] = next[b] = at; });
   } else {
-    // Bucket b's items go in chunk order; the counts are read a chunk's row at a time (a walk down the
-    // columns missed the cache on every step).
-    std::fill(bucketStart.begin(), bucketStart.end(), size_t(0));
-    for (size_t c = 0; c < chunks; c++)
-      for (size_t b = 0; b < buckets; b++) bucketStart[b + 1] += next[c * buckets + b];
+    // Bucket b's items go in chunk order. The counts (a row a chunk) are read a block of buckets at a
+    // time, the block's part of each row in turn (a walk down one bucket's column missed the cache on
+    // every step), the blocks on the threads: with many threads there are many rows.
+    constexpr size_t kBlock = 2048;
+    const size_t blocks = (buckets + kBlock - 1) / kBlock;
+    auto blockEnd = [&](size_t k) { return std::min(buckets, (k + 1) * kBlock); };
+    bucketStart[0] = 0;
+    parallelFor(blocks, threads, [&](size_t k) {
+      std::fill(bucketStart.begin() + long(k * kBlock) + 1, bucketStart.begin() + long(blockEnd(k)) + 1, size_t(0));
+      for (size_t c = 0; c < chunks; c++)
+        for (size_t b = k * kBlock; b < blockEnd(k); b++) bucketStart[b + 1] += next[c * buckets + b];
+    });
     for (size_t b = 0; b < buckets; b++) bucketStart[b + 1] += bucketStart[b];
-    std::vector<size_t> at(bucketStart.begin(), bucketStart.end() - 1);
-    for (size_t c = 0; c < chunks; c++)
-      for (size_t b = 0; b < buckets; b++) {
-        const size_t n = next[c * buckets + b];
-        next[c * buckets + b] = at[b];
-        at[b] += n;
-      }
+    parallelFor(blocks, threads, [&](size_t k) {
+      std::vector<size_t> at(bucketStart.begin() + long(k * kBlock), bucketStart.begin() + long(blockEnd(k)));
+      for (size_t c = 0; c < chunks; c++)
+        for (size_t b = k * kBlock; b < blockEnd(k); b++) {
+          const size_t n = next[c * buckets + b];
+          next[c * buckets + b] = at[b - k * kBlock];
+          at[b - k * kBlock] += n;
+        }
+    });
   }
   FillLaterVector<T> sorted(bucketStart[buckets]);  // every slot written by the placing pass
   forSources([&](size_t c, size_t s) {
