@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <span>
 
+#include "../common/bucket_sort.h"
 #include "../common/parallel.h"
 
 #include "builder.h"
@@ -124,52 +125,68 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
                                      const std::vector<glm::vec3>& positions, uint32_t targetSize, int threads,
                                      std::vector<uint64_t>* openEdges) {
   const size_t n = active.size();
-  // Border edges of each cluster (edges used once inside it), tagged with the cluster's slot.
+  // Border edges of each cluster (edges used once inside it), listed cluster after cluster: entry `at`
+  // of cluster `slot` is at borderStart[slot] + its place in the cluster's list.
   std::vector<std::vector<uint64_t>> clusterBorders(n);
   parallelFor(n, threads, [&](size_t slot) { clusterBorders[slot] = edgesUsedOnce(clusters[active[slot]].indices); });
-  std::vector<size_t> borderStart(n + 1, 0);
-  for (size_t slot = 0; slot < n; slot++) borderStart[slot + 1] = borderStart[slot] + clusterBorders[slot].size();
-  std::vector<std::pair<uint64_t, uint32_t>> borders(borderStart[n]);
-  parallelFor(n, threads, [&](size_t slot) {
-    for (size_t k = 0; k < clusterBorders[slot].size(); k++)
-      borders[borderStart[slot] + k] = {clusterBorders[slot][k], uint32_t(slot)};
-    std::vector<uint64_t>().swap(clusterBorders[slot]);
-  });
-  parallelSort(borders, threads);
-  // An edge on one cluster's border only is open: kept a range of the sorted borders at a time,
-  // joined in order (the open edges stay ascending). Each edge two clusters share gives each of them
-  // an entry naming the other, counted for each cluster and then placed.
-  auto sameEdge = [&](size_t a, size_t b) { return borders[a].first == borders[b].first; };
-  auto clusterPairs = [&](size_t i, size_t j, auto&& fn) {  // fn(a, b) for the clusters of edge run [i, j)
-    for (size_t a = i; a < j; a++)
-      for (size_t b = a + 1; b < j; b++)
-        if (borders[a].second != borders[b].second) fn(borders[a].second, borders[b].second);
+  std::vector<uint32_t> borderStart(n + 1, 0);
+  for (size_t slot = 0; slot < n; slot++)
+    borderStart[slot + 1] = borderStart[slot] + uint32_t(clusterBorders[slot].size());
+  // The same entries by edge (bucketed by its lower vertex), then cluster: an edge's clusters are a run.
+  struct BorderEdge {
+    uint64_t edge;
+    uint32_t slot, at;
+    bool operator<(const BorderEdge& o) const { return edge != o.edge ? edge < o.edge : slot < o.slot; }
   };
+  const int vertexBits = bitsFor(std::max<size_t>(positions.size(), 1));
+  FillLaterVector<BorderEdge> borders = bucketSorted<BorderEdge>(
+      n, vertexBits, std::min(vertexBits, kChunkedBucketBits), threads,
+      [&](size_t slot, auto&& emit) {
+        for (uint32_t k = 0; k < clusterBorders[slot].size(); k++) {
+          const uint64_t edge = clusterBorders[slot][k];
+          emit(edge >> 32, BorderEdge{edge, uint32_t(slot), borderStart[slot] + k});
+        }
+      },
+      std::less<BorderEdge>());
+  std::vector<std::vector<uint64_t>>().swap(clusterBorders);
+  // An edge on one cluster's border only is open: kept a range of the sorted borders at a time, joined
+  // in order (the open edges stay ascending). An edge k clusters share gives each of them k - 1
+  // neighbour entries, placed where its border entry's are: each cluster's entries follow its border
+  // entries' order, so they are counted and placed without a shared counter.
+  auto sameEdge = [&](size_t a, size_t b) { return borders[a].edge == borders[b].edge; };
   std::vector<std::vector<uint64_t>> openOf(parallelRangeCount(borders.size()));
-  std::vector<uint32_t> entryStart(n + 1, 0);
+  FillLaterVector<uint32_t> entryAt(borderStart[n]);  // the count of each border entry's, then where they go
   parallelForRuns(borders.size(), threads, sameEdge, [&](size_t i, size_t j, size_t range) {
-    if (j - i == 1) openOf[range].push_back(borders[i].first);
-    clusterPairs(i, j, [&](uint32_t a, uint32_t b) {
-      __atomic_fetch_add(&entryStart[a + 1], 1u, __ATOMIC_RELAXED);
-      __atomic_fetch_add(&entryStart[b + 1], 1u, __ATOMIC_RELAXED);
-    });
+    if (j - i == 1) openOf[range].push_back(borders[i].edge);
+    for (size_t a = i; a < j; a++) entryAt[borders[a].at] = uint32_t(j - i - 1);
   });
   if (openEdges) {
     openEdges->clear();
     for (const std::vector<uint64_t>& open : openOf) openEdges->insert(openEdges->end(), open.begin(), open.end());
   }
+  std::vector<uint32_t> entryStart(n + 1, 0);
+  parallelFor(n, threads, [&](size_t slot) {
+    for (uint32_t k = borderStart[slot]; k < borderStart[slot + 1]; k++) entryStart[slot + 1] += entryAt[k];
+  });
   for (size_t i = 0; i < n; i++) entryStart[i + 1] += entryStart[i];
+  parallelFor(n, threads, [&](size_t slot) {
+    uint32_t next = entryStart[slot];
+    for (uint32_t k = borderStart[slot]; k < borderStart[slot + 1]; k++) {
+      const uint32_t count = entryAt[k];
+      entryAt[k] = next;
+      next += count;
+    }
+  });
   std::vector<uint32_t> entries(entryStart[n]);
-  {
-    std::vector<uint32_t> filled(entryStart.begin(), entryStart.end() - 1);
-    parallelForRuns(borders.size(), threads, sameEdge, [&](size_t i, size_t j) {
-      clusterPairs(i, j, [&](uint32_t a, uint32_t b) {
-        entries[__atomic_fetch_add(&filled[a], 1u, __ATOMIC_RELAXED)] = b;
-        entries[__atomic_fetch_add(&filled[b], 1u, __ATOMIC_RELAXED)] = a;
-      });
-    });
-  }
-  std::vector<std::pair<uint64_t, uint32_t>>().swap(borders);
+  parallelForRuns(borders.size(), threads, sameEdge, [&](size_t i, size_t j) {
+    for (size_t a = i; a < j; a++) {
+      uint32_t at = entryAt[borders[a].at];
+      for (size_t b = i; b < j; b++)
+        if (b != a) entries[at++] = borders[b].slot;
+    }
+  });
+  FillLaterVector<BorderEdge>().swap(borders);
+  FillLaterVector<uint32_t>().swap(entryAt);
   // Each cluster's neighbours (slot, edges shared) in ascending order of slot, as a graph: its entries
   // sorted, and a run of equal ones one neighbour (no sort of every pair of the level).
   std::vector<uint32_t> neighbourStart(n + 1, 0);
