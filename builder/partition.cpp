@@ -21,7 +21,7 @@ namespace {
 constexpr uint32_t kTaken = 0x80000000u;
 constexpr uint64_t kMedianSplitParts = 64;   // sets of more parts are cut at the weighted median
 constexpr uint32_t kParallelNodes = 4096;    // smaller sets are not worth a task of their own
-constexpr uint32_t kParallelSet = 1u << 17;  // larger sets' passes run on the threads too
+constexpr uint32_t kParallelSet = 1u << 16;  // larger sets' passes run on the threads too
 constexpr uint32_t kLocalNodes = 16384;      // a set this small is copied out and split in cache
 
 // Weight and bounds of a set of nodes.
