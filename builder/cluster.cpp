@@ -92,61 +92,6 @@ bool triangleDualGraph(std::span<const uint32_t> corners, size_t vertexCount, Gr
   return true;
 }
 
-// triangleDualGraph's graph of a large soup, on the threads: every corner's edge bucketed by its lower
-// vertex (a bucket a vertex) and sorted by its upper one, so that an edge's two triangles are a run of
-// two; then each triangle's partners in corner order. Returns false where triangleDualGraph does.
-bool bucketedTriangleDualGraph(std::span<const uint32_t> corners, size_t vertexCount, int threads, Graph& g) {
-  const size_t faceCount = corners.size() / 3;
-  constexpr uint32_t kNone = UINT32_MAX;
-  struct HalfEdge {
-    uint32_t upper, corner;
-    bool operator<(const HalfEdge& o) const { return upper != o.upper ? upper < o.upper : corner < o.corner; }
-  };
-  bool degenerate = false;
-  const int vertexBits = bitsFor(std::max<size_t>(vertexCount, 1));
-  FillLaterVector<size_t> starts;
-  const FillLaterVector<HalfEdge> edges = bucketSorted<HalfEdge>(
-      faceCount, vertexBits, vertexBits, threads,
-      [&](size_t f, auto&& emit) {
-        for (uint32_t k = 0; k < 3; k++) {
-          const uint32_t a = corners[3 * f + k], b = corners[3 * f + (k + 1) % 3];
-          if (a == b) __atomic_store_n(&degenerate, true, __ATOMIC_RELAXED);
-          emit(std::min(a, b), HalfEdge{std::max(a, b), uint32_t(3 * f + k)});
-        }
-      },
-      std::less<HalfEdge>(), &starts);
-  if (degenerate) return false;
-  FillLaterVector<uint32_t> partner = parallelFilled(corners.size(), kNone, threads);
-  bool crowded = false;  // an edge with a third triangle
-  parallelForRanges(vertexCount, threads, [&](size_t begin, size_t end) {
-    for (size_t v = begin; v < end; v++)
-      for (size_t i = starts[v], j = i; i < starts[v + 1]; i = j) {
-        while (j < starts[v + 1] && edges[j].upper == edges[i].upper) j++;
-        if (j - i == 2) {
-          partner[edges[i].corner] = edges[i + 1].corner;
-          partner[edges[i + 1].corner] = edges[i].corner;
-        } else if (j - i > 2) {
-          __atomic_store_n(&crowded, true, __ATOMIC_RELAXED);
-        }
-      }
-  });
-  if (crowded) return false;
-  g.offsets.resize(faceCount + 1);
-  g.offsets[0] = 0;
-  parallelPrefix(
-      faceCount, threads,
-      [&](size_t f) {
-        return (partner[3 * f] != kNone) + (partner[3 * f + 1] != kNone) + (partner[3 * f + 2] != kNone);
-      },
-      [&](size_t total) { g.adjacency.resize(total); },
-      [&](size_t f, size_t at, size_t count) {
-        g.offsets[f + 1] = uint32_t(at + count);
-        for (size_t c = 3 * f; c < 3 * f + 3; c++)
-          if (partner[c] != kNone) g.adjacency[at++] = partner[c] / 3;
-      });
-  return true;
-}
-
 // Faces sharing an edge are neighbours (all of them, should an edge have more than two faces). Found
 // through each vertex's faces rather than by sorting edges: linear, ~3x faster on large meshes, and
 // every pass parallel over faces.
@@ -250,9 +195,8 @@ std::vector<BuildCluster> clustersFromFaces(std::span<const uint32_t> faceStart,
   Partition parts;
   {  // the graph and its node data are freed before the clusters are made
     Graph graph;
-    const bool soup = faceVertices.size() == 3 * faceCount, listed = faceCount <= kSmallSoupFaces || threads <= 1;
-    if (!soup || !(listed ? triangleDualGraph(faceVertices, positions.size(), graph)
-                          : bucketedTriangleDualGraph(faceVertices, positions.size(), threads, graph)))
+    const bool listed = faceVertices.size() == 3 * faceCount && (faceCount <= kSmallSoupFaces || threads <= 1);
+    if (!listed || !triangleDualGraph(faceVertices, positions.size(), graph))
       graph = dualGraph(faceStart, faceVertices, positions.size(), threads);
     std::vector<uint8_t> weights(faceCount);
     FillLaterVector<glm::vec3> centroids(faceCount);
