@@ -138,8 +138,8 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
     uint32_t slot, at;
     bool operator<(const BorderEdge& o) const { return edge != o.edge ? edge < o.edge : slot < o.slot; }
   };
-  // 4,096 buckets: the chunks' counts (four chunks a thread) stay at 2 MB on 16 threads, where 16,384
-  // made them the build's peak on Loop x2; a bucket of a first round then sorts about 70 entries.
+  // 4,096 buckets: each chunk (four a thread) counts into a row of them, which with more buckets set
+  // the build's peak on many threads; a bucket then sorts tens of entries.
   constexpr int kBorderBucketBits = 12;
   const int vertexBits = bitsFor(std::max<size_t>(positions.size(), 1));
   FillLaterVector<BorderEdge> borders = bucketSorted<BorderEdge>(

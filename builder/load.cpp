@@ -24,7 +24,7 @@ FillLaterVector<char> readWholeFile(const std::string& path, int threads) {
   struct stat status = {};
   if (::fstat(fd, &status) == 0 && S_ISREG(status.st_mode) && status.st_size > 0) {
     const size_t size = size_t(status.st_size);
-    constexpr size_t kPiece = size_t(2) << 20;  // a 33 MB file on up to 17 threads
+    constexpr size_t kPiece = size_t(2) << 20;  // small enough that a file of tens of MB uses every thread
     FillLaterVector<char> data(size);
     int error = 0;
     bool shorter = false;
