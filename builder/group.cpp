@@ -167,20 +167,14 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
     openEdges->clear();
     for (const std::vector<uint64_t>& open : openOf) openEdges->insert(openEdges->end(), open.begin(), open.end());
   }
-  std::vector<uint32_t> entryStart(n + 1, 0);
-  parallelFor(n, threads, [&](size_t slot) {
-    for (uint32_t k = borderStart[slot]; k < borderStart[slot + 1]; k++) entryStart[slot + 1] += entryAt[k];
-  });
-  for (size_t i = 0; i < n; i++) entryStart[i + 1] += entryStart[i];
-  parallelFor(n, threads, [&](size_t slot) {
-    uint32_t next = entryStart[slot];
-    for (uint32_t k = borderStart[slot]; k < borderStart[slot + 1]; k++) {
-      const uint32_t count = entryAt[k];
-      entryAt[k] = next;
-      next += count;
-    }
-  });
-  std::vector<uint32_t> entries(entryStart[n]);
+  std::vector<uint32_t> entries;
+  parallelPrefix(
+      borderStart[n], threads, [&](size_t k) { return entryAt[k]; }, [&](size_t total) { entries.resize(total); },
+      [&](size_t k, size_t at, size_t) { entryAt[k] = uint32_t(at); });
+  // A cluster's entries start at its first border entry's (where it has none, at the next cluster's).
+  std::vector<uint32_t> entryStart(n + 1, uint32_t(entries.size()));
+  for (size_t slot = n; slot-- > 0;)
+    entryStart[slot] = borderStart[slot] < borderStart[slot + 1] ? entryAt[borderStart[slot]] : entryStart[slot + 1];
   parallelForRuns(borders.size(), threads, sameEdge, [&](size_t i, size_t j) {
     for (size_t a = i; a < j; a++) {
       uint32_t at = entryAt[borders[a].at];
