@@ -11,6 +11,7 @@
 // A set of up to kLocalNodes nodes is copied out with the edges inside it and split on the copy: the
 // recursion below it then works in cache instead of gathering from arrays over the whole graph.
 #include <algorithm>
+#include <cstring>
 
 #include "../common/parallel.h"
 #include "builder.h"
@@ -33,6 +34,57 @@ struct SetExtent {
     lower = glm::min(lower, o.lower);
     upper = glm::max(upper, o.upper);
   }
+};
+
+// The nodes waiting to join side A, nearest first, as a 4-ary min-heap of (distance, id) packed into
+// one integer (a distance is never negative, so its bits order as the float does): a node's id breaks
+// ties, so the order is total and the nodes come out as from any other priority queue.
+class Frontier {
+ public:
+  bool empty() const { return items_.empty(); }
+  void push(float distance, uint32_t id, uint32_t node) {
+    uint32_t bits;
+    std::memcpy(&bits, &distance, sizeof bits);
+    const Item item{uint64_t(bits) << 32 | id, node};
+    size_t i = items_.size();
+    items_.push_back(item);
+    while (i > 0 && item.key < items_[(i - 1) / 4].key) {
+      items_[i] = items_[(i - 1) / 4];
+      i = (i - 1) / 4;
+    }
+    items_[i] = item;
+  }
+  uint32_t pop() {
+    const uint32_t node = items_[0].node;
+    const Item last = items_.back();
+    items_.pop_back();
+    const size_t n = items_.size();
+    if (n == 0) return node;
+    size_t i = 0;
+    for (;;) {
+      const size_t first = 4 * i + 1;
+      if (first >= n) break;
+      size_t best = first;
+      for (size_t c = first + 1; c < std::min(first + 4, n); c++)
+        if (items_[c].key < items_[best].key) best = c;
+      if (!(items_[best].key < last.key)) break;
+      items_[i] = items_[best];
+      i = best;
+    }
+    items_[i] = last;
+    return node;
+  }
+  template <class Fn>
+  void forEach(Fn&& fn) const {
+    for (const Item& item : items_) fn(item.node);
+  }
+
+ private:
+  struct Item {
+    uint64_t key;
+    uint32_t node;
+  };
+  std::vector<Item> items_;
 };
 
 struct Bisector {
@@ -198,10 +250,7 @@ struct Bisector {
     size_t nextSeed = 0;
     uint64_t wA = 0;
     // Frontier ordered by distance to the seed: regions grow round, not in the diamonds of BFS.
-    std::vector<std::pair<float, uint32_t>> frontier;
-    auto byDistance = [&](const std::pair<float, uint32_t>& a, const std::pair<float, uint32_t>& b) {
-      return a.first != b.first ? a.first > b.first : id(a.second) > id(b.second);
-    };
+    Frontier frontier;
     glm::vec3 origin(0.0f);
     auto take = [&](uint32_t node) {
       store(node, taken);
@@ -211,8 +260,7 @@ struct Bisector {
         uint32_t next = graph.adjacency[e];
         if (load(next) == inSet) {  // each node enters the frontier once: its distance never changes
           store(next, queued);
-          frontier.push_back({glm::distance(origin, positions[next]), next});
-          std::push_heap(frontier.begin(), frontier.end(), byDistance);
+          frontier.push(glm::distance(origin, positions[next]), id(next), next);
         }
       }
     };
@@ -234,16 +282,14 @@ struct Bisector {
         take(seeds[nextSeed]);
         continue;
       }
-      std::pop_heap(frontier.begin(), frontier.end(), byDistance);
-      uint32_t node = frontier.back().second;
-      frontier.pop_back();
+      const uint32_t node = frontier.pop();
       if (wA + weights[node] <= maxA)
         take(node);
       else
         store(node, inSet);
     }
-    for (auto& f : frontier) store(f.second, inSet);  // left in the frontier: back to side B
-    if (sideA.size() == hi - lo) {                    // never take everything
+    frontier.forEach([&](uint32_t node) { store(node, inSet); });  // left in the frontier: back to side B
+    if (sideA.size() == hi - lo) {                                 // never take everything
       store(sideA.back(), inSet);
       sideA.pop_back();
     }
