@@ -130,6 +130,9 @@ SurfaceTopology surfaceTopology(const std::vector<uint32_t>& indices);
 // The edges (min << 32 | max, ascending) that one triangle of `indices` alone has: a cluster's or a
 // group's border and open boundary.
 std::vector<uint64_t> edgesUsedOnce(std::span<const uint32_t> indices);
+// The same for vertex ids below `vertices` (a group's local ids): bucketed by lower vertex instead of
+// hashed, so that a group's thousands of edges are counted in cache.
+std::vector<uint64_t> edgesUsedOnceDense(std::span<const uint32_t> indices, uint32_t vertices);
 
 // ---- shading_normals.cpp ----------------------------------------------------------------------------
 // A vertex's corners grouped by shading normal: wedge w sits at vertex wedgeVertex[w] with normal

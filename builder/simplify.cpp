@@ -91,64 +91,71 @@ struct Candidate {
 };
 
 // The vertices with a candidate, cheapest first (then by vertex id), one entry each: a vertex's entry
-// is moved in place when its candidate changes, so no stale entries pile up and are popped.
+// is moved in place when its candidate changes, so no stale entries pile up and are popped. An entry
+// holds its cost, so the sifts compare without a load from elsewhere.
 class CandidateHeap {
  public:
-  explicit CandidateHeap(size_t vertices) : cost_(vertices), at_(vertices, kAbsent) {}
+  explicit CandidateHeap(size_t vertices) : at_(vertices, kAbsent) {}
   bool empty() const { return heap_.empty(); }
-  uint32_t top() const { return heap_[0]; }
-  double cost(uint32_t v) const { return cost_[v]; }
+  uint32_t top() const { return heap_[0].vertex; }
+  double topCost() const { return heap_[0].cost; }
   // Enters or moves v with this cost.
   void set(uint32_t v, double cost) {
-    cost_[v] = cost;
     if (at_[v] == kAbsent) {
       at_[v] = uint32_t(heap_.size());
-      heap_.push_back(v);
+      heap_.push_back({cost, v});
     }
+    heap_[at_[v]].cost = cost;
     siftDown(siftUp(at_[v]));
   }
   void remove(uint32_t v) {
     const uint32_t i = at_[v];
     if (i == kAbsent) return;
     at_[v] = kAbsent;
-    const uint32_t last = heap_.back();
+    const Entry last = heap_.back();
     heap_.pop_back();
     if (i == heap_.size()) return;
-    heap_[i] = last;
-    at_[last] = i;
+    place(i, last);
     siftDown(siftUp(i));
   }
 
  private:
+  struct Entry {
+    double cost;
+    uint32_t vertex;
+  };
   static constexpr uint32_t kAbsent = UINT32_MAX;
-  bool before(uint32_t a, uint32_t b) const { return cost_[a] != cost_[b] ? cost_[a] < cost_[b] : a < b; }
-  void place(uint32_t i, uint32_t v) {
-    heap_[i] = v;
-    at_[v] = i;
+  static bool before(const Entry& a, const Entry& b) {
+    return a.cost != b.cost ? a.cost < b.cost : a.vertex < b.vertex;
+  }
+  void place(uint32_t i, const Entry& e) {
+    heap_[i] = e;
+    at_[e.vertex] = i;
   }
   uint32_t siftUp(uint32_t i) {
-    const uint32_t v = heap_[i];
-    while (i > 0 && before(v, heap_[(i - 1) / 2])) {
+    const Entry e = heap_[i];
+    while (i > 0 && before(e, heap_[(i - 1) / 2])) {
       place(i, heap_[(i - 1) / 2]);
       i = (i - 1) / 2;
     }
-    place(i, v);
+    place(i, e);
     return i;
   }
   void siftDown(uint32_t i) {
-    const uint32_t v = heap_[i], n = uint32_t(heap_.size());
+    const Entry e = heap_[i];
+    const uint32_t n = uint32_t(heap_.size());
     for (;;) {
       uint32_t child = 2 * i + 1;
       if (child >= n) break;
       if (child + 1 < n && before(heap_[child + 1], heap_[child])) child++;
-      if (!before(heap_[child], v)) break;
+      if (!before(heap_[child], e)) break;
       place(i, heap_[child]);
       i = child;
     }
-    place(i, v);
+    place(i, e);
   }
-  std::vector<double> cost_;
-  std::vector<uint32_t> heap_, at_;
+  std::vector<Entry> heap_;
+  std::vector<uint32_t> at_;
 };
 
 class Simplifier {
@@ -220,7 +227,7 @@ class Simplifier {
   double run(size_t targetTriangles) {
     while (aliveCount_ > targetTriangles && !heap_.empty()) {
       const uint32_t u = heap_.top();
-      const Candidate c{heap_.cost(u), u, bestTarget_[u]};
+      const Candidate c{heap_.topCost(), u, bestTarget_[u]};
       heap_.remove(u);
       if (dead(c.to)) continue;
       if (!valid(c.from, c.to)) {
@@ -277,23 +284,35 @@ class Simplifier {
   // Neighbours of u (unique, in the order met) from its live triangles, each stamped in seen_ with
   // the stamp returned; drops dead triangles from u's list.
   uint32_t neighbours(uint32_t u, std::vector<uint32_t>& out) {
-    out.clear();
     const uint32_t stamp = nextStamp();
+    out.resize(2 * size_t(size_[u]));
     uint32_t* list = &pool_[start_[u]];
-    uint32_t kept = 0;
+    uint32_t kept = 0, count = 0;
     for (uint32_t i = 0; i < size_[u]; i++) {
-      uint32_t t = list[i];
+      const uint32_t t = list[i];
       if (!alive_[t]) continue;
       list[kept++] = t;
-      for (int k = 0; k < 3; k++) {
-        uint32_t w = tri_[3 * t + k];
-        if (w == u || seen_[w] == stamp) continue;
-        seen_[w] = stamp;
-        out.push_back(w);
-      }
+      count = appendOthers(u, t, stamp, out.data(), count);
     }
+    out.resize(count);
     size_[u] = kept;
     return stamp;
+  }
+
+  // Appends to found[count..] the corners of triangle t other than u that do not hold `stamp` yet, in
+  // corner order, and stamps them; returns the new count. Which corner u is and whether a neighbour was
+  // met before are both unpredictable, so neither is a branch. u itself must hold the stamp already or
+  // not be met twice (a triangle never holds a vertex twice).
+  uint32_t appendOthers(uint32_t u, uint32_t t, uint32_t stamp, uint32_t* found, uint32_t count) {
+    static constexpr uint8_t kFirst[3] = {1, 0, 0}, kSecond[3] = {2, 2, 1};
+    const uint32_t* x = &tri_[3 * t];
+    const uint32_t k = uint32_t(x[1] == u) + 2 * uint32_t(x[2] == u);
+    for (const uint32_t w : {x[kFirst[k]], x[kSecond[k]]}) {
+      found[count] = w;
+      count += seen_[w] != stamp;
+      seen_[w] = stamp;
+    }
+    return count;
   }
 
   void append(uint32_t v, uint32_t t) {
@@ -319,26 +338,32 @@ class Simplifier {
   }
 
   // u's cheapest collapse (to UINT32_MAX when it has none), noted as its live candidate. Candidates
-  // come straight from u's triangles, each neighbour once (a stamp marks those seen in this call).
+  // come straight from u's triangles, each neighbour once; ties go to the lower vertex id, so the
+  // order they are met in does not matter.
   Candidate bestCandidate(uint32_t u) {
     if (kind_[u] == kLocked) return {0.0, u, UINT32_MAX};
+    const uint32_t stamp = nextStamp();
+    seen_[u] = stamp;
+    scratchC_.resize(2 * size_t(size_[u]));
+    uint32_t* found = scratchC_.data();
+    uint32_t count = 0;
+    for (uint32_t i = 0; i < size_[u]; i++) {
+      const uint32_t t = trianglesOf(u)[i];
+      if (alive_[t]) count = appendOthers(u, t, stamp, found, count);
+    }
     const bool open = kind_[u] == kOpen;
+    const std::vector<uint32_t>& rejected = rejected_[u];
+    const Quadric& q = quadric_[u];
     double best = INFINITY;
     uint32_t target = UINT32_MAX;
-    const std::vector<uint32_t>& rejected = rejected_[u];
-    const uint32_t stamp = nextStamp();
-    for (uint32_t i = 0; i < size_[u]; i++) {
-      uint32_t t = trianglesOf(u)[i];
-      if (!alive_[t]) continue;
-      for (int k = 0; k < 3; k++) {
-        uint32_t v = tri_[3 * t + k];
-        if (v == u || seen_[v] == stamp) continue;
-        seen_[v] = stamp;
-        if (!rejected.empty() && std::find(rejected.begin(), rejected.end(), v) != rejected.end()) continue;
-        if (open && !onOneTriangle(u, v)) continue;  // an open vertex moves along the boundary only
-        double cost = quadric_[u].meanSquaredDistance(p_[v], quadric_[v], selfCost_[v]);
-        if (cost < best || (cost == best && v < target)) best = cost, target = v;
-      }
+    for (uint32_t j = 0; j < count; j++) {
+      const uint32_t v = found[j];
+      if (!rejected.empty() && std::find(rejected.begin(), rejected.end(), v) != rejected.end()) continue;
+      if (open && !onOneTriangle(u, v)) continue;  // an open vertex moves along the boundary only
+      const double cost = q.meanSquaredDistance(p_[v], quadric_[v], selfCost_[v]);
+      const bool better = cost < best || (cost == best && v < target);
+      best = better ? cost : best;
+      target = better ? v : target;
     }
     bestTarget_[u] = target;
     return {best, u, target};
@@ -361,23 +386,17 @@ class Simplifier {
     const uint32_t ofV = neighbours(v, scratchB_);
     size_t common = 0;
     for (uint32_t w : scratchA_) common += seen_[w] == ofV;
+    // One pass over u's triangles (all live: neighbours dropped the dead): those on edge uv give the
+    // apexes, the others must not flip or become degenerate.
     size_t apexes = 0;
     for (uint32_t i = 0; i < size_[u]; i++) {
-      uint32_t t = trianglesOf(u)[i];
-      if (!alive_[t]) continue;
-      const uint32_t* x = &tri_[3 * t];
-      if (x[0] != v && x[1] != v && x[2] != v) continue;
-      apexes++;
-      uint32_t apex = x[0] != u && x[0] != v ? x[0] : x[1] != u && x[1] != v ? x[1] : x[2];
-      if (seen_[apex] != ofV) return false;
-    }
-    if (apexes == 0 || common != apexes) return false;
-    // No flipped or degenerate triangle.
-    for (uint32_t i = 0; i < size_[u]; i++) {
-      uint32_t t = trianglesOf(u)[i];
-      if (!alive_[t]) continue;
-      const uint32_t* x = &tri_[3 * t];
-      if (x[0] == v || x[1] == v || x[2] == v) continue;
+      const uint32_t* x = &tri_[3 * trianglesOf(u)[i]];
+      if (x[0] == v || x[1] == v || x[2] == v) {
+        apexes++;
+        uint32_t apex = x[0] != u && x[0] != v ? x[0] : x[1] != u && x[1] != v ? x[1] : x[2];
+        if (seen_[apex] != ofV) return false;
+        continue;
+      }
       glm::dvec3 before[3], after[3];
       for (int k = 0; k < 3; k++) {
         before[k] = p_[x[k]];
@@ -391,6 +410,7 @@ class Simplifier {
         return false;
       if (l0 > 0.0 && glm::dot(n0, n1) < 0.2 * l0 * l1) return false;
     }
+    if (apexes == 0 || common != apexes) return false;
     // Chords: new edges v-w between two locked vertices.
     if (kind_[v] == kLocked)
       for (uint32_t w : scratchA_)
@@ -445,7 +465,7 @@ class Simplifier {
   std::vector<uint32_t> bestTarget_;  // target of each vertex's heap entry
   std::vector<std::vector<uint32_t>> rejected_;
   CandidateHeap heap_;
-  std::vector<uint32_t> scratchA_, scratchB_;
+  std::vector<uint32_t> scratchA_, scratchB_, scratchC_;
   double maxCost_ = 0.0;
 };
 
@@ -461,7 +481,7 @@ SimplifiedGroup simplifyGroup(const std::vector<uint32_t>& indices, const std::v
   // border); open: vertices on edges of the surface's open boundary and on no locked edge.
   std::vector<uint8_t> kind(globals.size(), kFree);
   std::vector<uint64_t> localOpen;
-  for (const uint64_t edge : edgesUsedOnce(local)) {
+  for (const uint64_t edge : edgesUsedOnceDense(local, uint32_t(globals.size()))) {
     const uint32_t a = uint32_t(edge >> 32), b = uint32_t(edge);
     const uint64_t global = uint64_t(std::min(globals[a], globals[b])) << 32 | std::max(globals[a], globals[b]);
     if (std::binary_search(openEdges.begin(), openEdges.end(), global)) {

@@ -54,6 +54,38 @@ std::vector<uint64_t> edgesUsedOnce(std::span<const uint32_t> indices) {
   return once;
 }
 
+std::vector<uint64_t> edgesUsedOnceDense(std::span<const uint32_t> indices, uint32_t vertices) {
+  // A counting sort of the edges by their lower vertex; each bucket holds the few upper vertices of
+  // one vertex's edges, sorted in place and counted by a scan.
+  const size_t corners = indices.size() / 3 * 3;
+  std::vector<uint32_t> start(size_t(vertices) + 1, 0), upper(corners);
+  auto forEachEdge = [&](auto&& fn) {
+    for (size_t t = 0; t < corners; t += 3)
+      for (size_t k = 0; k < 3; k++) {
+        const uint32_t a = indices[t + k], b = indices[t + (k + 1) % 3];
+        fn(std::min(a, b), std::max(a, b));
+      }
+  };
+  forEachEdge([&](uint32_t lower, uint32_t) { start[lower + 1]++; });
+  for (uint32_t v = 0; v < vertices; v++) start[v + 1] += start[v];
+  std::vector<uint32_t> cursor(start.begin(), start.end() - 1);
+  forEachEdge([&](uint32_t lower, uint32_t higher) { upper[cursor[lower]++] = higher; });
+  std::vector<uint64_t> once;
+  for (uint32_t v = 0; v < vertices; v++) {
+    uint32_t* first = upper.data() + start[v];
+    uint32_t* last = upper.data() + start[v + 1];
+    for (uint32_t* i = first + 1; i < last; i++)  // insertion sort: a bucket holds a handful
+      for (uint32_t* j = i; j > first && j[-1] > j[0]; j--) std::swap(j[-1], j[0]);
+    for (uint32_t* i = first; i < last;) {
+      uint32_t* run = i + 1;
+      while (run < last && *run == *i) run++;
+      if (run - i == 1) once.push_back(uint64_t(v) << 32 | *i);
+      i = run;
+    }
+  }
+  return once;
+}
+
 SurfaceTopology surfaceTopology(const std::vector<uint32_t>& indices) {
   SurfaceTopology t;
   t.triangles = indices.size() / 3;

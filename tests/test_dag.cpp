@@ -249,5 +249,32 @@ TEST(DagBuild, StatsJsonHasEveryPromisedField) {
   EXPECT_NE(check.output.find("ok:"), std::string::npos);
 }
 
+TEST(DagBuild, DenseBorderEdgesMatchTheHashedOnes) {
+  // The simplifier finds a group's border with edgesUsedOnceDense over local ids; grouping, with
+  // edgesUsedOnce over global ones. Both must give the same edges on slices of real meshes (closed, with
+  // open boundaries and holes, unstitched), whole and in pieces of a group's size, and on an edge that
+  // three triangles share and a triangle that holds one vertex twice.
+  const std::vector<uint32_t> fan = {0, 1, 2, 1, 0, 3, 0, 1, 4, 2, 2, 5};
+  const std::vector<uint64_t> fanDense = edgesUsedOnceDense(fan, 6);
+  EXPECT_EQ(fanDense, edgesUsedOnce(fan));
+  EXPECT_EQ(std::count(fanDense.begin(), fanDense.end(), uint64_t(0) << 32 | 1), 0);
+  for (const char* name :
+       {"bunny00.off", "mesh_with_border.off", "elephant-with-holes.off", "blade.off", "quads_to_stitch.off"}) {
+    const PolygonMesh mesh = loadMeshFile(test::cgalMesh(name)).meshes[0];
+    std::vector<uint32_t> triangles;
+    for (size_t f = 0; f < mesh.faceCount(); f++)
+      triangulateFace(mesh.positions.data(), mesh.face(f), mesh.faceSize(f), triangles);
+    for (const size_t piece : {size_t(1) << 30, size_t(3 * 2048), size_t(3 * 257)}) {
+      for (size_t first = 0; first < triangles.size(); first += piece) {
+        const size_t end = std::min(triangles.size(), first + piece);
+        std::vector<uint32_t> slice(triangles.begin() + long(first), triangles.begin() + long(end)), globals, local;
+        localIds(slice, globals, local);
+        ASSERT_EQ(edgesUsedOnceDense(local, uint32_t(globals.size())), edgesUsedOnce(local))
+            << name << " triangles " << first / 3 << " to " << end / 3;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace vgeo
