@@ -24,6 +24,7 @@ constexpr uint64_t kMedianSplitParts = 64;   // sets of more parts are cut at th
 constexpr uint32_t kParallelNodes = 4096;    // smaller sets are not worth a task of their own
 constexpr uint32_t kParallelSet = 1u << 16;  // larger sets' passes run on the threads too
 constexpr uint32_t kLocalNodes = 16384;      // a set this small is copied out and split in cache
+constexpr uint32_t kScannedSeeds = 4;        // a growth's first new seeds are found by a scan, then by a sort
 
 // Weight and bounds of a set of nodes.
 struct SetExtent {
@@ -248,6 +249,7 @@ struct Bisector {
     sideA.reserve(size_t(hi - lo) / 2 + 1);
     std::vector<uint32_t> seeds;  // the set sorted along the axis, made only when a component runs out
     size_t nextSeed = 0;
+    uint32_t exhausted = 0;  // times the frontier ran out
     uint64_t wA = 0;
     // Frontier ordered by distance to the seed: regions grow round, not in the diamonds of BFS.
     Frontier frontier;
@@ -271,15 +273,22 @@ struct Bisector {
     take(seed);
     while (wA < targetA) {
       if (frontier.empty()) {
-        // Component exhausted: continue from the extreme node not yet taken.
-        if (seeds.empty()) {
-          seeds.assign(order.begin() + lo, order.begin() + hi);
-          std::sort(seeds.begin(), seeds.end(), before);
+        // Component exhausted: continue from the extreme node not yet taken. The first few times it is
+        // found by a scan; a set that runs out more often (one of many small pieces) is sorted once.
+        uint32_t next = UINT32_MAX;
+        if (++exhausted <= kScannedSeeds) {
+          for (uint32_t i = lo; i < hi; i++)
+            if (load(order[i]) == inSet && (next == UINT32_MAX || before(order[i], next))) next = order[i];
+        } else {
+          if (seeds.empty()) {
+            seeds.assign(order.begin() + lo, order.begin() + hi);
+            std::sort(seeds.begin(), seeds.end(), before);
+          }
+          while (nextSeed < seeds.size() && load(seeds[nextSeed]) != inSet) nextSeed++;
+          if (nextSeed < seeds.size()) next = seeds[nextSeed];
         }
-        while (nextSeed < seeds.size() && load(seeds[nextSeed]) != inSet) nextSeed++;
-        if (nextSeed == seeds.size()) break;
-        if (wA + weights[seeds[nextSeed]] > maxA) break;
-        take(seeds[nextSeed]);
+        if (next == UINT32_MAX || wA + weights[next] > maxA) break;
+        take(next);
         continue;
       }
       const uint32_t node = frontier.pop();
