@@ -26,15 +26,11 @@ constexpr uint32_t kParallelSet = 1u << 16;  // larger sets' passes run on the t
 constexpr uint32_t kLocalNodes = 16384;      // a set this small is copied out and split in cache
 constexpr uint32_t kScannedSeeds = 4;        // a growth's first new seeds are found by a scan, then by a sort
 
-// Weight and bounds of a set of nodes.
+// Weight and bounds of a set of nodes, and on each axis its first node (least position, then id).
 struct SetExtent {
   uint64_t weight = 0;
   glm::vec3 lower{INFINITY}, upper{-INFINITY};
-  void add(const SetExtent& o) {
-    weight += o.weight;
-    lower = glm::min(lower, o.lower);
-    upper = glm::max(upper, o.upper);
-  }
+  uint32_t first[3] = {UINT32_MAX, UINT32_MAX, UINT32_MAX};
 };
 
 // The nodes waiting to join side A, nearest first, as a 4-ary min-heap of (distance, id) packed into
@@ -140,19 +136,40 @@ struct Bisector {
   // Sets of kParallelSet nodes or more have their passes on the threads too.
   int threadsFor(uint32_t lo, uint32_t hi) const { return parallel && hi - lo >= kParallelSet ? threads : 1; }
 
-  // fn(begin, end, extent) over ranges of [lo, hi), summed; exact (integer sums, minima and maxima), so
-  // the same on any thread count.
-  template <class Fn>
-  SetExtent extentOf(uint32_t lo, uint32_t hi, Fn&& fn) const {
+  // Whether node a comes before node b along `axis`: by position, then id.
+  bool before(int axis, uint32_t a, uint32_t b) const {
+    const float pa = positions[a][axis], pb = positions[b][axis];
+    return pa != pb ? pa < pb : id(a) < id(b);
+  }
+
+  // The extent of set [lo, hi), in one pass over ranges on the threads; exact (integer sums, minima and
+  // maxima, firsts in a total order), so the same on any thread count.
+  SetExtent extentOf(uint32_t lo, uint32_t hi) const {
+    auto add = [&](SetExtent& e, uint32_t node, uint64_t weight, glm::vec3 lower, glm::vec3 upper,
+                   const uint32_t* first) {
+      e.weight += weight;
+      e.lower = glm::min(e.lower, lower);
+      e.upper = glm::max(e.upper, upper);
+      for (int axis = 0; axis < 3; axis++) {
+        const uint32_t f = first ? first[axis] : node;
+        if (e.first[axis] == UINT32_MAX || before(axis, f, e.first[axis])) e.first[axis] = f;
+      }
+    };
+    auto pass = [&](uint32_t begin, uint32_t end, SetExtent& e) {
+      for (uint32_t i = begin; i < end; i++) {
+        const uint32_t node = order[i];
+        add(e, node, weights[node], positions[node], positions[node], nullptr);
+      }
+    };
     SetExtent total;
     if (threadsFor(lo, hi) == 1) {
-      fn(lo, hi, total);
+      pass(lo, hi, total);
       return total;
     }
     std::vector<SetExtent> ranges(parallelRangeCount(hi - lo));
     parallelForRanges(hi - lo, threadsFor(lo, hi),
-                      [&](size_t begin, size_t end) { fn(lo + begin, lo + end, ranges[begin / kParallelRange]); });
-    for (const SetExtent& r : ranges) total.add(r);
+                      [&](size_t begin, size_t end) { pass(lo + begin, lo + end, ranges[begin / kParallelRange]); });
+    for (const SetExtent& r : ranges) add(total, 0, r.weight, r.lower, r.upper, r.first);
     return total;
   }
 
@@ -203,9 +220,8 @@ struct Bisector {
   void store(uint32_t node, uint32_t value) { __atomic_store_n(&stamp[node], value, __ATOMIC_RELAXED); }
 
   void split(uint32_t lo, uint32_t hi) {
-    const uint64_t w = extentOf(lo, hi, [&](uint32_t begin, uint32_t end, SetExtent& e) {
-                         for (uint32_t i = begin; i < end; i++) e.weight += weights[order[i]];
-                       }).weight;
+    const SetExtent set = extentOf(lo, hi);
+    const uint64_t w = set.weight;
     if (hi - lo == 1 || (w <= targetWeight && (!fits || fitsNodes(&order[lo], hi - lo)))) {
       partHead[lo] = 1;
       return;
@@ -219,25 +235,16 @@ struct Bisector {
     uint64_t targetA = (w * kA + k / 2) / k;
     uint64_t maxA = w <= targetWeight ? w - 1 : kA * targetWeight;
 
-    const SetExtent bounds = extentOf(lo, hi, [&](uint32_t begin, uint32_t end, SetExtent& e) {
-      for (uint32_t i = begin; i < end; i++) {
-        e.lower = glm::min(e.lower, positions[order[i]]);
-        e.upper = glm::max(e.upper, positions[order[i]]);
-      }
-    });
-    glm::vec3 extent = bounds.upper - bounds.lower;
+    glm::vec3 extent = set.upper - set.lower;
     int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
-    auto before = [&](uint32_t a, uint32_t b) {
-      float pa = positions[a][axis], pb = positions[b][axis];
-      return pa != pb ? pa < pb : id(a) < id(b);
-    };
+    auto before = [&](uint32_t a, uint32_t b) { return this->before(axis, a, b); };
 
     if (k > kMedianSplitParts) {
       // Large sets: a weighted median cut across the longest axis. It costs one selection instead of a
       // growth over half the set, and the halves run in parallel sooner; the growth cuts below it
       // make the parts connected.
       const uint32_t m = lo + uint32_t(uint64_t(hi - lo) * kA / k);
-      medianCut(lo, hi, m - lo, axis, bounds.lower[axis], bounds.upper[axis], before);
+      medianCut(lo, hi, m - lo, axis, set.lower[axis], set.upper[axis], before);
       parallelForRanges(m - lo, threadsFor(lo, m), [&](size_t begin, size_t end) {
         for (size_t i = begin; i < end; i++) store(order[lo + i], m);
       });
@@ -266,9 +273,7 @@ struct Bisector {
         }
       }
     };
-    uint32_t seed = order[lo];
-    for (uint32_t i = lo + 1; i < hi; i++)
-      if (before(order[i], seed)) seed = order[i];
+    const uint32_t seed = set.first[axis];
     origin = positions[seed];
     take(seed);
     while (wA < targetA) {
