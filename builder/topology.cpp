@@ -74,8 +74,11 @@ std::vector<uint64_t> edgesUsedOnceDense(std::span<const uint32_t> indices, uint
   for (uint32_t v = 0; v < vertices; v++) {
     uint32_t* first = upper.data() + start[v];
     uint32_t* last = upper.data() + start[v + 1];
-    for (uint32_t* i = first + 1; i < last; i++)  // insertion sort: a bucket holds a handful
-      for (uint32_t* j = i; j > first && j[-1] > j[0]; j--) std::swap(j[-1], j[0]);
+    if (last - first > 16)  // a fan's apex: its edges to the whole fan
+      std::sort(first, last);
+    else  // insertion sort: a bucket holds a handful
+      for (uint32_t* i = first + 1; i < last; i++)
+        for (uint32_t* j = i; j > first && j[-1] > j[0]; j--) std::swap(j[-1], j[0]);
     for (uint32_t* i = first; i < last;) {
       uint32_t* run = i + 1;
       while (run < last && *run == *i) run++;

@@ -258,6 +258,12 @@ TEST(DagBuild, DenseBorderEdgesMatchTheHashedOnes) {
   const std::vector<uint64_t> fanDense = edgesUsedOnceDense(fan, 6);
   EXPECT_EQ(fanDense, edgesUsedOnce(fan));
   EXPECT_EQ(std::count(fanDense.begin(), fanDense.end(), uint64_t(0) << 32 | 1), 0);
+  // A fan of 40 triangles around vertex 0, its apex's bucket past the insertion sort's size.
+  std::vector<uint32_t> wideFan;
+  for (uint32_t i = 1; i <= 40; i++) wideFan.insert(wideFan.end(), {0, i, i + 1});
+  const std::vector<uint64_t> wideDense = edgesUsedOnceDense(wideFan, 42);
+  EXPECT_EQ(wideDense, edgesUsedOnce(wideFan));
+  EXPECT_EQ(wideDense.size(), size_t(42));  // the 40 rim edges and the two sides
   for (const char* name :
        {"bunny00.off", "mesh_with_border.off", "elephant-with-holes.off", "blade.off", "quads_to_stitch.off"}) {
     const PolygonMesh mesh = loadMeshFile(test::cgalMesh(name)).meshes[0];
