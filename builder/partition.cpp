@@ -12,6 +12,7 @@
 // recursion below it then works in cache instead of gathering from arrays over the whole graph.
 #include <algorithm>
 #include <cstring>
+#include <functional>
 
 #include "../common/parallel.h"
 #include "builder.h"
@@ -33,55 +34,13 @@ struct SetExtent {
   uint32_t first[3] = {UINT32_MAX, UINT32_MAX, UINT32_MAX};
 };
 
-// The nodes waiting to join side A, nearest first, as a 4-ary min-heap of (distance, id) packed into
-// one integer (a distance is never negative, so its bits order as the float does): a node's id breaks
-// ties, so the order is total and the nodes come out as from any other priority queue.
-class Frontier {
- public:
-  bool empty() const { return items_.empty(); }
-  void push(float distance, uint32_t id, uint32_t node) {
-    uint32_t bits;
-    std::memcpy(&bits, &distance, sizeof bits);
-    const Item item{uint64_t(bits) << 32 | id, node};
-    size_t i = items_.size();
-    items_.push_back(item);
-    while (i > 0 && item.key < items_[(i - 1) / 4].key) {
-      items_[i] = items_[(i - 1) / 4];
-      i = (i - 1) / 4;
-    }
-    items_[i] = item;
-  }
-  uint32_t pop() {
-    const uint32_t node = items_[0].node;
-    const Item last = items_.back();
-    items_.pop_back();
-    const size_t n = items_.size();
-    if (n == 0) return node;
-    size_t i = 0;
-    for (;;) {
-      const size_t first = 4 * i + 1;
-      if (first >= n) break;
-      size_t best = first;
-      for (size_t c = first + 1; c < std::min(first + 4, n); c++)
-        if (items_[c].key < items_[best].key) best = c;
-      if (!(items_[best].key < last.key)) break;
-      items_[i] = items_[best];
-      i = best;
-    }
-    items_[i] = last;
-    return node;
-  }
-  template <class Fn>
-  void forEach(Fn&& fn) const {
-    for (const Item& item : items_) fn(item.node);
-  }
-
- private:
-  struct Item {
-    uint64_t key;
-    uint32_t node;
-  };
-  std::vector<Item> items_;
+// A node waiting to join side A, keyed by (distance, id) packed into one integer (a distance is never
+// negative, so its bits order as the float does): the id breaks ties, so the order is total and the
+// heap pops the nodes in one order whatever its layout.
+struct FrontierItem {
+  uint64_t key;
+  uint32_t node;
+  bool operator>(const FrontierItem& o) const { return key > o.key; }
 };
 
 struct Bisector {
@@ -142,23 +101,21 @@ struct Bisector {
     return pa != pb ? pa < pb : id(a) < id(b);
   }
 
+  // Keeps `node` as e's first node on `axis` where it comes before the one kept.
+  void keepFirst(SetExtent& e, int axis, uint32_t node) const {
+    if (e.first[axis] == UINT32_MAX || before(axis, node, e.first[axis])) e.first[axis] = node;
+  }
+
   // The extent of set [lo, hi), in one pass over ranges on the threads; exact (integer sums, minima and
   // maxima, firsts in a total order), so the same on any thread count.
   SetExtent extentOf(uint32_t lo, uint32_t hi) const {
-    auto add = [&](SetExtent& e, uint32_t node, uint64_t weight, glm::vec3 lower, glm::vec3 upper,
-                   const uint32_t* first) {
-      e.weight += weight;
-      e.lower = glm::min(e.lower, lower);
-      e.upper = glm::max(e.upper, upper);
-      for (int axis = 0; axis < 3; axis++) {
-        const uint32_t f = first ? first[axis] : node;
-        if (e.first[axis] == UINT32_MAX || before(axis, f, e.first[axis])) e.first[axis] = f;
-      }
-    };
     auto pass = [&](uint32_t begin, uint32_t end, SetExtent& e) {
       for (uint32_t i = begin; i < end; i++) {
         const uint32_t node = order[i];
-        add(e, node, weights[node], positions[node], positions[node], nullptr);
+        e.weight += weights[node];
+        e.lower = glm::min(e.lower, positions[node]);
+        e.upper = glm::max(e.upper, positions[node]);
+        for (int axis = 0; axis < 3; axis++) keepFirst(e, axis, node);
       }
     };
     SetExtent total;
@@ -169,7 +126,12 @@ struct Bisector {
     std::vector<SetExtent> ranges(parallelRangeCount(hi - lo));
     parallelForRanges(hi - lo, threadsFor(lo, hi),
                       [&](size_t begin, size_t end) { pass(lo + begin, lo + end, ranges[begin / kParallelRange]); });
-    for (const SetExtent& r : ranges) add(total, 0, r.weight, r.lower, r.upper, r.first);
+    for (const SetExtent& r : ranges) {  // every range holds nodes: its firsts are set
+      total.weight += r.weight;
+      total.lower = glm::min(total.lower, r.lower);
+      total.upper = glm::max(total.upper, r.upper);
+      for (int axis = 0; axis < 3; axis++) keepFirst(total, axis, r.first[axis]);
+    }
     return total;
   }
 
@@ -259,7 +221,7 @@ struct Bisector {
     uint32_t exhausted = 0;  // times the frontier ran out
     uint64_t wA = 0;
     // Frontier ordered by distance to the seed: regions grow round, not in the diamonds of BFS.
-    Frontier frontier;
+    std::vector<FrontierItem> frontier;  // a min-heap
     glm::vec3 origin(0.0f);
     auto take = [&](uint32_t node) {
       store(node, taken);
@@ -269,7 +231,11 @@ struct Bisector {
         uint32_t next = graph.adjacency[e];
         if (load(next) == inSet) {  // each node enters the frontier once: its distance never changes
           store(next, queued);
-          frontier.push(glm::distance(origin, positions[next]), id(next), next);
+          const float distance = glm::distance(origin, positions[next]);
+          uint32_t bits;
+          std::memcpy(&bits, &distance, sizeof bits);
+          frontier.push_back({uint64_t(bits) << 32 | id(next), next});
+          std::push_heap(frontier.begin(), frontier.end(), std::greater<FrontierItem>());
         }
       }
     };
@@ -296,14 +262,16 @@ struct Bisector {
         take(next);
         continue;
       }
-      const uint32_t node = frontier.pop();
+      std::pop_heap(frontier.begin(), frontier.end(), std::greater<FrontierItem>());
+      const uint32_t node = frontier.back().node;
+      frontier.pop_back();
       if (wA + weights[node] <= maxA)
         take(node);
       else
         store(node, inSet);
     }
-    frontier.forEach([&](uint32_t node) { store(node, inSet); });  // left in the frontier: back to side B
-    if (sideA.size() == hi - lo) {                                 // never take everything
+    for (const FrontierItem& f : frontier) store(f.node, inSet);  // left in the frontier: back to side B
+    if (sideA.size() == hi - lo) {                                // never take everything
       store(sideA.back(), inSet);
       sideA.pop_back();
     }
