@@ -182,16 +182,16 @@ void appendGeometry(SectionSink& file, const Dag& dag, const PolygonMesh& leafMe
   SectionWriter<shaderio::ClusterCone> clusterCones(file, Section::ClusterCones);
   SectionWriter<shaderio::Patch> filePatches(file, Section::Patches);
   // A batch of clusters is laid out on the threads, each into arrays of its own (offsets within
-  // them), then appended in cluster order with its offsets in the file.
+  // them), then appended in cluster order with its offsets in the file, on one thread while the next
+  // batch is laid out on the others.
   struct ClusterLayout {
     shaderio::Cluster cluster;
     std::vector<uint32_t> vertices, triangles, faceVertices;
     std::vector<shaderio::CageFace> faces;
     std::vector<shaderio::Patch> patches;
   };
-  constexpr size_t kBatch = 4096;
-  std::vector<ClusterLayout> batch;
-  for (size_t first = 0; first < clusterOrder.size(); first += kBatch) {
+  constexpr size_t kBatch = 1024;
+  auto layOut = [&](size_t first, std::vector<ClusterLayout>& batch) {
     batch.assign(std::min(kBatch, clusterOrder.size() - first), ClusterLayout());
     parallelFor(batch.size(), threads, [&](size_t i) {
       const uint32_t id = clusterOrder[first + i];
@@ -229,6 +229,8 @@ void appendGeometry(SectionSink& file, const Dag& dag, const PolygonMesh& leafMe
       out.counts = shaderio::packClusterCounts(uint32_t(lay.vertices.size()), uint32_t(c.indices.size() / 3), c.level,
                                                faceCount);
     });
+  };
+  auto append = [&](size_t first, std::vector<ClusterLayout>& batch) {
     for (size_t i = 0; i < batch.size(); i++) {
       ClusterLayout& lay = batch[i];
       lay.cluster.vertexOffset = clusterVertices.count();
@@ -246,7 +248,17 @@ void appendGeometry(SectionSink& file, const Dag& dag, const PolygonMesh& leafMe
       clusterCones.push(cones[clusterOrder[first + i]]);
       clusters.push(lay.cluster);
     }
-  }
+  };
+  std::vector<ClusterLayout> batches[2];
+  if (!clusterOrder.empty()) layOut(0, batches[0]);
+  withThreads(threads, [&] {
+    for (size_t first = 0, k = 0; first < clusterOrder.size(); first += kBatch, k ^= 1)
+      parallelInvoke(
+          threads > 1, [&] { append(first, batches[k]); },
+          [&] {
+            if (first + kBatch < clusterOrder.size()) layOut(first + kBatch, batches[k ^ 1]);
+          });
+  });
   clusters.flush(), clusterVertices.flush(), clusterTriangles.flush(), cageFaces.flush();
   cageFaceVertices.flush(), clusterCones.flush(), filePatches.flush();
 
