@@ -376,39 +376,75 @@ void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uin
     std::vector<std::vector<uint32_t>> pieces = piecesOf(uint32_t(q));
     if (pieces.size() > 1) piecesOfPart[q] = std::move(pieces);
   });
+  auto largestOf = [](const std::vector<std::vector<uint32_t>>& pieces) {
+    size_t largest = 0;
+    for (size_t i = 1; i < pieces.size(); i++)
+      if (pieces[i].size() > pieces[largest].size()) largest = i;
+    return largest;
+  };
+  // A piece's weight, and the other parts it touches as (part, edges shared), most edges first.
+  auto neighbourParts = [&](uint32_t q, const std::vector<uint32_t>& piece, uint64_t& w) {
+    w = 0;
+    std::vector<std::pair<uint32_t, uint32_t>> shared;
+    for (uint32_t u : piece) {
+      w += weights[u];
+      for (uint32_t e = graph.offsets[u]; e < graph.offsets[u + 1]; e++) {
+        uint32_t r = owner[graph.adjacency[e]];
+        if (r == q) continue;
+        auto it = std::find_if(shared.begin(), shared.end(), [&](auto& x) { return x.first == r; });
+        if (it == shared.end())
+          shared.push_back({r, 1});
+        else
+          it->second++;
+      }
+    }
+    std::sort(shared.begin(), shared.end(),
+              [](auto& a, auto& b) { return a.second != b.second ? a.second > b.second : a.first < b.first; });
+    return shared;
+  };
+  auto fitsWith = [&](uint32_t r, const std::vector<uint32_t>& piece) {
+    if (!fits) return true;
+    std::vector<uint32_t> merged = members[r];
+    merged.insert(merged.end(), piece.begin(), piece.end());
+    return fits(merged.data(), merged.size());
+  };
+  // The turns below are serial, and the fit checks their costliest step: each piece's checks are
+  // made first on the threads, against the parts as they are now, and a turn uses them for the parts
+  // that no turn before it has changed (the same answer), asking again only for the others.
+  std::vector<std::vector<std::vector<std::pair<uint32_t, bool>>>> fitOf(parts);  // (part, fits) a piece
+  parallelFor(parts, threads, [&](size_t q) {
+    const std::vector<std::vector<uint32_t>>& pieces = piecesOfPart[q];
+    fitOf[q].resize(pieces.size());
+    const size_t largest = largestOf(pieces);
+    for (size_t i = 0; i < pieces.size(); i++) {
+      if (i == largest) continue;
+      uint64_t w = 0;
+      for (auto [r, edges] : neighbourParts(uint32_t(q), pieces[i], w)) {
+        if (weight[r] + w > maxWeight) continue;
+        const bool ok = fitsWith(r, pieces[i]);
+        fitOf[q][i].push_back({r, ok});
+        if (ok) break;
+      }
+    }
+  });
+  std::vector<uint8_t> changed(parts, 0);  // whether a turn moved nodes into or out of the part
   bool anyMoved = false;
   for (uint32_t q = 0; q < parts; q++) {
     std::vector<std::vector<uint32_t>> pieces = std::move(piecesOfPart[q]);
     if (pieces.size() < 2) continue;
-    size_t largest = 0;
-    for (size_t i = 1; i < pieces.size(); i++)
-      if (pieces[i].size() > pieces[largest].size()) largest = i;
+    const size_t largest = largestOf(pieces);
     for (size_t i = 0; i < pieces.size(); i++) {
       if (i == largest) continue;
       uint64_t w = 0;
-      std::vector<std::pair<uint32_t, uint32_t>> shared;  // (part, edges)
-      for (uint32_t u : pieces[i]) {
-        w += weights[u];
-        for (uint32_t e = graph.offsets[u]; e < graph.offsets[u + 1]; e++) {
-          uint32_t r = owner[graph.adjacency[e]];
-          if (r == q) continue;
-          auto it = std::find_if(shared.begin(), shared.end(), [&](auto& x) { return x.first == r; });
-          if (it == shared.end())
-            shared.push_back({r, 1});
-          else
-            it->second++;
-        }
-      }
-      std::sort(shared.begin(), shared.end(),
-                [](auto& a, auto& b) { return a.second != b.second ? a.second > b.second : a.first < b.first; });
-      for (auto [r, edges] : shared) {
+      for (auto [r, edges] : neighbourParts(q, pieces[i], w)) {
         if (weight[r] + w > maxWeight) continue;
-        std::vector<uint32_t> merged = members[r];
-        merged.insert(merged.end(), pieces[i].begin(), pieces[i].end());
-        if (fits && !fits(merged.data(), merged.size())) continue;
-        members[r] = std::move(merged);
+        const auto& known = fitOf[q][i];
+        const auto it = std::find_if(known.begin(), known.end(), [&](auto& x) { return x.first == r; });
+        if (!(changed[r] || it == known.end() ? fitsWith(r, pieces[i]) : it->second)) continue;
+        members[r].insert(members[r].end(), pieces[i].begin(), pieces[i].end());
         weight[r] += w;
         weight[q] -= w;
+        changed[r] = changed[q] = 1;
         for (uint32_t u : pieces[i]) owner[u] = r, moved[u] = 1;
         std::vector<uint32_t> rest;
         for (uint32_t u : members[q])
