@@ -138,12 +138,14 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
     uint32_t slot, at;
     bool operator<(const BorderEdge& o) const { return edge != o.edge ? edge < o.edge : slot < o.slot; }
   };
-  // 4,096 buckets: each chunk (four a thread) counts into a row of them, which with more buckets set
-  // the build's peak on many threads; a bucket then sorts tens of entries.
-  constexpr int kBorderBucketBits = 12;
+  // Up to 4,096 buckets: each chunk (four a thread) counts into a row of them, which with more buckets
+  // set the build's peak on many threads; a bucket then sorts tens of entries. A small level takes
+  // fewer, about 16 entries a bucket: its rows of counts would otherwise cost more than its entries.
+  constexpr int kBorderBucketBits = 12, kEntriesPerBucket = 16;
   const int vertexBits = bitsFor(std::max<size_t>(positions.size(), 1));
+  const int bucketBits = std::min({vertexBits, kBorderBucketBits, bitsFor(borderStart[n] / kEntriesPerBucket + 2)});
   FillLaterVector<BorderEdge> borders = bucketSorted<BorderEdge>(
-      n, vertexBits, std::min(vertexBits, kBorderBucketBits), threads,
+      n, vertexBits, bucketBits, threads,
       [&](size_t slot, auto&& emit) {
         for (uint32_t k = 0; k < clusterBorders[slot].size(); k++) {
           const uint64_t edge = clusterBorders[slot][k];
