@@ -145,11 +145,16 @@ struct Bisector {
     const size_t n = hi - lo;
     const int th = threadsFor(lo, hi);
     const float scale = upper > lower ? float(kSlabs) / (upper - lower) : 0.0f;
-    auto slab = [&](uint32_t node) { return std::min(kSlabs - 1, uint32_t((positions[node][axis] - lower) * scale)); };
+    // Each node's slab is kept: the slab is monotonic in the position, so only the nodes of the pivot's
+    // slab need their position again to be told apart from the pivot.
+    FillLaterVector<uint16_t> slab(n);
     std::vector<uint32_t> counts(parallelRangeCount(n) * kSlabs, 0);
     parallelForRanges(n, th, [&](size_t begin, size_t end) {
       uint32_t* count = &counts[begin / kParallelRange * kSlabs];
-      for (size_t i = begin; i < end; i++) count[slab(order[lo + i])]++;
+      for (size_t i = begin; i < end; i++) {
+        slab[i] = uint16_t(std::min(kSlabs - 1, uint32_t((positions[order[lo + i]][axis] - lower) * scale)));
+        count[slab[i]]++;
+      }
     });
     std::vector<size_t> inSlab(kSlabs, 0);
     for (size_t i = 0; i < counts.size(); i++) inSlab[i % kSlabs] += counts[i];
@@ -158,13 +163,14 @@ struct Bisector {
     while (below + inSlab[pivotSlab] <= rank) below += inSlab[pivotSlab++];
     std::vector<uint32_t> candidates;
     parallelNumber(
-        n, th, [&](size_t i) { return slab(order[lo + i]) == pivotSlab; },
-        [&](size_t total) { candidates.resize(total); }, [&](size_t i, size_t k) { candidates[k] = order[lo + i]; });
+        n, th, [&](size_t i) { return slab[i] == pivotSlab; }, [&](size_t total) { candidates.resize(total); },
+        [&](size_t i, size_t k) { candidates[k] = order[lo + i]; });
     std::nth_element(candidates.begin(), candidates.begin() + long(rank - below), candidates.end(), before);
     const uint32_t pivot = candidates[rank - below];
     FillLaterVector<uint8_t> front(n);
     parallelForRanges(n, th, [&](size_t begin, size_t end) {
-      for (size_t i = begin; i < end; i++) front[i] = before(order[lo + i], pivot);
+      for (size_t i = begin; i < end; i++)
+        front[i] = slab[i] < pivotSlab || (slab[i] == pivotSlab && before(order[lo + i], pivot));
     });
     FillLaterVector<uint32_t> cut(n);
     parallelNumber(
