@@ -85,18 +85,14 @@ void EdgeSet::retainAndReserve(Keep&& keep, size_t edges, int threads) {
   count_ = promised_ = keys.size();
 }
 
-// Room for about 1.6 edges a new triangle (a surface's 1.5 and the clusters' borders); inserting stops
-// short of a full table when that was too few (a triangle soup has 3), and then the batch, a set's
-// insertion being idempotent, runs again with room for 3 a triangle.
-size_t ChordRule::trianglesFrom(const std::vector<BuildCluster>& clusters, size_t first) {
+void ChordRule::addClusters(const std::vector<BuildCluster>& clusters, size_t first,
+                            const std::vector<uint32_t>* active, int threads) {
+  // Room for about 1.6 edges a new triangle (a surface's 1.5 and the clusters' borders); inserting
+  // stops short of a full table when that was too few (a triangle soup has 3), and then the batch,
+  // a set's insertion being idempotent, runs again with room for 3 a triangle.
   uint64_t triangles = 0;
   for (size_t i = first; i < clusters.size(); i++) triangles += clusters[i].indices.size() / 3;
-  return size_t(triangles);
-}
-
-void ChordRule::makeRoom(const std::vector<BuildCluster>& clusters, size_t first, const std::vector<uint32_t>* active,
-                         int threads) {
-  const size_t room = trianglesFrom(clusters, first) * 8 / 5;
+  size_t room = size_t(triangles * 8 / 5);
   if (active) {
     FillLaterVector<uint8_t> held = parallelFilled(holders_.size() / kHolders, uint8_t(0), threads);
     parallelFor(active->size(), threads, [&](size_t i) {
@@ -104,17 +100,14 @@ void ChordRule::makeRoom(const std::vector<BuildCluster>& clusters, size_t first
     });
     edges_.retainAndReserve([&](uint64_t key) { return held[key >> 32] && held[key & 0xffffffffu]; }, room, threads);
   }
-  if (!edges_.hasRoomFor(room)) edges_.retainAndReserve([](uint64_t) { return true; }, room, threads);
-}
-
-void ChordRule::addClusters(const std::vector<BuildCluster>& clusters, size_t first, int threads) {
   for (;;) {
+    if (!edges_.hasRoomFor(room)) edges_.retainAndReserve([](uint64_t) { return true; }, room, threads);
     bool full = false;
     parallelFor(clusters.size() - first, threads, [&](size_t i) {
       if (!edges_.insertTriangles(clusters[first + i].indices)) __atomic_store_n(&full, true, __ATOMIC_RELAXED);
     });
     if (!full) break;
-    edges_.retainAndReserve([](uint64_t) { return true; }, trianglesFrom(clusters, first) * 3, threads);
+    room = size_t(triangles * 3);
   }
 }
 

@@ -45,13 +45,11 @@ class EdgeSet {
 class ChordRule {
  public:
   ChordRule(size_t vertices, int threads) : holders_(parallelFilled(vertices * kHolders, UINT32_MAX, threads)) {}
-  // Makes room in the set of edges made so far for the edges of clusters [first, end) of `clusters`.
-  // When `active` is given (the clusters of the next round), the edges of vertices none of them holds
-  // are dropped: simplification only ever removes vertices, so no later group can ask for those.
-  void makeRoom(const std::vector<BuildCluster>& clusters, size_t first, const std::vector<uint32_t>* active,
-                int threads);
-  // Then adds those edges to the set (it allocates again only where a triangle soup needs more room).
-  void addClusters(const std::vector<BuildCluster>& clusters, size_t first, int threads);
+  // Adds the edges of clusters [first, end) of `clusters` to the set of edges made so far. When `active`
+  // is given (the clusters of the next round), the edges of vertices none of them holds are dropped
+  // first: simplification only ever removes vertices, so no later group can ask for those.
+  void addClusters(const std::vector<BuildCluster>& clusters, size_t first, const std::vector<uint32_t>* active,
+                   int threads);
   // Records which of this round's groups hold each vertex (up to kHolders; a vertex of more groups
   // takes no chord).
   void startRound(const std::vector<GroupPlan>& plans, const std::vector<BuildCluster>& clusters, int threads);
@@ -60,7 +58,6 @@ class ChordRule {
 
  private:
   static constexpr uint32_t kHolders = 4;
-  static size_t trianglesFrom(const std::vector<BuildCluster>& clusters, size_t first);
   EdgeSet edges_;
   FillLaterVector<uint8_t> holderCount_;
   FillLaterVector<uint32_t> holders_;

@@ -199,7 +199,10 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
   StageTimer leaves(options.times, "leaf clusters");
   dag.clusters = makeLeafClusters(mesh, options);
   leaves.stop();
+  StageTimer firstChords(options.times, "chord rule");
   ChordRule chords(mesh.positions.size(), options.threads);
+  chords.addClusters(dag.clusters, 0, nullptr, options.threads);
+  firstChords.stop();
   std::vector<uint32_t> active(dag.clusters.size());
   for (uint32_t i = 0; i < active.size(); i++) active[i] = i;
   dag.levelClusters.push_back(uint32_t(active.size()));
@@ -210,40 +213,14 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
   // Go on while more than one cluster is left, and then keep halving the last one down to a few
   // triangles: far away, an instance costs only its root, so a small root keeps the triangles drawn
   // in proportion to the pixels covered.
-  auto continues = [&] {
-    return active.size() > 1 || (active.size() == 1 && triangleCount(dag.clusters, active) > kSmallestRoot);
-  };
-  // The edges of the clusters from `firstProduced` on go into the chord rule's set while the next
-  // round's groups are planned, side by side: neither reads what the other writes, and each has
-  // steps that leave threads idle (METIS's first cuts of a level are one call). The set is rebuilt
-  // for them first: allocated beside the grouping's arrays, by whichever thread, its memory stayed
-  // with the allocator (Loop x2 at 16 threads: peak 135 -> 190 bytes a triangle).
-  std::vector<GroupPlan> plans;
-  std::vector<uint64_t> openEdges;
-  auto addEdgesAndGroup = [&](size_t firstProduced, const std::vector<uint32_t>* next) {
-    StageTimes chordTime, groupTime;
-    {
-      StageTimer timer(&chordTime, "chord rule");
-      chords.makeRoom(dag.clusters, firstProduced, next, options.threads);
-    }
-    parallelInvoke(
-        options.threads > 1,
-        [&] {
-          StageTimer timer(&chordTime, "chord rule");
-          chords.addClusters(dag.clusters, firstProduced, options.threads);
-        },
-        [&] {
-          if (!continues()) return;
-          StageTimer timer(&groupTime, "grouping");
-          plans = groupClusters(dag.clusters, active, mesh.positions, options.groupSize, options.threads, &openEdges);
-        });
-    for (const StageTimes& t : {chordTime, groupTime})
-      for (const auto& [stage, seconds] : t.seconds)
-        if (options.times) options.times->add(stage, seconds);
-  };
-  withThreads(options.threads, [&] { addEdgesAndGroup(0, nullptr); });
-  for (uint32_t round = 1; continues(); round++) {
+  for (uint32_t round = 1;
+       active.size() > 1 || (active.size() == 1 && triangleCount(dag.clusters, active) > kSmallestRoot); round++) {
     report(doneWork / totalWork, "simplifying");
+    std::vector<uint64_t> openEdges;
+    StageTimer grouping(options.times, "grouping");
+    const std::vector<GroupPlan> plans =
+        groupClusters(dag.clusters, active, mesh.positions, options.groupSize, options.threads, &openEdges);
+    grouping.stop();
     StageTimer roundChords(options.times, "chord rule");
     chords.startRound(plans, dag.clusters, options.threads);
     roundChords.stop();
@@ -257,12 +234,14 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
     for (size_t g = 0; g < plans.size(); g++)
       if (outcomes[g].simplified.halved) doneWork += double(triangleCount(dag.clusters, plans[g].clusters));
     adding.stop();
+    StageTimer newChords(options.times, "chord rule");
+    chords.addClusters(dag.clusters, firstProduced, &next, options.threads);
+    newChords.stop();
     const uint32_t producedCount = uint32_t(dag.clusters.size() - firstProduced);
     if (producedCount == 0) break;  // no group could be halved: what is left are the roots
     active = std::move(next);
     dag.levelClusters.push_back(producedCount);
     dag.levelTriangles.push_back(triangleCount(dag.clusters, active));
-    withThreads(options.threads, [&] { addEdgesAndGroup(firstProduced, &active); });
   }
   StageTimer rootGroups(options.times, "root groups");
   addRootGroups(dag, active, mesh.positions, options);
