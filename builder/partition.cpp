@@ -425,7 +425,8 @@ void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uin
     for (size_t i = 0; i < pieces.size(); i++) {
       if (i == largest) continue;
       uint64_t w = 0;
-      for (auto [r, edges] : neighbourParts(uint32_t(q), pieces[i], w)) {
+      for (const auto& candidate : neighbourParts(uint32_t(q), pieces[i], w)) {
+        const uint32_t r = candidate.first;
         if (weight[r] + w > maxWeight) continue;
         const bool ok = fitsWith(r, pieces[i]);
         fitOf[q][i].push_back({r, ok});
@@ -442,11 +443,12 @@ void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uin
     for (size_t i = 0; i < pieces.size(); i++) {
       if (i == largest) continue;
       uint64_t w = 0;
-      for (auto [r, edges] : neighbourParts(q, pieces[i], w)) {
+      for (const auto& candidate : neighbourParts(q, pieces[i], w)) {
+        const uint32_t r = candidate.first;
         if (weight[r] + w > maxWeight) continue;
         const auto& known = fitOf[q][i];
         const auto it = std::find_if(known.begin(), known.end(), [&](auto& x) { return x.first == r; });
-        if (!(changed[r] || it == known.end() ? fitsWith(r, pieces[i]) : it->second)) continue;
+        if (!((changed[r] || it == known.end()) ? fitsWith(r, pieces[i]) : it->second)) continue;
         members[r].insert(members[r].end(), pieces[i].begin(), pieces[i].end());
         weight[r] += w;
         weight[q] -= w;
