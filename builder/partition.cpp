@@ -414,6 +414,13 @@ void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uin
     merged.insert(merged.end(), piece.begin(), piece.end());
     return fits(merged.data(), merged.size());
   };
+  // The part a piece of q moves into: the first neighbouring part, most shared edges first, with room
+  // for its weight `w` and for which fitsIn(part) holds; UINT32_MAX where none.
+  auto targetOf = [&](uint32_t q, const std::vector<uint32_t>& piece, uint64_t& w, auto&& fitsIn) {
+    for (const auto& candidate : neighbourParts(q, piece, w))
+      if (weight[candidate.first] + w <= maxWeight && fitsIn(candidate.first)) return candidate.first;
+    return UINT32_MAX;
+  };
   // The turns below are serial, and the fit checks their costliest step: each piece's checks are
   // made first on the threads, against the parts as they are now, and a turn uses them for the parts
   // that no turn before it has changed (the same answer), asking again only for the others.
@@ -425,13 +432,10 @@ void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uin
     for (size_t i = 0; i < pieces.size(); i++) {
       if (i == largest) continue;
       uint64_t w = 0;
-      for (const auto& candidate : neighbourParts(uint32_t(q), pieces[i], w)) {
-        const uint32_t r = candidate.first;
-        if (weight[r] + w > maxWeight) continue;
-        const bool ok = fitsWith(r, pieces[i]);
-        fitOf[q][i].push_back({r, ok});
-        if (ok) break;
-      }
+      targetOf(uint32_t(q), pieces[i], w, [&](uint32_t r) {
+        fitOf[q][i].push_back({r, fitsWith(r, pieces[i])});
+        return fitOf[q][i].back().second;
+      });
     }
   });
   std::vector<uint8_t> changed(parts, 0);  // whether a turn moved nodes into or out of the part
@@ -443,24 +447,22 @@ void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uin
     for (size_t i = 0; i < pieces.size(); i++) {
       if (i == largest) continue;
       uint64_t w = 0;
-      for (const auto& candidate : neighbourParts(q, pieces[i], w)) {
-        const uint32_t r = candidate.first;
-        if (weight[r] + w > maxWeight) continue;
+      const uint32_t r = targetOf(q, pieces[i], w, [&](uint32_t part) {
         const auto& known = fitOf[q][i];
-        const auto it = std::find_if(known.begin(), known.end(), [&](auto& x) { return x.first == r; });
-        if (!((changed[r] || it == known.end()) ? fitsWith(r, pieces[i]) : it->second)) continue;
-        members[r].insert(members[r].end(), pieces[i].begin(), pieces[i].end());
-        weight[r] += w;
-        weight[q] -= w;
-        changed[r] = changed[q] = 1;
-        for (uint32_t u : pieces[i]) owner[u] = r, moved[u] = 1;
-        std::vector<uint32_t> rest;
-        for (uint32_t u : members[q])
-          if (owner[u] == q) rest.push_back(u);
-        members[q] = std::move(rest);
-        anyMoved = true;
-        break;
-      }
+        const auto it = std::find_if(known.begin(), known.end(), [&](auto& x) { return x.first == part; });
+        return (changed[part] || it == known.end()) ? fitsWith(part, pieces[i]) : it->second;
+      });
+      if (r == UINT32_MAX) continue;
+      members[r].insert(members[r].end(), pieces[i].begin(), pieces[i].end());
+      weight[r] += w;
+      weight[q] -= w;
+      changed[r] = changed[q] = 1;
+      for (uint32_t u : pieces[i]) owner[u] = r, moved[u] = 1;
+      std::vector<uint32_t> rest;
+      for (uint32_t u : members[q])
+        if (owner[u] == q) rest.push_back(u);
+      members[q] = std::move(rest);
+      anyMoved = true;
     }
   }
   if (!anyMoved) return;
