@@ -213,14 +213,14 @@ std::vector<uint32_t> weldPositions(const PolygonMesh& mesh, const std::vector<u
   };
   // The keys themselves are sorted, not vertex ids compared through the positions: on a large mesh
   // every such comparison missed the cache. Equal positions only need to be next to each other, so
-  // the buckets are a hash of the position.
+  // the buckets are a hash of the position, about one vertex a bucket (what is left to sort is tiny).
   struct Key {
     std::array<uint32_t, 3> bits;
     uint32_t vertex;
     bool operator<(const Key& o) const { return bits != o.bits ? bits < o.bits : vertex < o.vertex; }
   };
   const FillLaterVector<Key> keys = bucketSorted<Key>(
-      vertexCount, 64, kChunkedBucketBits, threads,
+      vertexCount, 64, std::max(kChunkedBucketBits, bitsFor(vertexCount + 1)), threads,
       [&](size_t v, auto&& emit) {
         const Key key{bits(uint32_t(v)), uint32_t(v)};
         emit(hashWords(key.bits.data(), 3), key);
@@ -278,14 +278,15 @@ size_t dropDuplicateFaces(PolygonMesh& faces, int threads) {
   size_t duplicates = 0;
   const size_t n = faces.faceCount();
   // (hash of the corner set, face) pairs, sorted as they are (comparing face ids through a hash array
-  // missed the cache on large meshes). Faces of one corner set meet in one run, the first face first.
+  // missed the cache on large meshes), about one face a bucket. Faces of one corner set meet in one
+  // run, the first face first.
   struct FaceHash {
     uint64_t hash;
     uint32_t face;
     bool operator<(const FaceHash& o) const { return hash != o.hash ? hash < o.hash : face < o.face; }
   };
   FillLaterVector<FaceHash> byHash = bucketSorted<FaceHash>(
-      n, 64, kChunkedBucketBits, threads,
+      n, 64, std::max(kChunkedBucketBits, bitsFor(n + 1)), threads,
       [&](size_t f, auto&& emit) {
         const uint64_t h = hashOfSet(faces.face(f), faces.faceSize(f));
         emit(h, FaceHash{h, uint32_t(f)});
