@@ -123,40 +123,49 @@ void VgeoFileSink::commit(int threads) {
     entries[i] = {i + 1, sectionElementSize(Section(i + 1)), 0, counts_[i], 0};
   }
   const uint64_t fileSize = placeVgeoSections(entries);
-  // The checksums first, a section a thread (each reading its spool back); then the sections are
-  // copied in on this thread (the system takes writes to one file one at a time), each chunk sent on
-  // to the disk once written. The header and table, which hold the checksums, go first into the file
-  // but are written last.
+  // The sections are copied in on one thread (the system takes writes to one file one at a time),
+  // each chunk sent on to the disk once written, while the others take their checksums, a section a
+  // thread (each reading its spool back). The header and table, which hold the checksums, go first
+  // into the file but are written last.
   auto failed = [&](int error) {
     return OutputError(path_, std::string("cannot read back a section: ") + std::strerror(error));
   };
-  int readError = 0;
-  parallelFor(entries.size(), threads, [&](size_t i) {
-    const uint64_t bytes = entries[i].count * entries[i].elementSize;
-    std::vector<uint8_t> chunk(size_t(std::min<uint64_t>(kSumChunk, bytes)));
-    VgeoChecksum sum(bytes);
-    if (const int error = readBack(spools_[i].fd, bytes, chunk, [&](const uint8_t* p, size_t n) { sum.add(p, n); }))
-      __atomic_store_n(&readError, error, __ATOMIC_RELAXED);
-    entries[i].checksum = sum.finish();
-  });
-  if (readError) throw failed(readError);
   AtomicFile out(path_);
-  std::vector<uint8_t> chunk(kCopyChunk, 0);
-  uint64_t written = kVgeoHeaderSize + kVgeoEntrySize * entries.size();
-  out.write(chunk.data(), size_t(written));
-  for (uint32_t i = 0; i < entries.size(); i++) {
-    static const uint8_t zeros[16] = {};
-    if (entries[i].offset > written) out.write(zeros, size_t(entries[i].offset - written));
-    const uint64_t bytes = entries[i].count * entries[i].elementSize;
-    if (const int error = readBack(spools_[i].fd, bytes, chunk, [&](const uint8_t* p, size_t n) {
-          out.write(p, n);
-          out.startWriteback();
-        }))
-      throw failed(error);
-    written = entries[i].offset + bytes;
-    ::close(spools_[i].fd);  // its disk space back before the next section is copied
-    spools_[i].fd = -1;
-  }
+  int readError = 0;
+  std::vector<uint8_t> summed(entries.size(), 0);  // a spool the copy may close once its sum is taken
+  auto sum = [&] {
+    parallelFor(entries.size(), threads, [&](size_t i) {
+      const uint64_t bytes = entries[i].count * entries[i].elementSize;
+      std::vector<uint8_t> chunk(size_t(std::min<uint64_t>(kSumChunk, bytes)));
+      VgeoChecksum sum(bytes);
+      if (const int error = readBack(spools_[i].fd, bytes, chunk, [&](const uint8_t* p, size_t n) { sum.add(p, n); }))
+        __atomic_store_n(&readError, error, __ATOMIC_RELAXED);
+      entries[i].checksum = sum.finish();
+      __atomic_store_n(&summed[i], uint8_t(1), __ATOMIC_RELEASE);
+    });
+  };
+  auto copy = [&] {
+    std::vector<uint8_t> chunk(kCopyChunk, 0);
+    uint64_t written = kVgeoHeaderSize + kVgeoEntrySize * entries.size();
+    out.write(chunk.data(), size_t(written));
+    for (uint32_t i = 0; i < entries.size(); i++) {
+      static const uint8_t zeros[16] = {};
+      if (entries[i].offset > written) out.write(zeros, size_t(entries[i].offset - written));
+      const uint64_t bytes = entries[i].count * entries[i].elementSize;
+      if (const int error = readBack(spools_[i].fd, bytes, chunk, [&](const uint8_t* p, size_t n) {
+            out.write(p, n);
+            out.startWriteback();
+          }))
+        throw failed(error);
+      written = entries[i].offset + bytes;
+      if (__atomic_load_n(&summed[i], __ATOMIC_ACQUIRE)) {
+        ::close(spools_[i].fd);  // its disk space back before the next section is copied
+        spools_[i].fd = -1;
+      }
+    }
+  };
+  withThreads(threads, [&] { parallelInvoke(threads > 1, copy, sum); });
+  if (readError) throw failed(readError);
   const std::vector<uint8_t> head = vgeoHead(entries, fileSize);
   out.writeAt(0, head.data(), head.size());
   out.commit();
