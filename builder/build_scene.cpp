@@ -145,10 +145,13 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
         options.progress((double(m) + f) / double(scene.meshes.size()), stage);
       };
     StageTimer normals(&stats.stages, "shading normals");
-    const ShadingNormals shading = shadingNormals(leaves, leafNormals, options.creaseAngleDegrees, options.threads);
+    VertexFaces leafFaces;  // made by the normals' sums on threads, then the leaf clusters' dual graph
+    const ShadingNormals shading =
+        shadingNormals(leaves, leafNormals, options.creaseAngleDegrees, options.threads, &leafFaces);
     normals.stop();
     std::vector<glm::vec3>().swap(leafNormals);
     bo.shading = &shading;
+    bo.leafFaces = &leafFaces;
     const std::string where = scene.meshes.size() > 1 ? path + " (mesh '" + scene.meshNames[m] + "')" : path;
     Dag dag;
     try {

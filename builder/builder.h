@@ -134,6 +134,16 @@ std::vector<uint64_t> edgesUsedOnce(std::span<const uint32_t> indices);
 // hashed, so that a group's thousands of edges are counted in cache.
 std::vector<uint64_t> edgesUsedOnceDense(std::span<const uint32_t> indices, uint32_t vertices);
 
+// ---- cluster.cpp (the table the normals' sums and the leaf clusters' dual graph share) --------------
+// Each vertex's faces, ascending (a face once for each of its corners at the vertex): vertex v's are
+// faces[start[v] .. start[v + 1]). The same on any number of threads.
+struct VertexFaces {
+  FillLaterVector<size_t> start;
+  FillLaterVector<uint32_t> faces;
+};
+VertexFaces vertexFaces(std::span<const uint32_t> faceStart, std::span<const uint32_t> faceVertices, size_t vertexCount,
+                        int threads);
+
 // ---- shading_normals.cpp ----------------------------------------------------------------------------
 // A vertex's corners grouped by shading normal: wedge w sits at vertex wedgeVertex[w] with normal
 // wedgeNormal[w]; the wedges of vertex v are wedgeStart[v] .. wedgeStart[v + 1].
@@ -152,9 +162,10 @@ struct ShadingNormals {
 // Wedges of a leaf mesh: from `vertexNormals` when given (a subdivided cage's limit normals, one a
 // vertex), else from the mesh's cornerNormals when it has them, else from its faces, with a crease
 // wherever two faces meet at more than creaseAngleDegrees (180: smooth everywhere). The same on any
-// number of threads.
+// number of threads. Where the sums of faces' normals at each vertex run on threads, they read
+// vertexFaces(mesh), made into `leafFaces` (when given) for the caller to pass on to buildDag.
 ShadingNormals shadingNormals(const PolygonMesh& mesh, const std::vector<glm::vec3>& vertexNormals,
-                              float creaseAngleDegrees, int threads);
+                              float creaseAngleDegrees, int threads, VertexFaces* leafFaces = nullptr);
 
 // ---- subdivide.cpp ----------------------------------------------------------------------------------
 // Faces of `mesh` after `levels` rounds, computed without allocating; used to reject sizes that would not
@@ -317,20 +328,13 @@ constexpr uint32_t kMaxLeafFaceCorners = 66;
 void fanLargeFaces(PolygonMesh& mesh);
 // Appends the triangles of face v[0..n): a quad split along its shorter diagonal, other faces fanned.
 void triangulateFace(const glm::vec3* positions, const uint32_t* v, uint32_t n, std::vector<uint32_t>& out);
-// Each vertex's faces, ascending (a face once for each of its corners at the vertex): vertex v's are
-// faces[start[v] .. start[v + 1]). The same on any number of threads.
-struct VertexFaces {
-  FillLaterVector<size_t> start;
-  FillLaterVector<uint32_t> faces;
-};
-VertexFaces vertexFaces(std::span<const uint32_t> faceStart, std::span<const uint32_t> faceVertices, size_t vertexCount,
-                        int threads);
 // Leaf clusters from whole faces of `mesh` (a face's triangles never part): faces adjacent by an edge
 // are graph neighbours, weighted by their triangle count. cageFaces lists each cluster's faces, whose
 // triangles follow in that order (quads split along the shorter diagonal, other faces fanned).
 // With `shading` that has hard edges, the vertex limit counts wedges and each cluster lists its corners'.
+// `around`: vertexFaces(mesh) when the caller has it (taken over and freed once used), else empty.
 std::vector<BuildCluster> buildLeafClusters(const PolygonMesh& mesh, int threads,
-                                            const ShadingNormals* shading = nullptr);
+                                            const ShadingNormals* shading = nullptr, VertexFaces* around = nullptr);
 struct SimplifiedGroup;
 // Splits a simplified group's triangles into clusters (absolute vertex indices) by edge adjacency;
 // with `shading` as above, each corner takes the wedge nearest its triangle's normal.
@@ -395,6 +399,9 @@ struct BuildOptions {
   const std::vector<PatchErrors>* leafFaceErrors = nullptr;
   // The leaf mesh's wedges; clusters list them only where some vertex has two (a hard edge).
   const ShadingNormals* shading = nullptr;
+  // vertexFaces of the leaf mesh when shadingNormals made it (empty otherwise): taken over by the leaf
+  // clusters' dual graph and freed there.
+  VertexFaces* leafFaces = nullptr;
   // Every leaf triangle is a face that repair checked, none split along a diagonal: repair left each
   // directed edge on one face at most, so no leaf triangles can fold onto each other.
   bool leavesAreRepairedFaces = false;

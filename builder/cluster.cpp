@@ -94,11 +94,12 @@ bool triangleDualGraph(std::span<const uint32_t> corners, size_t vertexCount, Gr
 
 // Faces sharing an edge are neighbours (all of them, should an edge have more than two faces). Found
 // through each vertex's faces rather than by sorting edges: linear, ~3x faster on large meshes, and
-// every pass parallel over faces.
+// every pass parallel over faces. `given`: the faces' vertexFaces when made already (taken over).
 Graph dualGraph(std::span<const uint32_t> faceStart, std::span<const uint32_t> faceVertices, size_t vertexCount,
-                int threads) {
+                int threads, VertexFaces* given) {
   const size_t faceCount = faceStart.size() - 1;
-  const VertexFaces around = vertexFaces(faceStart, faceVertices, vertexCount, threads);
+  const VertexFaces around =
+      given && !given->start.empty() ? std::move(*given) : vertexFaces(faceStart, faceVertices, vertexCount, threads);
   const bool triangles = faceVertices.size() == 3 * faceCount;  // then face f's corners are 3f..3f+2
   auto hasVertex = [&](uint32_t f, uint32_t v) -> bool {
     if (triangles) {
@@ -187,17 +188,19 @@ bool fitsVertexLimit(std::span<const uint32_t> faceStart, std::span<const uint32
 }
 
 // `wedges`, when given (one a corner, like faceVertices), are what the vertex limit counts, and each
-// cluster lists those of its triangles' corners.
+// cluster lists those of its triangles' corners. `around`: the faces' vertexFaces when made already.
 std::vector<BuildCluster> clustersFromFaces(std::span<const uint32_t> faceStart, std::span<const uint32_t> faceVertices,
                                             const std::vector<glm::vec3>& positions, int threads, bool keepFaces,
-                                            uint32_t targetTriangles, const std::vector<uint32_t>* wedges) {
+                                            uint32_t targetTriangles, const std::vector<uint32_t>* wedges,
+                                            VertexFaces* around = nullptr) {
   const size_t faceCount = faceStart.size() - 1;
   Partition parts;
   {  // the graph and its node data are freed before the clusters are made
     Graph graph;
     const bool listed = faceVertices.size() == 3 * faceCount && (faceCount <= kSmallSoupFaces || threads <= 1);
     if (!listed || !triangleDualGraph(faceVertices, positions.size(), graph))
-      graph = dualGraph(faceStart, faceVertices, positions.size(), threads);
+      graph = dualGraph(faceStart, faceVertices, positions.size(), threads, around);
+    if (around) *around = VertexFaces();  // freed, unused by the soup's lists
     std::vector<uint8_t> weights(faceCount);
     FillLaterVector<glm::vec3> centroids(faceCount);
     parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {
@@ -262,12 +265,13 @@ void fanLargeFaces(PolygonMesh& mesh) {
   mesh = std::move(fanned);
 }
 
-std::vector<BuildCluster> buildLeafClusters(const PolygonMesh& mesh, int threads, const ShadingNormals* shading) {
+std::vector<BuildCluster> buildLeafClusters(const PolygonMesh& mesh, int threads, const ShadingNormals* shading,
+                                            VertexFaces* around) {
   for (size_t f = 0; f < mesh.faceCount(); f++)
     if (mesh.faceSize(f) > kMaxLeafFaceCorners) throw std::logic_error("buildLeafClusters: call fanLargeFaces first");
   const bool hardEdges = shading && !shading->oneAVertex;
   return clustersFromFaces(mesh.faceStart, mesh.faceVertices, mesh.positions, threads, true, kClusterFill,
-                           hardEdges ? &shading->cornerWedge : nullptr);
+                           hardEdges ? &shading->cornerWedge : nullptr, around);
 }
 
 std::vector<BuildCluster> splitIntoClusters(const SimplifiedGroup& group, const std::vector<glm::vec3>& positions,

@@ -82,7 +82,7 @@ void checkNoFold(const std::vector<BuildCluster>& clusters, const std::vector<gl
 
 // Leaf clusters of the mesh, with their own spheres and (from the limit surface, when given) errors.
 std::vector<BuildCluster> makeLeafClusters(const PolygonMesh& mesh, const BuildOptions& options) {
-  std::vector<BuildCluster> clusters = buildLeafClusters(mesh, options.threads, options.shading);
+  std::vector<BuildCluster> clusters = buildLeafClusters(mesh, options.threads, options.shading, options.leafFaces);
   if (!options.leavesAreRepairedFaces) checkNoFold(clusters, mesh.positions, options.threads);
   parallelFor(clusters.size(), options.threads, [&](size_t i) {
     BuildCluster& c = clusters[i];
