@@ -84,7 +84,7 @@ void atomicMin(T& target, T value) {
 
 // fn(begin, end) over [0, count) in ranges of kParallelRange on up to `threads` threads: for loops whose
 // body is too small to be a task of its own.
-constexpr size_t kParallelRange = 65536;
+constexpr size_t kParallelRange = 16384;
 inline size_t parallelRangeCount(size_t count) { return (count + kParallelRange - 1) / kParallelRange; }
 template <class Fn>
 void parallelForRanges(size_t count, int threads, Fn&& fn) {
