@@ -81,6 +81,10 @@ for t in "${targets[@]}"; do
         "$t" "seeds_$t" >"$t.log" 2>&1); then
     echo "fuzz: $t FAILED (see $log)" >&2
     tail -n 30 "$log" >&2
+    # The input itself, so that a run on a machine that is thrown away (CI, a fresh container) keeps it.
+    for a in "$work"/crash-* "$work"/timeout-* "$work"/oom-*; do
+      if [ -f "$a" ]; then echo "fuzz: $t input $(basename "$a"), base64: $(base64 -w 0 "$a")" >&2; fi
+    done
     status=1
     failed=1
   fi
