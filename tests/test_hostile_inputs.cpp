@@ -123,14 +123,15 @@ TEST(HostileInputs, CraftedPlyOffAndObjFilesAreRefusedOrBuildRight) {
 
 TEST(HostileInputs, EveryFileTheBuilderWritesPassesItsCheck) {
   // Inputs on which the builder once wrote a file its own checker refused (a folded surface, an
-  // inconsistently wound tetrahedron, coordinates near 3e38): now a build passes check, or fails with
+  // inconsistently wound tetrahedron, coordinates near 3e38, a tetrahedron 2.4e9 long and 1 wide whose
+  // limit surface rounds distinct vertices onto one position): now a build passes check, or fails with
   // one line.
   const std::string dir = test::tempDir();
   for (const std::string name :
        {"build_output_fails_check_huge_coords.obj", "build_output_fails_check_overlap.obj",
         "build_output_fails_check_patch_corner.obj", "build_output_unloadable_nonfinite_error.obj",
         "build_pipeline_fuzz_1.obj", "build_pipeline_fuzz_2.obj", "build_pipeline_fuzz_3.obj",
-        "build_pipeline_fuzz_bowtie.off"}) {
+        "build_pipeline_fuzz_bowtie.off", "build_pipeline_fuzz_long_tetra.off"}) {
     // The fuzzed files name normals they lack; without those references they reach the later steps.
     std::string text = test::readFile(input(name)), stripped;
     for (size_t i = 0; i < text.size(); i++) {
