@@ -4,12 +4,9 @@
 #include "build_scene.h"
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 
-#include "../common/bucket_sort.h"
 #include "../common/parallel.h"
 #include "layout.h"
 
@@ -32,30 +29,6 @@ void add(RepairReport& sum, const RepairReport& r) {
   sum.dissolvedVertices += r.dissolvedVertices;
   sum.components += r.components;
   sum.nonOrientableComponents += r.nonOrientableComponents;
-}
-
-// Whether no two vertices hold the same position bits. A closed geometry's vertices are told apart by
-// position (its file flag says so), and the limit surface of a cage far larger than its detail (2.4e9
-// units long and 1 wide) can round distinct vertices onto one float position.
-bool positionsDistinct(const std::vector<glm::vec3>& positions, int threads) {
-  using Bits = std::array<uint32_t, 3>;
-  const FillLaterVector<Bits> sorted = bucketSorted<Bits>(
-      positions.size(), 64, std::max(kChunkedBucketBits, bitsFor(positions.size() + 1)), threads,
-      [&](size_t v, auto&& emit) {
-        Bits bits;
-        std::memcpy(bits.data(), &positions[v], sizeof bits);
-        emit(hashWords(bits.data(), 3), bits);
-      },
-      std::less<Bits>());
-  bool repeated = false;
-  parallelForRanges(sorted.size(), threads, [&](size_t begin, size_t end) {
-    for (size_t i = std::max<size_t>(begin, 1); i < end; i++)
-      if (sorted[i] == sorted[i - 1]) {
-        __atomic_store_n(&repeated, true, __ATOMIC_RELAXED);
-        return;
-      }
-  });
-  return !repeated;
 }
 
 // Vertices and triangles after `levels` rounds, exactly: V' = V + E + F, E' = 2E + C, F' = C, C' = 4C.

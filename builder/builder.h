@@ -92,6 +92,10 @@ struct RepairReport {
 // vertices so that every edge has at most two faces of opposite orientation and every vertex has one fan.
 // Throws InputError (naming `file`) when positions are not finite or nothing is left.
 RepairReport repairMesh(PolygonMesh& mesh, const std::string& file, int threads = 1);
+// Whether no two of `positions` are equal (-0 as +0), found by the weld's sort. A closed geometry's
+// vertices are told apart by position, and the limit surface of a cage far larger than its detail
+// (2.4e9 units long and 1 wide) can round distinct vertices onto one float position.
+bool positionsDistinct(const std::vector<glm::vec3>& positions, int threads);
 
 // ---- orient.cpp -------------------------------------------------------------------------------------
 struct OrientReport {

@@ -198,34 +198,34 @@ std::vector<uint8_t> checkPositions(const PolygonMesh& mesh, const std::string& 
   return used;
 }
 
-// Weld: sorts the vertices by position bits (with -0 == +0) and maps each to the first of its equals.
-std::vector<uint32_t> weldPositions(const PolygonMesh& mesh, const std::vector<uint8_t>& used, size_t& welded,
-                                    int threads) {
-  const size_t vertexCount = mesh.positions.size();
-  std::vector<uint32_t> weld(vertexCount);
-  auto bits = [&](uint32_t v) {
-    std::array<uint32_t, 3> b;
-    for (int i = 0; i < 3; i++) {
-      float f = mesh.positions[v][i] + 0.0f;  // -0 + 0 = +0
-      std::memcpy(&b[size_t(i)], &f, 4);
-    }
-    return b;
-  };
-  // The keys themselves are sorted, not vertex ids compared through the positions: on a large mesh
-  // every such comparison missed the cache. Equal positions only need to be next to each other, so
-  // the buckets are a hash of the position, about one vertex a bucket (what is left to sort is tiny).
-  struct Key {
-    std::array<uint32_t, 3> bits;
-    uint32_t vertex;
-    bool operator<(const Key& o) const { return bits != o.bits ? bits < o.bits : vertex < o.vertex; }
-  };
-  const FillLaterVector<Key> keys = bucketSorted<Key>(
-      vertexCount, 64, std::max(kChunkedBucketBits, bitsFor(vertexCount + 1)), threads,
+// Every vertex's position bits (-0 as +0) with its id, equal positions next to each other. The keys
+// themselves are sorted, not vertex ids compared through the positions: on a large mesh every such
+// comparison missed the cache. Equal positions only need to be next to each other, so the buckets are a
+// hash of the position, about one vertex a bucket (what is left to sort is tiny).
+struct PositionKey {
+  std::array<uint32_t, 3> bits;
+  uint32_t vertex;
+  bool operator<(const PositionKey& o) const { return bits != o.bits ? bits < o.bits : vertex < o.vertex; }
+};
+FillLaterVector<PositionKey> positionsByBits(const std::vector<glm::vec3>& positions, int threads) {
+  return bucketSorted<PositionKey>(
+      positions.size(), 64, std::max(kChunkedBucketBits, bitsFor(positions.size() + 1)), threads,
       [&](size_t v, auto&& emit) {
-        const Key key{bits(uint32_t(v)), uint32_t(v)};
+        PositionKey key{{}, uint32_t(v)};
+        for (int i = 0; i < 3; i++) {
+          const float f = positions[v][i] + 0.0f;  // -0 + 0 = +0
+          std::memcpy(&key.bits[size_t(i)], &f, 4);
+        }
         emit(hashWords(key.bits.data(), 3), key);
       },
-      std::less<Key>());
+      std::less<PositionKey>());
+}
+
+// Weld: maps each vertex to the first of those at its position.
+std::vector<uint32_t> weldPositions(const PolygonMesh& mesh, const std::vector<uint8_t>& used, size_t& welded,
+                                    int threads) {
+  std::vector<uint32_t> weld(mesh.positions.size());
+  const FillLaterVector<PositionKey> keys = positionsByBits(mesh.positions, threads);
   size_t joined = 0;
   parallelForRuns(
       keys.size(), threads, [&](size_t i, size_t j) { return keys[i].bits == keys[j].bits; },
@@ -473,6 +473,19 @@ size_t countBoundaryEdges(const PolygonMesh& out, int threads) {
 }
 
 }  // namespace
+
+bool positionsDistinct(const std::vector<glm::vec3>& positions, int threads) {
+  const FillLaterVector<PositionKey> keys = positionsByBits(positions, threads);
+  bool repeated = false;
+  parallelForRanges(keys.size(), threads, [&](size_t begin, size_t end) {
+    for (size_t i = std::max<size_t>(begin, 1); i < end; i++)
+      if (keys[i].bits == keys[i - 1].bits) {
+        __atomic_store_n(&repeated, true, __ATOMIC_RELAXED);
+        return;
+      }
+  });
+  return !repeated;
+}
 
 RepairReport repairMesh(PolygonMesh& mesh, const std::string& file, int threads) {
   RepairReport report;
