@@ -329,6 +329,73 @@ size_t dropDuplicateFaces(PolygonMesh& faces, int threads) {
   return duplicates;
 }
 
+// Whether every used vertex's corners form one fan, where every edge has one face or two that walk it
+// opposite ways. Corner c at v turns to `turn[c]`: the corner at v of the other face on the edge into
+// c, or none where that edge is a boundary. No two corners turn to one, so a vertex's corners fall
+// into paths, each starting at a corner whose own edge is a boundary, and loops; walking them, a
+// vertex with more than one path, or a path and a loop, or a corner left over, has more than one fan.
+// The union-find of splitNonManifold joins the same corners. `turn` and `visited` (all zero on entry,
+// all zero again on a false return) are scratch space.
+bool oneFanEach(const PolygonMesh& faces, const OrientedEdges& oriented, const FillLaterVector<uint32_t>& firstCorner,
+                FillLaterVector<uint32_t>& turn, FillLaterVector<uint8_t>& visited, int threads) {
+  const FillLaterVector<CornerEdge>& edges = oriented.edges;
+  const FillLaterVector<uint32_t>& cornerFace = oriented.cornerFace;
+  const size_t cornerCount = faces.faceVertices.size();
+  constexpr uint8_t kSeen = 1, kPathStart = 2;
+  auto next = [&](uint32_t c) {
+    const uint32_t f = cornerFace[c];
+    return c + 1 == faces.faceStart[f + 1] ? faces.faceStart[f] : c + 1;
+  };
+  auto mark = [&](uint32_t c, uint8_t flag) { __atomic_store_n(&visited[c], flag, __ATOMIC_RELAXED); };
+  parallelForRanges(edges.size(), threads, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; i++) {
+      const uint32_t e = edges[i].corner;
+      if (i + 1 < edges.size() && edges[i + 1].key() == edges[i].key()) {
+        const uint32_t p = edges[i + 1].corner;  // runs of two walk their edge opposite ways
+        turn[next(e)] = p;
+        turn[next(p)] = e;
+      } else if (i == 0 || edges[i - 1].key() != edges[i].key()) {
+        turn[next(e)] = UINT32_MAX;
+        mark(e, kPathStart);
+      }
+    }
+  });
+  FillLaterVector<uint8_t> walked = parallelFilled(firstCorner.size(), uint8_t(0), threads);
+  bool many = false;
+  auto walk = [&](uint32_t start) {
+    mark(start, kSeen);
+    for (uint32_t c = turn[start]; c != UINT32_MAX && c != start; c = turn[c]) mark(c, kSeen);
+  };
+  parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
+    for (size_t c = begin; c < end; c++)
+      if (__atomic_load_n(&visited[c], __ATOMIC_RELAXED) == kPathStart) {
+        if (__atomic_exchange_n(&walked[faces.faceVertices[c]], uint8_t(1), __ATOMIC_RELAXED))
+          __atomic_store_n(&many, true, __ATOMIC_RELAXED);
+        walk(uint32_t(c));
+      }
+  });
+  if (!many)  // the loops: each vertex's first corner not on its path
+    parallelForRanges(firstCorner.size(), threads, [&](size_t begin, size_t end) {
+      for (size_t v = begin; v < end; v++) {
+        const uint32_t start = firstCorner[v];
+        if (start == UINT32_MAX || visited[start]) continue;
+        if (walked[v]) __atomic_store_n(&many, true, __ATOMIC_RELAXED);
+        walk(start);
+      }
+    });
+  if (!many)
+    parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
+      if (std::find(visited.begin() + long(begin), visited.begin() + long(end), uint8_t(0)) !=
+          visited.begin() + long(end))
+        __atomic_store_n(&many, true, __ATOMIC_RELAXED);
+    });
+  if (many)
+    parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
+      std::fill(visited.begin() + long(begin), visited.begin() + long(end), uint8_t(0));
+    });
+  return !many;
+}
+
 // Step 5 of the file's head: every face corner a wedge, wedges joined across manifold edges, one output
 // vertex for each fan (split copies counted in the report).
 // `oriented`: orientFaces' sorted corner edges and corner faces, freed as soon as they are used (this
@@ -372,6 +439,21 @@ PolygonMesh splitNonManifold(PolygonMesh& faces, OrientedEdges&& oriented, Repai
   });
   singleEdges += single;
   report.nonManifoldEdges += nonManifold;
+  const size_t vertexCount = faces.positions.size();
+  FillLaterVector<uint32_t> firstCorner = parallelFilled(vertexCount, UINT32_MAX, threads);
+  parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
+    for (size_t c = begin; c < end; c++) atomicMin(firstCorner[faces.faceVertices[c]], uint32_t(c));
+  });
+  FillLaterVector<uint32_t> newCorner(cornerCount);  // each corner's class first, then its output vertex
+  if (nonManifold == 0 && oneFanEach(faces, oriented, firstCorner, newCorner, isolated, threads)) {
+    // Every vertex one fan: the union-find below would give each corner its own vertex again.
+    PolygonMesh out;
+    out.positions = std::move(faces.positions);
+    out.faceStart = std::move(faces.faceStart);
+    out.faceVertices = std::move(faces.faceVertices);
+    out.cornerNormals = std::move(faces.cornerNormals);
+    return out;
+  }
   // Join the wedges across manifold edges; c0 runs a->b in its face, c1 b->a in its. An isolated wedge
   // (at an endpoint of an edge where its face was detached) joins nothing: it gets a vertex of its own,
   // which opens its face's other edge at that corner into a boundary. Such an edge joins nothing at
@@ -392,14 +474,8 @@ PolygonMesh splitNonManifold(PolygonMesh& faces, OrientedEdges&& oriented, Repai
   // Output vertices: the class of a vertex's first corner keeps the vertex; every other class (a fan
   // of wedges, or an isolated wedge alone) gets a copy, numbered in the order of its first corner,
   // which is its union-find root (the smaller root wins every union; isolated wedges join nothing).
-  const size_t vertexCount = faces.positions.size();
-  FillLaterVector<uint32_t> firstCorner = parallelFilled(vertexCount, UINT32_MAX, threads);
-  FillLaterVector<uint32_t> newCorner(cornerCount);  // each corner's class first, then its output vertex
   parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
-    for (size_t c = begin; c < end; c++) {
-      newCorner[c] = wedges.find(uint32_t(c));
-      atomicMin(firstCorner[faces.faceVertices[c]], uint32_t(c));
-    }
+    for (size_t c = begin; c < end; c++) newCorner[c] = wedges.find(uint32_t(c));
   });
   wedges = UnionFind(0);
   FillLaterVector<uint32_t> copyId(cornerCount);  // read only where written: the classes given a copy

@@ -42,6 +42,20 @@ TEST(Repair, SplitsANonManifoldVertex) {
   expectManifold(m);
 }
 
+TEST(Repair, SplitsTheApexOfTwoClosedSurfaces) {
+  // Two tetrahedra sharing vertex 0 and no edge: every edge has two faces, yet vertex 0 has two fans.
+  PolygonMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}};
+  const uint32_t t[8][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}, {0, 5, 4}, {0, 4, 6}, {0, 6, 5}, {4, 5, 6}};
+  for (auto& f : t) m.addFace(f, 3);
+  RepairReport r = repairMesh(m, "apex");
+  EXPECT_EQ(r.nonManifoldEdges, 0u);
+  EXPECT_EQ(r.splitVertices, 1u);
+  EXPECT_EQ(r.boundaryEdges, 0u);
+  EXPECT_EQ(m.positions.size(), 8u);
+  expectManifold(m);
+}
+
 TEST(Repair, DropsDegenerateAndDuplicateFacesAndWelds) {
   PolygonMesh m;
   // A quad split into triangles with its vertices duplicated (as glTF does at seams).
