@@ -157,7 +157,8 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads, OrientedEdges* oriented
       for (uint32_t f : component) flip[f] ^= 1u;
   }
   FillLaterVector<uint32_t>().swap(partner);
-  if (oriented) {
+  const bool anyFlip = anyTurned || anyConflict;  // else no face turns
+  if (oriented && anyFlip) {
     // A turned face keeps its edges; the edge that started at corner k of n starts at n-2-k (mod n),
     // and the order stays (key, corner), since a key's corners are in distinct faces, in face order.
     parallelForRanges(halfEdges.size(), threads, [&](size_t begin, size_t end) {
@@ -168,11 +169,13 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads, OrientedEdges* oriented
         halfEdges[i].corner = start + (2 * n - 2 - (c - start)) % n;
       }
     });
+  }
+  if (oriented) {
     oriented->edges = std::move(halfEdges);
     oriented->cornerFace = std::move(cornerFace);  // a face's corners stay its own when it turns
   }
   size_t flipped = 0;
-  parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {
+  parallelForRanges(anyFlip ? faceCount : 0, threads, [&](size_t begin, size_t end) {
     size_t turned = 0;
     for (size_t f = begin; f < end; f++)
       if (flip[f] == 1) {
