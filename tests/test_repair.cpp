@@ -9,13 +9,39 @@
 namespace vgeo {
 namespace {
 
-// Every edge has at most two faces, of opposite orientation; every vertex one fan.
+// Every edge has at most two faces, of opposite orientation; every vertex one fan (its corners joined
+// through the faces on their edges).
 void expectManifold(const PolygonMesh& m) {
   std::map<std::pair<uint32_t, uint32_t>, int> directed;
+  std::map<std::pair<uint32_t, uint32_t>, uint32_t> cornerOf;  // directed edge a->b: the corner at a
+  std::vector<uint32_t> cornerFace(m.faceVertices.size());
   for (size_t f = 0; f < m.faceCount(); f++)
-    for (uint32_t i = 0; i < m.faceSize(f); i++) directed[{m.face(f)[i], m.face(f)[(i + 1) % m.faceSize(f)]}]++;
+    for (uint32_t i = 0; i < m.faceSize(f); i++) {
+      directed[{m.face(f)[i], m.face(f)[(i + 1) % m.faceSize(f)]}]++;
+      cornerOf[{m.face(f)[i], m.face(f)[(i + 1) % m.faceSize(f)]}] = m.faceStart[f] + i;
+      cornerFace[m.faceStart[f] + i] = uint32_t(f);
+    }
   for (auto& [e, n] : directed)
     EXPECT_EQ(n, 1) << "directed edge " << e.first << "-" << e.second << " used " << n << " times";
+  std::vector<uint32_t> parent(m.faceVertices.size());
+  for (uint32_t c = 0; c < parent.size(); c++) parent[c] = c;
+  auto find = [&](uint32_t c) {
+    while (parent[c] != c) c = parent[c] = parent[parent[c]];
+    return c;
+  };
+  auto next = [&](uint32_t c) {
+    const uint32_t f = cornerFace[c];
+    return c + 1 == m.faceStart[f + 1] ? m.faceStart[f] : c + 1;
+  };
+  for (const auto& [edge, c] : cornerOf) {  // c at a on a->b; the face on b->a has a corner at a after it
+    auto other = cornerOf.find({edge.second, edge.first});
+    if (other != cornerOf.end()) parent[find(c)] = find(next(other->second));
+  }
+  std::map<uint32_t, uint32_t> fanOf;
+  for (uint32_t c = 0; c < parent.size(); c++) {
+    auto [it, added] = fanOf.emplace(m.faceVertices[c], find(c));
+    EXPECT_EQ(it->second, find(c)) << "vertex " << m.faceVertices[c] << " has more than one fan";
+  }
 }
 
 TEST(Repair, SplitsANonManifoldEdgeOfThreeFaces) {
@@ -190,6 +216,60 @@ TEST(Repair, AMessyMeshRepairsTheSameOnAnyThreadCount) {
   EXPECT_EQ(one.faceStart, four.faceStart);
   EXPECT_TRUE(one.positions == four.positions);
   expectManifold(one);
+}
+
+TEST(Repair, PinchedSheetsSplitTheSameOnAnyThreadCount) {
+  // Two grids of 20,000 triangles each, every edge with one or two faces, the second pinched onto the
+  // first at 60 vertices: inner onto inner (two loops of corners at one vertex), boundary onto boundary
+  // (two paths), boundary onto inner (a path and a loop). Each pinch is one split vertex.
+  PolygonMesh m;
+  const uint32_t n = 100, side = n + 1;
+  for (int sheet = 0; sheet < 2; sheet++)
+    for (uint32_t y = 0; y <= n; y++)
+      for (uint32_t x = 0; x <= n; x++) m.positions.push_back({float(x), float(y), 5.0f * float(sheet)});
+  std::map<uint32_t, uint32_t> pinch;  // a vertex of the second grid -> the first grid's vertex it takes
+  for (uint32_t k = 0; k < 20; k++) {
+    pinch[side * side + (5 + k * 4) * side + 7 + k * 4] = (3 + k * 4) * side + 9 + k * 4;  // inner onto inner
+    pinch[side * side + 2 + k * 5] = 4 + k * 5;                                            // bottom onto bottom
+    pinch[side * side + side * (3 + k * 5)] = (2 + k * 4) * side + 50;                     // left onto inner
+  }
+  for (uint32_t sheet = 0; sheet < 2; sheet++)
+    for (uint32_t y = 0; y < n; y++)
+      for (uint32_t x = 0; x < n; x++) {
+        const uint32_t a = sheet * side * side + y * side + x, b = a + 1, c = a + side + 1, d = a + side;
+        uint32_t t[2][3] = {{a, b, c}, {a, c, d}};
+        for (auto& tri : t) {
+          for (uint32_t& v : tri)
+            if (auto p = pinch.find(v); p != pinch.end()) v = p->second;
+          m.addFace(tri, 3);
+        }
+      }
+  PolygonMesh one = m, four = m;
+  RepairReport r1 = repairMesh(one, "pinched", 1), r4 = repairMesh(four, "pinched", 4);
+  EXPECT_EQ(r1.nonManifoldEdges, 0u);
+  EXPECT_EQ(r1.splitVertices, 60u);
+  EXPECT_EQ(r1.boundaryEdges, 8u * n);
+  EXPECT_EQ(r1.splitVertices, r4.splitVertices);
+  EXPECT_EQ(one.faceVertices, four.faceVertices);
+  EXPECT_TRUE(one.positions == four.positions);
+  expectManifold(one);
+  // Without the pinches nothing is split.
+  PolygonMesh apart;
+  apart.positions = m.positions;
+  for (size_t f = 0; f < m.faceCount(); f++) {
+    uint32_t tri[3];
+    for (uint32_t i = 0; i < 3; i++) {
+      tri[i] = m.face(f)[i];
+      if (f >= 2 * n * n)  // the second grid's faces take their own vertices back
+        for (const auto& [own, taken] : pinch)
+          if (tri[i] == taken) tri[i] = own;
+    }
+    apart.addFace(tri, 3);
+  }
+  RepairReport r = repairMesh(apart, "apart", 4);
+  EXPECT_EQ(r.splitVertices, 0u);
+  EXPECT_EQ(apart.faceVertices.size(), m.faceVertices.size());
+  expectManifold(apart);
 }
 
 TEST(Repair, BucketSortedIsStdSortOnAnyThreadCount) {
