@@ -447,6 +447,8 @@ PolygonMesh splitNonManifold(PolygonMesh& faces, OrientedEdges&& oriented, Repai
   FillLaterVector<uint32_t> newCorner(cornerCount);  // each corner's class first, then its output vertex
   if (nonManifold == 0 && oneFanEach(faces, oriented, firstCorner, newCorner, isolated, threads)) {
     // Every vertex one fan: the union-find below would give each corner its own vertex again.
+    FillLaterVector<CornerEdge>().swap(oriented.edges);
+    FillLaterVector<uint32_t>().swap(oriented.cornerFace);
     PolygonMesh out;
     out.positions = std::move(faces.positions);
     out.faceStart = std::move(faces.faceStart);
