@@ -329,69 +329,67 @@ size_t dropDuplicateFaces(PolygonMesh& faces, int threads) {
   return duplicates;
 }
 
+// Flags of a corner in splitNonManifold's scratch array; flagCorner adds one from any thread.
+constexpr uint8_t kIsolated = 1;   // its wedge gets a vertex of its own
+constexpr uint8_t kPathStart = 2;  // its own edge has one face
+constexpr uint8_t kSeen = 4;       // reached by oneFanEach's walks
+void flagCorner(FillLaterVector<uint8_t>& flags, uint32_t c, uint8_t flag) {
+  __atomic_fetch_or(&flags[c], flag, __ATOMIC_RELAXED);
+}
+
 // Whether every used vertex's corners form one fan, where every edge has one face or two that walk it
 // opposite ways. Corner c at v turns to `turn[c]`: the corner at v of the other face on the edge into
-// c, or none where that edge is a boundary. No two corners turn to one, so a vertex's corners fall
-// into paths, each starting at a corner whose own edge is a boundary, and loops; walking them, a
-// vertex with more than one path, or a path and a loop, or a corner left over, has more than one fan.
-// The union-find of splitNonManifold joins the same corners. `turn` and `visited` (all zero on entry,
-// all zero again on a false return) are scratch space.
-bool oneFanEach(const PolygonMesh& faces, const OrientedEdges& oriented, const FillLaterVector<uint32_t>& firstCorner,
-                FillLaterVector<uint32_t>& turn, FillLaterVector<uint8_t>& visited, int threads) {
-  const FillLaterVector<CornerEdge>& edges = oriented.edges;
-  const FillLaterVector<uint32_t>& cornerFace = oriented.cornerFace;
+// c, or none (UINT32_MAX) where that edge is a boundary. No two corners turn to one, so a vertex's
+// corners fall into paths, each from a corner flagged kPathStart, and loops; a vertex with more than
+// one path, or a path and a loop, or a corner no walk reaches, has more than one fan. A loop is walked
+// from the first unreached corner a thread finds at a vertex no walk has claimed; a second loop at a
+// vertex is never walked, and its corners stay unreached. The union-find of splitNonManifold joins the
+// same corners. Adds kSeen to `flags`, and takes it off again on a false return.
+bool oneFanEach(const PolygonMesh& faces, const FillLaterVector<uint32_t>& turn, FillLaterVector<uint8_t>& flags,
+                int threads) {
   const size_t cornerCount = faces.faceVertices.size();
-  constexpr uint8_t kSeen = 1, kPathStart = 2;
-  auto next = [&](uint32_t c) {
-    const uint32_t f = cornerFace[c];
-    return c + 1 == faces.faceStart[f + 1] ? faces.faceStart[f] : c + 1;
-  };
-  auto mark = [&](uint32_t c, uint8_t flag) { __atomic_store_n(&visited[c], flag, __ATOMIC_RELAXED); };
-  parallelForRanges(edges.size(), threads, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; i++) {
-      const uint32_t e = edges[i].corner;
-      if (i + 1 < edges.size() && edges[i + 1].key() == edges[i].key()) {
-        const uint32_t p = edges[i + 1].corner;  // runs of two walk their edge opposite ways
-        turn[next(e)] = p;
-        turn[next(p)] = e;
-      } else if (i == 0 || edges[i - 1].key() != edges[i].key()) {
-        turn[next(e)] = UINT32_MAX;
-        mark(e, kPathStart);
-      }
-    }
-  });
-  FillLaterVector<uint8_t> walked = parallelFilled(firstCorner.size(), uint8_t(0), threads);
+  constexpr uint8_t kPath = 1, kLoop = 2;  // what claimed a vertex first
+  FillLaterVector<uint8_t> walked = parallelFilled(faces.positions.size(), uint8_t(0), threads);
   bool many = false;
+  auto load = [&](size_t c) { return __atomic_load_n(&flags[c], __ATOMIC_RELAXED); };
+  auto seen = [&](size_t c) { return (load(c) & kSeen) != 0; };
+  // A corner is on one path or loop, walked once: only that walk writes its flags here.
+  auto mark = [&](uint32_t c) { __atomic_store_n(&flags[c], uint8_t(load(c) | kSeen), __ATOMIC_RELAXED); };
   auto walk = [&](uint32_t start) {
-    mark(start, kSeen);
-    for (uint32_t c = turn[start]; c != UINT32_MAX && c != start; c = turn[c]) mark(c, kSeen);
+    mark(start);
+    for (uint32_t c = turn[start]; c != UINT32_MAX && c != start; c = turn[c]) mark(c);
   };
   parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
     for (size_t c = begin; c < end; c++)
-      if (__atomic_load_n(&visited[c], __ATOMIC_RELAXED) == kPathStart) {
-        if (__atomic_exchange_n(&walked[faces.faceVertices[c]], uint8_t(1), __ATOMIC_RELAXED))
+      if (load(c) & kPathStart) {
+        if (__atomic_exchange_n(&walked[faces.faceVertices[c]], kPath, __ATOMIC_RELAXED))
           __atomic_store_n(&many, true, __ATOMIC_RELAXED);
         walk(uint32_t(c));
       }
   });
-  if (!many)  // the loops: each vertex's first corner not on its path
-    parallelForRanges(firstCorner.size(), threads, [&](size_t begin, size_t end) {
-      for (size_t v = begin; v < end; v++) {
-        const uint32_t start = firstCorner[v];
-        if (start == UINT32_MAX || visited[start]) continue;
-        if (walked[v]) __atomic_store_n(&many, true, __ATOMIC_RELAXED);
-        walk(start);
+  if (!many)
+    parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
+      for (size_t c = begin; c < end; c++) {
+        if (seen(c)) continue;
+        uint8_t claimed = 0;
+        if (__atomic_compare_exchange_n(&walked[faces.faceVertices[c]], &claimed, kLoop, false, __ATOMIC_RELAXED,
+                                        __ATOMIC_RELAXED))
+          walk(uint32_t(c));
+        else if (claimed == kPath)
+          __atomic_store_n(&many, true, __ATOMIC_RELAXED);
       }
     });
   if (!many)
     parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
-      if (std::find(visited.begin() + long(begin), visited.begin() + long(end), uint8_t(0)) !=
-          visited.begin() + long(end))
-        __atomic_store_n(&many, true, __ATOMIC_RELAXED);
+      for (size_t c = begin; c < end; c++)
+        if (!seen(c)) {
+          __atomic_store_n(&many, true, __ATOMIC_RELAXED);
+          return;
+        }
     });
   if (many)
     parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
-      std::fill(visited.begin() + long(begin), visited.begin() + long(end), uint8_t(0));
+      for (size_t c = begin; c < end; c++) flags[c] &= uint8_t(~kSeen);
     });
   return !many;
 }
@@ -414,8 +412,11 @@ PolygonMesh splitNonManifold(PolygonMesh& faces, OrientedEdges&& oriented, Repai
   auto forward = [&](const CornerEdge& e) { return faces.faceVertices[e.corner] == e.first; };
 
   // A key's corners are one run of the sorted edges. Wedges that get a vertex of their own are
-  // marked first (by any thread: the flag only goes from 0 to 1), then the manifold edges join theirs.
-  FillLaterVector<uint8_t> isolated = parallelFilled(cornerCount, uint8_t(0), threads);
+  // flagged kIsolated first, then the manifold edges join theirs. The same pass finds each corner's
+  // turn around its vertex for oneFanEach (complete where no edge is non-manifold).
+  FillLaterVector<uint8_t> flags = parallelFilled(cornerCount, uint8_t(0), threads);
+  FillLaterVector<uint32_t> newCorner(cornerCount);  // turns; then each corner's class, then its vertex
+  FillLaterVector<uint32_t>& turn = newCorner;
   auto sameKey = [&](size_t i, size_t j) { return edges[i].key() == edges[j].key(); };
   // The run's edge that joins its first (its partner), or SIZE_MAX when none does.
   auto partnerOf = [&](size_t i, size_t j) {
@@ -425,27 +426,30 @@ PolygonMesh splitNonManifold(PolygonMesh& faces, OrientedEdges&& oriented, Repai
   };
   size_t single = 0, nonManifold = 0;
   parallelForRuns(edges.size(), threads, sameKey, [&](size_t i, size_t j) {
+    const uint32_t c0 = edges[i].corner;
     if (j - i == 1) {
       __atomic_fetch_add(&single, size_t(1), __ATOMIC_RELAXED);
+      turn[nextCorner(c0)] = UINT32_MAX;
+      flagCorner(flags, c0, kPathStart);
       return;
     }
     const size_t partner = partnerOf(i, j);
-    if (j - i > 2 || partner == SIZE_MAX) __atomic_fetch_add(&nonManifold, size_t(1), __ATOMIC_RELAXED);
+    if (j - i == 2 && partner != SIZE_MAX) {
+      const uint32_t c1 = edges[partner].corner;
+      turn[nextCorner(c0)] = c1;
+      turn[nextCorner(c1)] = c0;
+      return;
+    }
+    __atomic_fetch_add(&nonManifold, size_t(1), __ATOMIC_RELAXED);
     for (size_t k = i + 1; k < j; k++) {
       if (k == partner) continue;
-      __atomic_store_n(&isolated[edges[k].corner], uint8_t(1), __ATOMIC_RELAXED);
-      __atomic_store_n(&isolated[nextCorner(edges[k].corner)], uint8_t(1), __ATOMIC_RELAXED);
+      flagCorner(flags, edges[k].corner, kIsolated);
+      flagCorner(flags, nextCorner(edges[k].corner), kIsolated);
     }
   });
   singleEdges += single;
   report.nonManifoldEdges += nonManifold;
-  const size_t vertexCount = faces.positions.size();
-  FillLaterVector<uint32_t> firstCorner = parallelFilled(vertexCount, UINT32_MAX, threads);
-  parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
-    for (size_t c = begin; c < end; c++) atomicMin(firstCorner[faces.faceVertices[c]], uint32_t(c));
-  });
-  FillLaterVector<uint32_t> newCorner(cornerCount);  // each corner's class first, then its output vertex
-  if (nonManifold == 0 && oneFanEach(faces, oriented, firstCorner, newCorner, isolated, threads)) {
+  if (nonManifold == 0 && oneFanEach(faces, turn, flags, threads)) {
     // Every vertex one fan: the union-find below would give each corner its own vertex again.
     FillLaterVector<CornerEdge>().swap(oriented.edges);
     FillLaterVector<uint32_t>().swap(oriented.cornerFace);
@@ -466,7 +470,8 @@ PolygonMesh splitNonManifold(PolygonMesh& faces, OrientedEdges&& oriented, Repai
     const size_t partner = j - i > 1 ? partnerOf(i, j) : SIZE_MAX;
     if (partner == SIZE_MAX) return;
     const uint32_t c0 = edges[i].corner, c1 = edges[partner].corner;
-    if (isolated[c0] || isolated[nextCorner(c0)] || isolated[c1] || isolated[nextCorner(c1)]) return;
+    auto isolated = [&](uint32_t c) { return (flags[c] & kIsolated) != 0; };
+    if (isolated(c0) || isolated(nextCorner(c0)) || isolated(c1) || isolated(nextCorner(c1))) return;
     wedges.unite(c0, nextCorner(c1));
     wedges.unite(nextCorner(c0), c1);
   });
@@ -476,8 +481,13 @@ PolygonMesh splitNonManifold(PolygonMesh& faces, OrientedEdges&& oriented, Repai
   // Output vertices: the class of a vertex's first corner keeps the vertex; every other class (a fan
   // of wedges, or an isolated wedge alone) gets a copy, numbered in the order of its first corner,
   // which is its union-find root (the smaller root wins every union; isolated wedges join nothing).
+  const size_t vertexCount = faces.positions.size();
+  FillLaterVector<uint32_t> firstCorner = parallelFilled(vertexCount, UINT32_MAX, threads);
   parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
-    for (size_t c = begin; c < end; c++) newCorner[c] = wedges.find(uint32_t(c));
+    for (size_t c = begin; c < end; c++) {
+      newCorner[c] = wedges.find(uint32_t(c));
+      atomicMin(firstCorner[faces.faceVertices[c]], uint32_t(c));
+    }
   });
   wedges = UnionFind(0);
   FillLaterVector<uint32_t> copyId(cornerCount);  // read only where written: the classes given a copy
