@@ -122,6 +122,14 @@ struct OrientedEdges {
 // orientation of the larger part (by area) of each component. Deterministic; positions are not moved.
 OrientReport orientFaces(PolygonMesh& mesh, int threads = 1, OrientedEdges* edges = nullptr);
 
+// ---- split_fans.cpp ---------------------------------------------------------------------------------
+// Repair's split step: a vertex for each fan of wedges (split copies and non-manifold edges counted in
+// `report`). `oriented`: orientFaces' sorted corner edges and corner faces, freed as soon as they are
+// used (this step sets repair's peak memory). `singleEdges`: edges with one face, which are the boundary
+// edges when no vertex was split. Takes the positions from `faces`.
+PolygonMesh splitNonManifold(PolygonMesh& faces, OrientedEdges&& oriented, RepairReport& report, int threads,
+                             size_t& singleEdges);
+
 // ---- topology.cpp -----------------------------------------------------------------------------------
 struct SurfaceTopology {
   uint64_t triangles = 0;
