@@ -36,10 +36,10 @@ struct ObjPiece {
   bool named = false;
 };
 
-// A piece's lines, and its `v` and `vn` records: a record's keyword is the first word of its line
+// A piece's lines, and its `v`, `vn` and `f` records: a record's keyword is the first word of its line
 // (TextReader's words: ends at a blank, '\r' or '\n'; a line starting with '#' is a comment).
 struct PieceCounts {
-  size_t lines = 0, vertices = 0, normals = 0;
+  size_t lines = 0, vertices = 0, normals = 0, faces = 0;
 };
 PieceCounts countPiece(std::string_view text) {
   PieceCounts c;
@@ -50,6 +50,7 @@ PieceCounts countPiece(std::string_view text) {
     const std::string_view word = text.substr(start, i - start);
     if (word == "v") c.vertices++;
     if (word == "vn") c.normals++;
+    if (word == "f") c.faces++;
     const size_t end = text.find('\n', i);
     if (end == std::string_view::npos) break;
     c.lines++;
@@ -59,13 +60,18 @@ PieceCounts countPiece(std::string_view text) {
 }
 
 // Parses one piece of whole lines, which starts at line `firstLine` after `vertexBase` vertices and
-// `normalBase` normals of the file.
+// `normalBase` normals of the file; `counts` are the piece's own (its arrays are made that size, its
+// corners three a face, at once).
 ObjPiece parsePiece(std::string_view text, const std::string& path, size_t firstLine, size_t vertexBase,
-                    size_t normalBase) {
+                    size_t normalBase, const PieceCounts& counts) {
   TextReader in(text, path, firstLine);
   ObjPiece piece;
   PolygonMesh& mesh = piece.mesh;
   std::vector<glm::vec3>& normals = piece.normals;
+  mesh.positions.reserve(counts.vertices);
+  normals.reserve(counts.normals);
+  mesh.faceStart.reserve(counts.faces + 1);
+  mesh.faceVertices.reserve(3 * counts.faces);
   std::vector<int64_t>& cornerNormal = piece.cornerNormal;
   std::vector<uint32_t> corners;
   std::vector<int64_t> rawCorners, rawNormals;
@@ -87,6 +93,12 @@ ObjPiece parsePiece(std::string_view text, const std::string& path, size_t first
       rawCorners.clear();
       rawNormals.clear();
       while (!in.atLineEnd()) {
+        int64_t plain = 0;
+        if (in.tryPlainIndex(plain)) {  // most files' corners: a vertex index alone
+          rawNormals.push_back(-1);
+          rawCorners.push_back(plain - 1);
+          continue;
+        }
         std::string_view whole = in.token();
         std::string_view t = whole.substr(0, whole.find('/'));  // v/vt/vn: the position index comes first
         int64_t normalIndex = -1;
@@ -155,7 +167,7 @@ SourceScene loadObj(const std::string& path, int threads) {
                  before[k - 1].normals + counts[k - 1].normals};
   parallelFor(pieces, threads, [&](size_t k) {
     try {
-      parsed[k] = parsePiece(text(k), path, 1 + before[k].lines, before[k].vertices, before[k].normals);
+      parsed[k] = parsePiece(text(k), path, 1 + before[k].lines, before[k].vertices, before[k].normals, counts[k]);
     } catch (...) {
       errors[k] = std::current_exception();
     }

@@ -66,13 +66,35 @@ class TextReader {
       pos_++;
     return text_.substr(start, pos_ - start);
   }
+  // The next token as a number of type T; false when it is not one (a leading '+' is allowed). The
+  // number is read in place: it is the whole token when what follows it ends the token.
   template <class T>
   bool tryNumber(T& value) {
-    std::string_view t = token();
-    if (t.empty()) return false;
-    if (t.front() == '+') t.remove_prefix(1);
-    auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), value);
-    return ec == std::errc() && end == t.data() + t.size();
+    skipBlanks();
+    const char* const last = text_.data() + text_.size();
+    const char* p = text_.data() + pos_;
+    if (p < last && *p == '+') p++;
+    auto [end, ec] = std::from_chars(p, last, value);
+    if (ec != std::errc() || !endsToken(end)) {
+      token();  // past the token
+      return false;
+    }
+    pos_ = size_t(end - text_.data());
+    return true;
+  }
+  // A face index that is a plain positive decimal (digits only, up to 18, then the token's end), read
+  // in place and skipped; false, with nothing skipped, for any other token (slashes, signs, zero).
+  bool tryPlainIndex(int64_t& value) {
+    skipBlanks();
+    const char* p = text_.data() + pos_;
+    const char* const last = text_.data() + text_.size();
+    const char* q = p;
+    int64_t v = 0;
+    while (q < last && q - p < 18 && uint8_t(*q - '0') < 10) v = v * 10 + (*q++ - '0');
+    if (v == 0 || !endsToken(q)) return false;
+    value = v;
+    pos_ = size_t(q - text_.data());
+    return true;
   }
   // The next number anywhere ahead (newlines and comments skipped); throws with `what` when absent.
   template <class T>
@@ -82,6 +104,10 @@ class TextReader {
     T value{};
     if (!tryNumber(value)) fail(std::string("expected ") + what);
     return value;
+  }
+  // Whether `p` (within the text or at its end) is where a token ends.
+  bool endsToken(const char* p) const {
+    return p == text_.data() + text_.size() || *p == ' ' || *p == '\t' || *p == '\r' || *p == '\n';
   }
   [[noreturn]] void fail(const std::string& cause) const {
     throw InputError(file_, "line " + std::to_string(line_) + ": " + cause);

@@ -134,6 +134,40 @@ TEST(GoodInput, ObjCornerNormalsFromTheFirstFace) {
   EXPECT_EQ(mesh.cornerNormals[3], glm::vec3(0.0f));
 }
 
+// Numbers are read in place, without cutting the token out first: a number is taken only where its
+// token ends with it, so a plain index followed by anything else is a bad index, and an index of 18
+// digits or more, a sign or a slash goes the general way; numbers at a line's or the file's end count.
+TEST(GoodInput, ObjNumbersReadInPlaceEndWithTheirToken) {
+  const std::string dir = test::tempDir();
+  const std::string path =
+      test::writeFile(dir, "t.obj", "v +0 0 0\t\nv 1.5e0 0 0 \r\nv 0 1 0\nv 1 1 0\nf 01 2\t3 \r\nf 2 -1 3/7/\nf 2 4 3");
+  const PolygonMesh mesh = loadObj(path).meshes[0];
+  ASSERT_EQ(mesh.faceCount(), 3u);
+  EXPECT_EQ(mesh.positions[1], glm::vec3(1.5f, 0, 0));
+  const std::vector<uint32_t> corners(mesh.faceVertices.begin(), mesh.faceVertices.end());
+  EXPECT_EQ(corners, (std::vector<uint32_t>{0, 1, 2, 1, 3, 2, 1, 3, 2}));
+  const std::pair<const char*, const char*> bad[] = {
+      {"f 1 2 3#c", "bad face index '3#c'"},
+      {"f 1 2 +3", "bad face index '+3'"},
+      {"f 1 2 0", "bad face index '0'"},
+      {"f 1 2 3a", "bad face index '3a'"},
+      {"f 1 2 99999999999999999999", "bad face index '99999999999999999999'"},
+      {"f 1 2 100000000000000000", "face index too large for 32-bit indices"},
+      {"v 1 2 3e", "vertex needs three numbers"},
+      {"v 1 2 ++3", "vertex needs three numbers"},
+      {"v 1 2 3#", "vertex needs three numbers"},
+  };
+  for (const auto& [line, cause] : bad) {
+    const std::string badPath = test::writeFile(dir, "b.obj", std::string("v 0 0 0\nv 1 0 0\nv 0 1 0\n") + line + "\n");
+    try {
+      loadObj(badPath);
+      ADD_FAILURE() << "no error for " << line;
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()), badPath + ": line 4: " + cause) << line;
+    }
+  }
+}
+
 // A file of more than 8 MB is read in pieces on several threads: the mesh is the one one thread reads,
 // negative (relative) indices and normals looking back across the pieces' starts included, and the
 // error reported is the first in the file, on its line.
