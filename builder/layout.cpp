@@ -82,21 +82,6 @@ void appendGeometry(SectionSink& file, const Dag& dag, const PolygonMesh& leafMe
                     const MeshPatches& patches, PatchBases bases, const std::vector<PatchErrors>& patchErrors,
                     bool closed, int threads) {
   Bvh bvh = buildBvh(dag.groups);
-  // Each cluster's normal cone and the sphere of its own vertices (a leaf's is its self sphere): apart
-  // from the serial layout below, since CGAL's exact sphere is the layout's costliest step.
-  std::vector<shaderio::ClusterCone> cones(dag.clusters.size());
-  parallelFor(dag.clusters.size(), threads, [&](size_t id) {
-    const BuildCluster& c = dag.clusters[id];
-    cones[id].cone = normalCone(c.indices, leafMesh.positions);
-    if (c.level == 0) {
-      cones[id].sphere = c.selfSphere;
-      return;
-    }
-    std::vector<uint32_t> vertices, local;
-    localIds(c.wedges.empty() ? c.indices : c.wedges, vertices, local);
-    for (uint32_t& v : vertices) v = shading.wedgeVertex[v];  // the wedges' positions
-    cones[id].sphere = sphereOfPoints(leafMesh.positions, vertices.data(), vertices.size());
-  });
   const uint32_t vertexOffset = uint32_t(file.count(Section::Positions)),
                  clusterOffset = uint32_t(file.count(Section::Clusters)),
                  groupOffset = uint32_t(file.count(Section::Groups)),
@@ -116,7 +101,11 @@ void appendGeometry(SectionSink& file, const Dag& dag, const PolygonMesh& leafMe
   const bool patched = patches.info.size() == leafMesh.faceCount() && leafMesh.faceCount() > 0;
 
   // Vertices: one a wedge (shading_normals.cpp), which is one a leaf vertex unless the mesh has hard edges.
+  // They go to the file on one thread while the others find each cluster's normal cone and the sphere
+  // of its own vertices (a leaf's is its self sphere), kept apart from the serial layout below since
+  // CGAL's exact sphere is the layout's costliest step.
   const size_t vertices = shading.wedgeVertex.size();
+  std::vector<shaderio::ClusterCone> cones(dag.clusters.size());
   {
     FillLaterVector<glm::vec3> positions(vertices);
     FillLaterVector<uint32_t> normals(vertices);
@@ -126,8 +115,25 @@ void appendGeometry(SectionSink& file, const Dag& dag, const PolygonMesh& leafMe
         normals[w] = encodeNormal(shading.wedgeNormal[w]);
       }
     });
-    file.append(Section::Positions, positions.data(), vertices);
-    file.append(Section::Normals, normals.data(), vertices);
+    auto appendVertices = [&] {
+      file.append(Section::Positions, positions.data(), vertices);
+      file.append(Section::Normals, normals.data(), vertices);
+    };
+    auto findCones = [&] {
+      parallelFor(dag.clusters.size(), threads, [&](size_t id) {
+        const BuildCluster& c = dag.clusters[id];
+        cones[id].cone = normalCone(c.indices, leafMesh.positions);
+        if (c.level == 0) {
+          cones[id].sphere = c.selfSphere;
+          return;
+        }
+        std::vector<uint32_t> own, local;
+        localIds(c.wedges.empty() ? c.indices : c.wedges, own, local);
+        for (uint32_t& v : own) v = shading.wedgeVertex[v];  // the wedges' positions
+        cones[id].sphere = sphereOfPoints(leafMesh.positions, own.data(), own.size());
+      });
+    };
+    withThreads(threads, [&] { parallelInvoke(threads > 1, appendVertices, findCones); });
   }
 
   // One patch per face of a subdivided cage (its words verbatim: control-point indices relative to the
