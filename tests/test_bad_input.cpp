@@ -135,17 +135,18 @@ TEST(GoodInput, ObjCornerNormalsFromTheFirstFace) {
 }
 
 // Numbers are read in place, without cutting the token out first: a number is taken only where its
-// token ends with it, so a plain index followed by anything else is a bad index, and an index of 18
-// digits or more, a sign or a slash goes the general way; numbers at a line's or the file's end count.
+// token ends with it, so a plain index followed by anything else is a bad index, and an index of more
+// than 18 digits, a sign or a slash goes the general way; numbers at a line's or the file's end count.
 TEST(GoodInput, ObjNumbersReadInPlaceEndWithTheirToken) {
   const std::string dir = test::tempDir();
-  const std::string path =
-      test::writeFile(dir, "t.obj", "v +0 0 0\t\nv 1.5e0 0 0 \r\nv 0 1 0\nv 1 1 0\nf 01 2\t3 \r\nf 2 -1 3/7/\nf 2 4 3");
+  const std::string path = test::writeFile(
+      dir, "t.obj",
+      "v +0 0 0\t\nv 1.5e0 0 0 \r\nv 0 1 0\nv 1 1 0\nf 01 2\t3 \r\nf 2 -1 3/7/\nf 0000000000000000000002 4 3\nf 2 4 3");
   const PolygonMesh mesh = loadObj(path).meshes[0];
-  ASSERT_EQ(mesh.faceCount(), 3u);
+  ASSERT_EQ(mesh.faceCount(), 4u);
   EXPECT_EQ(mesh.positions[1], glm::vec3(1.5f, 0, 0));
   const std::vector<uint32_t> corners(mesh.faceVertices.begin(), mesh.faceVertices.end());
-  EXPECT_EQ(corners, (std::vector<uint32_t>{0, 1, 2, 1, 3, 2, 1, 3, 2}));
+  EXPECT_EQ(corners, (std::vector<uint32_t>{0, 1, 2, 1, 3, 2, 1, 3, 2, 1, 3, 2}));
   const std::pair<const char*, const char*> bad[] = {
       {"f 1 2 3#c", "bad face index '3#c'"},
       {"f 1 2 +3", "bad face index '+3'"},
