@@ -165,13 +165,24 @@ SourceScene loadObj(const std::string& path, int threads) {
   for (size_t k = 1; k < pieces; k++)
     before[k] = {before[k - 1].lines + counts[k - 1].lines, before[k - 1].vertices + counts[k - 1].vertices,
                  before[k - 1].normals + counts[k - 1].normals};
-  parallelFor(pieces, threads, [&](size_t k) {
-    try {
-      parsed[k] = parsePiece(text(k), path, 1 + before[k].lines, before[k].vertices, before[k].normals, counts[k]);
-    } catch (...) {
-      errors[k] = std::current_exception();
-    }
-  });
+  // The joined positions and normals, whose sizes the counts give, are made (zeroed, on one thread)
+  // while the other threads parse.
+  PolygonMesh mesh;
+  std::vector<glm::vec3> normals;
+  auto makeJoined = [&] {
+    mesh.positions.resize(before[pieces - 1].vertices + counts[pieces - 1].vertices);
+    normals.resize(before[pieces - 1].normals + counts[pieces - 1].normals);
+  };
+  auto parseAll = [&] {
+    parallelFor(pieces, threads, [&](size_t k) {
+      try {
+        parsed[k] = parsePiece(text(k), path, 1 + before[k].lines, before[k].vertices, before[k].normals, counts[k]);
+      } catch (...) {
+        errors[k] = std::current_exception();
+      }
+    });
+  };
+  withThreads(threads, [&] { parallelInvoke(threads > 1, makeJoined, parseAll); });
   for (const std::exception_ptr& e : errors)
     if (e) std::rethrow_exception(e);  // the first in the file
 
@@ -187,10 +198,9 @@ SourceScene loadObj(const std::string& path, int threads) {
     normalBase[k + 1] = normalBase[k] + parsed[k].normals.size();
   }
   if (cornerBase[pieces] > UINT32_MAX) throw InputError(path, "more than 4294967295 face corners");
-  PolygonMesh mesh;
-  std::vector<glm::vec3> normals(normalBase[pieces]);
   std::vector<int64_t> cornerNormal(named ? cornerBase[pieces] : 0);
-  mesh.positions.resize(vertexBase[pieces]);
+  mesh.positions.resize(vertexBase[pieces]);  // as counted: a `v` record is a vertex or an error
+  normals.resize(normalBase[pieces]);
   mesh.faceStart.resize(faceBase[pieces] + 1);
   mesh.faceVertices.resize(cornerBase[pieces]);
   parallelFor(pieces, threads, [&](size_t k) {
