@@ -28,7 +28,7 @@ void flagCorner(FillLaterVector<uint8_t>& flags, uint32_t c, uint8_t flag) {
 // one path, or a path and a loop, or a corner no walk reaches, has more than one fan. A loop is walked
 // from the first unreached corner a thread finds at a vertex no walk has claimed; a second loop at a
 // vertex is never walked, and its corners stay unreached. The union-find of splitNonManifold joins the
-// same corners. Adds kSeen to `flags`, and takes it off again on a false return.
+// same corners. Adds kSeen to `flags` (the union-find that follows a false return reads only kIsolated).
 bool oneFanEach(const PolygonMesh& faces, const FillLaterVector<uint32_t>& turn, FillLaterVector<uint8_t>& flags,
                 int threads) {
   const size_t cornerCount = faces.faceVertices.size();
@@ -70,10 +70,6 @@ bool oneFanEach(const PolygonMesh& faces, const FillLaterVector<uint32_t>& turn,
           __atomic_store_n(&many, true, __ATOMIC_RELAXED);
           return;
         }
-    });
-  if (many)
-    parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
-      for (size_t c = begin; c < end; c++) flags[c] &= uint8_t(~kSeen);
     });
   return !many;
 }

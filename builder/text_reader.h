@@ -61,9 +61,7 @@ class TextReader {
   std::string_view token() {
     skipBlanks();
     size_t start = pos_;
-    while (pos_ < text_.size() && text_[pos_] != ' ' && text_[pos_] != '\t' && text_[pos_] != '\r' &&
-           text_[pos_] != '\n')
-      pos_++;
+    while (!endsToken(text_.data() + pos_)) pos_++;
     return text_.substr(start, pos_ - start);
   }
   // The next token as a number of type T; false when it is not one (a leading '+' is allowed). The
