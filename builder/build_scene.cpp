@@ -62,6 +62,17 @@ double signedVolume(const PolygonMesh& mesh, int threads) {
   return volume;
 }
 
+// The scene's instances of its meshes, each flagged by whether its mesh is `closed`; those of zero scale,
+// which show nothing, left out.
+std::vector<shaderio::Instance> sceneInstances(const SourceScene& scene, const std::vector<bool>& closed) {
+  std::vector<shaderio::Instance> instances;
+  for (const SourceInstance& inst : scene.instances) {
+    shaderio::Instance out = makeInstance(inst.transform, inst.mesh, closed[inst.mesh]);
+    if (out.maxScale > 0.0f && std::isfinite(out.maxScale)) instances.push_back(out);
+  }
+  return instances;
+}
+
 // Why a DAG kept more than one root per component: a topology-preserving simplifier cannot remove a
 // handle or close a boundary loop, so a surface of genus g keeps about 4g triangles and each loop at
 // least three edges; otherwise the last groups could not be halved within the simplifier's rules.
@@ -106,6 +117,7 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
   }
   // One mesh at a time, from subdivision to layout, each array freed once used: the build's peak memory
   // is one mesh's.
+  std::vector<shaderio::Instance> instances;
   for (size_t m = 0; m < scene.meshes.size(); m++) {
     auto subdivideStart = std::chrono::steady_clock::now();
     StageTimer subdividing(&stats.stages, "subdivide and limit");
@@ -161,7 +173,12 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
       throw InputError(where, e.what());
     }
     StageTimer layout(&stats.stages, "layout");
-    appendGeometry(data, dag, leaves, shading, patches, patchBases, patchErrors, closed[m], options.threads);
+    const bool last = m + 1 == scene.meshes.size();
+    if (last) {  // every mesh's closedness is known: the instances' total too
+      instances = sceneInstances(scene, closed);
+      data.expectTotal(Section::Instances, data.count(Section::Instances) + instances.size());
+    }
+    appendGeometry(data, dag, leaves, shading, patches, patchBases, patchErrors, closed[m], last, options.threads);
     layout.stop();
     stats.clusters += dag.clusters.size();
     stats.leafClusters += dag.levelClusters[0];
@@ -181,11 +198,8 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
     stats.stuckGroups += dag.stuckGroups;
     stats.buildSeconds += secondsSince(buildStart);
   }
-  for (const SourceInstance& inst : scene.instances) {
-    shaderio::Instance out = makeInstance(inst.transform, inst.mesh, closed[inst.mesh]);
-    if (out.maxScale > 0.0f && std::isfinite(out.maxScale))
-      data.append(Section::Instances, &out, 1);  // a zero scale shows nothing
-  }
+  if (scene.meshes.empty()) instances = sceneInstances(scene, closed);
+  data.append(Section::Instances, instances);
   stats.geometries = uint32_t(data.count(Section::Geometries));
   stats.instances = uint32_t(data.count(Section::Instances));
 }

@@ -47,8 +47,10 @@ struct SceneBuildStats {
   StageTimes stages;  // every step's seconds, the DAG's own steps among them
 };
 
-// Loads, repairs, subdivides and builds every mesh of `path` into the sections of `out` (a
-// VgeoFileSink writes nothing until its commit); throws InputError for bad input.
+// Loads, repairs, subdivides and builds every mesh of `path` into the sections of `out` (nothing is at
+// a VgeoFileSink's path before its commit); throws InputError for bad input. Before the last mesh's
+// layout every section's total is expected (SectionSink::expectTotal), so that a file is written in
+// place from there on.
 void buildScene(const std::string& path, const SceneBuildOptions& options, SceneBuildStats& stats, SectionSink& out);
 // The same, into memory.
 VgeoData buildScene(const std::string& path, const SceneBuildOptions& options, SceneBuildStats& stats);

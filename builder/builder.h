@@ -357,6 +357,8 @@ std::vector<BuildCluster> splitIntoClusters(const SimplifiedGroup& group, const 
 // The distinct vertices of `indices` in order of first use (globals) and `indices` renumbered to
 // them (local[i] indexes globals); memory in proportion to the list, not to the mesh.
 void localIds(const std::vector<uint32_t>& indices, std::vector<uint32_t>& globals, std::vector<uint32_t>& local);
+// The number of distinct vertices of `indices` (the size localIds would give globals), without the lists.
+size_t distinctCount(const std::vector<uint32_t>& indices);
 
 // ---- bounds.cpp -------------------------------------------------------------------------------------
 // Smallest sphere enclosing the points (CGAL), rounded outward so that float tests agree.

@@ -80,7 +80,7 @@ PatchBases appendPatchPoints(SectionSink& file, MeshPatches& patches) {
 
 void appendGeometry(SectionSink& file, const Dag& dag, const PolygonMesh& leafMesh, const ShadingNormals& shading,
                     const MeshPatches& patches, PatchBases bases, const std::vector<PatchErrors>& patchErrors,
-                    bool closed, int threads) {
+                    bool closed, bool last, int threads) {
   Bvh bvh = buildBvh(dag.groups);
   const uint32_t vertexOffset = uint32_t(file.count(Section::Positions)),
                  clusterOffset = uint32_t(file.count(Section::Clusters)),
@@ -99,13 +99,42 @@ void appendGeometry(SectionSink& file, const Dag& dag, const PolygonMesh& leafMe
   if (clusterOrder.size() != dag.clusters.size())
     throw std::logic_error("appendGeometry: a cluster belongs to no group");
   const bool patched = patches.info.size() == leafMesh.faceCount() && leafMesh.faceCount() > 0;
+  const size_t vertices = shading.wedgeVertex.size();
+  // The file's last geometry: what each section will hold is known before it is appended (the clusters'
+  // vertices once counted with the cones below; its patch points are in already), so that a file sink
+  // writes them in place.
+  auto expectMore = [&](Section s, uint64_t more) {
+    if (last) file.expectTotal(s, file.count(s) + more);
+  };
+  if (last) {
+    uint64_t triangles = 0, faces = 0, faceVertices = 0;
+    for (const BuildCluster& c : dag.clusters) {
+      triangles += c.indices.size() / 3;
+      if (!patched) continue;
+      faces += c.cageFaces.size();
+      for (uint32_t f : c.cageFaces) faceVertices += leafMesh.faceSize(f);
+    }
+    expectMore(Section::Geometries, 1);
+    expectMore(Section::Positions, vertices);
+    expectMore(Section::Normals, vertices);
+    expectMore(Section::Clusters, dag.clusters.size());
+    expectMore(Section::ClusterTriangles, triangles);
+    expectMore(Section::Groups, dag.groups.size());
+    expectMore(Section::BvhNodes, bvh.nodes.size());
+    expectMore(Section::CageFaces, faces);
+    expectMore(Section::CageFaceVertices, faceVertices);
+    expectMore(Section::ClusterCones, dag.clusters.size());
+    expectMore(Section::ControlPoints, 0);
+    expectMore(Section::Patches, faces);
+    expectMore(Section::PatchPoints, 0);
+  }
 
   // Vertices: one a wedge (shading_normals.cpp), which is one a leaf vertex unless the mesh has hard edges.
-  // They go to the file on one thread while the others find each cluster's normal cone and the sphere
-  // of its own vertices (a leaf's is its self sphere), kept apart from the serial layout below since
-  // CGAL's exact sphere is the layout's costliest step.
-  const size_t vertices = shading.wedgeVertex.size();
+  // They go to the file on one thread while the others find each cluster's normal cone, the sphere of
+  // its own vertices (a leaf's is its self sphere) and their number, kept apart from the serial layout
+  // below since CGAL's exact sphere is the layout's costliest step.
   std::vector<shaderio::ClusterCone> cones(dag.clusters.size());
+  std::vector<uint32_t> clusterVertexCounts(dag.clusters.size());
   {
     FillLaterVector<glm::vec3> positions(vertices);
     FillLaterVector<uint32_t> normals(vertices);
@@ -123,18 +152,24 @@ void appendGeometry(SectionSink& file, const Dag& dag, const PolygonMesh& leafMe
       parallelFor(dag.clusters.size(), threads, [&](size_t id) {
         const BuildCluster& c = dag.clusters[id];
         cones[id].cone = normalCone(c.indices, leafMesh.positions);
+        const std::vector<uint32_t>& ids = c.wedges.empty() ? c.indices : c.wedges;
         if (c.level == 0) {
           cones[id].sphere = c.selfSphere;
+          clusterVertexCounts[id] = uint32_t(distinctCount(ids));
           return;
         }
         std::vector<uint32_t> own, local;
-        localIds(c.wedges.empty() ? c.indices : c.wedges, own, local);
+        localIds(ids, own, local);
+        clusterVertexCounts[id] = uint32_t(own.size());
         for (uint32_t& v : own) v = shading.wedgeVertex[v];  // the wedges' positions
         cones[id].sphere = sphereOfPoints(leafMesh.positions, own.data(), own.size());
       });
     };
     withThreads(threads, [&] { parallelInvoke(threads > 1, appendVertices, findCones); });
   }
+  uint64_t clusterVertexTotal = 0;
+  for (const uint32_t n : clusterVertexCounts) clusterVertexTotal += n;
+  expectMore(Section::ClusterVertices, clusterVertexTotal);
 
   // One patch per face of a subdivided cage (its words verbatim: control-point indices relative to the
   // geometry's first control point). Neighbours name faces by their index in the file, whose order

@@ -21,10 +21,12 @@ PatchBases appendPatchPoints(SectionSink& file, MeshPatches& patches);
 // vertices are limit points; its words and control points already in the file at `bases`) with the
 // chord errors `patchErrors` (patchChordErrors). Where `patches` is empty (a mesh not subdivided) there
 // is no surface below the leaves and the geometry has no cage faces: they would be three quarters of
-// its file, never read. `closed` records whether the repaired input had no boundary edge. The clusters'
-// normal cones and spheres are made on up to `threads` threads.
+// its file, never read. `closed` records whether the repaired input had no boundary edge. `last`: no
+// geometry follows, so every section but the instances ends with this one's part (SectionSink::
+// expectTotal; the caller expects the instances' total first). The clusters' normal cones and spheres
+// are made on up to `threads` threads.
 void appendGeometry(SectionSink& file, const Dag& dag, const PolygonMesh& leafMesh, const ShadingNormals& shading,
                     const MeshPatches& patches, PatchBases bases, const std::vector<PatchErrors>& patchErrors,
-                    bool closed, int threads = 1);
+                    bool closed, bool last, int threads = 1);
 
 }  // namespace vgeo

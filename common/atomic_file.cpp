@@ -46,7 +46,7 @@ void untrack() { gTempActive = 0; }
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   temp_ = path_ + ".tmp." + std::to_string(::getpid());
   track(temp_);
-  file_ = std::fopen(temp_.c_str(), "wb");
+  file_ = std::fopen(temp_.c_str(), "w+b");  // read back by readAt
   if (!file_) {
     untrack();
     throw OutputError(path_, std::string("cannot write: ") + std::strerror(errno));
@@ -84,17 +84,29 @@ void AtomicFile::writeAt(uint64_t offset, const void* data, size_t size) {
   }
 }
 
-void AtomicFile::startWriteback() {
-  if (error_) return;
-  if (std::fflush(file_) != 0) {
-    error_ = errno ? errno : EIO;
-    return;
+int AtomicFile::readAt(uint64_t offset, void* data, size_t size) const {
+  uint8_t* p = static_cast<uint8_t*>(data);
+  while (size > 0) {
+    const ssize_t n = ::pread(::fileno(file_), p, size, off_t(offset));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return n < 0 ? errno : EIO;
+    p += n, size -= size_t(n), offset += uint64_t(n);
   }
-  const long end = std::ftell(file_);
-  if (end <= 0 || uint64_t(end) <= sent_) return;
+  return 0;
+}
+
+void AtomicFile::startWriteback(uint64_t offset, uint64_t size) {
   // Only a hint: where the system cannot, fsync in commit() writes it all the same.
-  ::sync_file_range(::fileno(file_), off_t(sent_), off_t(uint64_t(end) - sent_), SYNC_FILE_RANGE_WRITE);
-  sent_ = uint64_t(end);
+  if (!error_ && size > 0) ::sync_file_range(::fileno(file_), off_t(offset), off_t(size), SYNC_FILE_RANGE_WRITE);
+}
+
+void AtomicFile::throwIfFailed() {
+  if (!error_) return;
+  if (file_) std::fclose(file_);
+  file_ = nullptr;
+  std::remove(temp_.c_str());
+  untrack();
+  throw OutputError(path_, std::string("write failed: ") + std::strerror(error_));
 }
 
 void AtomicFile::commit() {
@@ -103,11 +115,7 @@ void AtomicFile::commit() {
   const int closed = std::fclose(file_);
   file_ = nullptr;
   if (!error_ && closed != 0) error_ = errno;
-  if (error_) {
-    std::remove(temp_.c_str());
-    untrack();
-    throw OutputError(path_, std::string("write failed: ") + std::strerror(error_));
-  }
+  throwIfFailed();
   if (std::rename(temp_.c_str(), path_.c_str()) != 0) {
     const int e = errno;
     std::remove(temp_.c_str());

@@ -26,16 +26,20 @@ class AtomicFile {
   void write(const void* data, size_t size);
   // Overwrites bytes already written, at `offset`; later writes still append.
   void writeAt(uint64_t offset, const void* data, size_t size);
-  // Starts writing what was written since the last call to disk, without waiting for it: commit()'s
-  // flush then overlaps the writes that follow instead of starting when they end.
-  void startWriteback();
+  // Reads back `size` bytes that writeAt wrote at `offset`, safe on several threads at once; returns 0,
+  // or the errno of a failed read (EIO where the file is shorter).
+  int readAt(uint64_t offset, void* data, size_t size) const;
+  // Starts sending the bytes at [offset, offset + size) to disk, without waiting for them: commit()'s
+  // flush then overlaps the work that follows instead of starting when it ends.
+  void startWriteback(uint64_t offset, uint64_t size);
+  // Throws the OutputError that commit() would for a write that failed so far, removing the file.
+  void throwIfFailed();
   void commit();
 
  private:
   std::string path_, temp_;
   std::FILE* file_ = nullptr;
-  int error_ = 0;      // errno of the first failed write
-  uint64_t sent_ = 0;  // bytes startWriteback() has sent on
+  int error_ = 0;  // errno of the first failed write
 };
 
 // The whole of `bytes` to `path`, atomically.

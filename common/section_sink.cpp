@@ -16,8 +16,8 @@ namespace vgeo {
 namespace {
 
 constexpr size_t kSpoolBuffer = size_t(1) << 20;  // bytes a section collects before a write
-constexpr size_t kCopyChunk = size_t(4) << 20;    // bytes read back at a time by commit() to copy
-constexpr size_t kSumChunk = size_t(1) << 20;     // and by each thread to checksum
+constexpr size_t kCopyChunk = size_t(4) << 20;    // bytes read back at a time to copy a spool into place
+constexpr size_t kSumChunk = size_t(1) << 20;     // and by each thread to checksum the file's sections
 
 // A temporary file in `folder` that no name leads to: O_TMPFILE where the file system has it, else a
 // named file unlinked at once.
@@ -57,6 +57,15 @@ uint32_t sectionElementSize(Section s) {
   return sizes[uint32_t(s)];
 }
 
+void SectionSink::expectTotal(Section s, uint64_t total) {
+  const uint32_t i = uint32_t(s) - 1;
+  if (total < counts_[i] || (totals_[i] != kUnknown && totals_[i] != total))
+    throw std::logic_error("a .vgeo section's expected total is below its count or changed");
+  if (totals_[i] == total) return;
+  totals_[i] = total;
+  expected(s);
+}
+
 VgeoDataSink::VgeoDataSink(VgeoData& data) : data_(data) {
 #define VGEO_SECTION_COUNT(id, member, type, values, name) \
   counts_[uint32_t(Section::id) - 1] = data.member.size() / values;
@@ -79,7 +88,20 @@ void VgeoDataSink::write(Section s, const void* data, uint64_t count) {
   }
 }
 
-VgeoFileSink::VgeoFileSink(std::string path) : path_(std::move(path)), spools_(uint32_t(Section::Count_) - 1) {
+void VgeoDataSink::expected(Section s) {
+  switch (s) {
+#define VGEO_SECTION_RESERVE(id, member, type, values, name)                     \
+  case Section::id:                                                              \
+    data_.member.reserve(size_t(totals_[uint32_t(Section::id) - 1]) * (values)); \
+    break;
+    VGEO_SECTIONS(VGEO_SECTION_RESERVE)
+#undef VGEO_SECTION_RESERVE
+    default:
+      break;
+  }
+}
+
+VgeoFileSink::VgeoFileSink(std::string path) : path_(std::move(path)), spools_(kSections) {
   const size_t slash = path_.find_last_of('/');
   const std::string folder = slash == std::string::npos ? "." : slash == 0 ? "/" : path_.substr(0, slash);
   for (Spool& spool : spools_) spool.fd = anonymousFile(folder, path_);
@@ -90,20 +112,29 @@ VgeoFileSink::~VgeoFileSink() {
     if (spool.fd >= 0) ::close(spool.fd);
 }
 
-void VgeoFileSink::flush(Spool& spool) {
-  const uint8_t* p = spool.buffer.data();
-  size_t left = spool.buffer.size();
-  while (left > 0) {
-    const ssize_t n = ::write(spool.fd, p, left);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) throw OutputError(path_, std::string("write failed: ") + std::strerror(n < 0 ? errno : EIO));
-    p += n, left -= size_t(n);
+void VgeoFileSink::flush(uint32_t section) {
+  Spool& spool = spools_[section];
+  if (spool.buffer.empty()) return;
+  if (section < placed_) {
+    out_->writeAt(spool.offset + spool.sent, spool.buffer.data(), spool.buffer.size());
+    out_->startWriteback(spool.offset + spool.sent, spool.buffer.size());
+  } else {
+    const uint8_t* p = spool.buffer.data();
+    size_t left = spool.buffer.size();
+    while (left > 0) {
+      const ssize_t n = ::write(spool.fd, p, left);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) throw OutputError(path_, std::string("write failed: ") + std::strerror(n < 0 ? errno : EIO));
+      p += n, left -= size_t(n);
+    }
   }
+  spool.sent += spool.buffer.size();
   spool.buffer.clear();
 }
 
 void VgeoFileSink::write(Section s, const void* data, uint64_t count) {
-  Spool& spool = spools_[uint32_t(s) - 1];
+  const uint32_t section = uint32_t(s) - 1;
+  Spool& spool = spools_[section];
   const uint8_t* p = static_cast<const uint8_t*>(data);
   size_t bytes = size_t(count) * sectionElementSize(s);
   if (spool.buffer.capacity() < kSpoolBuffer) spool.buffer.reserve(kSpoolBuffer);
@@ -111,64 +142,81 @@ void VgeoFileSink::write(Section s, const void* data, uint64_t count) {
     const size_t take = std::min(bytes, kSpoolBuffer - spool.buffer.size());
     spool.buffer.insert(spool.buffer.end(), p, p + take);
     p += take, bytes -= take;
-    if (spool.buffer.size() == kSpoolBuffer) flush(spool);
+    if (spool.buffer.size() == kSpoolBuffer) flush(section);
+  }
+}
+
+void VgeoFileSink::expected(Section) { place(); }
+
+// Places the sections that follow the last placed one while the total of each section before them is
+// known, in file order, each 16-byte aligned after the header and table (placeVgeoSections); what a
+// section's spool holds is copied into place and the spool closed.
+void VgeoFileSink::place() {
+  while (placed_ < kSections) {
+    uint64_t end = kVgeoHeaderSize + uint64_t(kVgeoEntrySize) * kSections;  // of the last placed section
+    if (placed_ > 0) {
+      const uint32_t last = placed_ - 1;
+      if (totals_[last] == kUnknown) return;  // it may still grow
+      end = spools_[last].offset + totals_[last] * sectionElementSize(Section(last + 1));
+    }
+    if (!out_) out_ = std::make_unique<AtomicFile>(path_);
+    Spool& spool = spools_[placed_];
+    spool.offset = (end + 15) / 16 * 16;
+    static const uint8_t zeros[16] = {};
+    out_->writeAt(end, zeros, size_t(spool.offset - end));
+    std::vector<uint8_t> chunk(size_t(std::min<uint64_t>(kCopyChunk, spool.sent)));
+    uint64_t at = spool.offset;
+    if (const int error = readBack(spool.fd, spool.sent, chunk, [&](const uint8_t* p, size_t n) {
+          out_->writeAt(at, p, n);
+          at += n;
+        }))
+      throw OutputError(path_, std::string("cannot read back a section: ") + std::strerror(error));
+    out_->startWriteback(spool.offset, spool.sent);
+    ::close(spool.fd);  // its disk space back
+    spool.fd = -1;
+    placed_++;
   }
 }
 
 void VgeoFileSink::commit(int threads) {
-  std::vector<VgeoEntry> entries(spools_.size());
-  for (uint32_t i = 0; i < entries.size(); i++) {
-    flush(spools_[i]);
+  // Every total is now the count; what is not placed yet is copied into place.
+  for (uint32_t i = 0; i < kSections; i++)
+    if (totals_[i] == kUnknown) totals_[i] = counts_[i];
+  place();
+  std::vector<VgeoEntry> entries(kSections);
+  for (uint32_t i = 0; i < kSections; i++) {
+    if (counts_[i] != totals_[i]) throw std::logic_error("a .vgeo section ended short of its expected total");
+    flush(i);
     std::vector<uint8_t>().swap(spools_[i].buffer);
     entries[i] = {i + 1, sectionElementSize(Section(i + 1)), 0, counts_[i], 0};
   }
   const uint64_t fileSize = placeVgeoSections(entries);
-  // The sections are copied in on one thread (the system takes writes to one file one at a time),
-  // each chunk sent on to the disk once written, while the others take their checksums, a section a
-  // thread (each reading its spool back). The header and table, which hold the checksums, go first
-  // into the file but are written last.
-  auto failed = [&](int error) {
-    return OutputError(path_, std::string("cannot read back a section: ") + std::strerror(error));
-  };
-  AtomicFile out(path_);
+  for (uint32_t i = 0; i < kSections; i++)
+    if (entries[i].offset != spools_[i].offset) throw std::logic_error("a .vgeo section was placed out of order");
+  out_->throwIfFailed();  // a full disk, say: its cause, not the read back it cut short
+  // The checksums, a section a thread, read back while the disk takes what was sent to it; the header
+  // and table, which hold them, go first into the file but are written last.
   int readError = 0;
-  std::vector<uint8_t> summed(entries.size(), 0);  // a spool the copy may close once its sum is taken
-  auto sum = [&] {
+  withThreads(threads, [&] {
     parallelFor(entries.size(), threads, [&](size_t i) {
       const uint64_t bytes = entries[i].count * entries[i].elementSize;
       std::vector<uint8_t> chunk(size_t(std::min<uint64_t>(kSumChunk, bytes)));
       VgeoChecksum sum(bytes);
-      if (const int error = readBack(spools_[i].fd, bytes, chunk, [&](const uint8_t* p, size_t n) { sum.add(p, n); }))
-        __atomic_store_n(&readError, error, __ATOMIC_RELAXED);
-      entries[i].checksum = sum.finish();
-      __atomic_store_n(&summed[i], uint8_t(1), __ATOMIC_RELEASE);
-    });
-  };
-  auto copy = [&] {
-    std::vector<uint8_t> chunk(kCopyChunk, 0);
-    uint64_t written = kVgeoHeaderSize + kVgeoEntrySize * entries.size();
-    out.write(chunk.data(), size_t(written));
-    for (uint32_t i = 0; i < entries.size(); i++) {
-      static const uint8_t zeros[16] = {};
-      if (entries[i].offset > written) out.write(zeros, size_t(entries[i].offset - written));
-      const uint64_t bytes = entries[i].count * entries[i].elementSize;
-      if (const int error = readBack(spools_[i].fd, bytes, chunk, [&](const uint8_t* p, size_t n) {
-            out.write(p, n);
-            out.startWriteback();
-          }))
-        throw failed(error);
-      written = entries[i].offset + bytes;
-      if (__atomic_load_n(&summed[i], __ATOMIC_ACQUIRE)) {
-        ::close(spools_[i].fd);  // its disk space back before the next section is copied
-        spools_[i].fd = -1;
+      for (uint64_t at = 0; at < bytes; at += chunk.size()) {
+        const size_t n = size_t(std::min<uint64_t>(chunk.size(), bytes - at));
+        if (const int error = out_->readAt(entries[i].offset + at, chunk.data(), n)) {
+          __atomic_store_n(&readError, error, __ATOMIC_RELAXED);
+          break;
+        }
+        sum.add(chunk.data(), n);
       }
-    }
-  };
-  withThreads(threads, [&] { parallelInvoke(threads > 1, copy, sum); });
-  if (readError) throw failed(readError);
+      entries[i].checksum = sum.finish();
+    });
+  });
+  if (readError) throw OutputError(path_, std::string("cannot read back a section: ") + std::strerror(readError));
   const std::vector<uint8_t> head = vgeoHead(entries, fileSize);
-  out.writeAt(0, head.data(), head.size());
-  out.commit();
+  out_->writeAt(0, head.data(), head.size());
+  out_->commit();
 }
 
 }  // namespace vgeo

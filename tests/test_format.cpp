@@ -2,6 +2,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <tuple>
 
@@ -174,10 +175,11 @@ TEST(Format, MalformedPatchWordsAreRejected) {
 }
 
 TEST(Format, TheFileWrittenAsItIsBuiltIsTheOneBuiltInMemory) {
-  // `vgeo build` spools each section to disk as the layout makes it (VgeoFileSink) and assembles the file
-  // at the end: the same bytes as the in-memory build writes, for a subdivided cage (patches), a flat
-  // mesh, and a glTF of many meshes (each section holds every geometry's part, in order), whether the
-  // spools are read back on one thread or several; the spools leave nothing behind.
+  // `vgeo build` writes each section to disk as the layout makes it (VgeoFileSink): the last geometry's
+  // part in place, what came before it spooled and copied into place. The same bytes as the in-memory
+  // build writes, for a subdivided cage (patches, whose points are spooled before the DAG), a flat mesh,
+  // and a glTF of many meshes (each section holds every geometry's part, in order), whether the
+  // checksums are taken on one thread or several; the spools leave nothing behind.
   const std::string dir = test::tempDir();
   for (const auto& [path, subdiv, commitThreads] : std::vector<std::tuple<std::string, int, int>>{
            {test::asset("horned_cube.obj"), 2, 1},
@@ -198,6 +200,95 @@ TEST(Format, TheFileWrittenAsItIsBuiltIsTheOneBuiltInMemory) {
     EXPECT_EQ(test::readFile(dir + "/spooled.vgeo"), std::string(expected.begin(), expected.end()));
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()), 1);
   }
+}
+
+// One section of `data` as raw elements, for replaying a build into a sink.
+struct SectionBytes {
+  Section section;
+  const uint8_t* bytes;
+  uint64_t count;
+};
+std::vector<SectionBytes> sectionsOf(const VgeoData& data) {
+  std::vector<SectionBytes> out;
+#define VGEO_SECTION_BYTES(id, member, type, values, name) \
+  out.push_back({Section::id, reinterpret_cast<const uint8_t*>(data.member.data()), data.member.size() / (values)});
+  VGEO_SECTIONS(VGEO_SECTION_BYTES)
+#undef VGEO_SECTION_BYTES
+  return out;
+}
+
+TEST(Format, TheFileSinkWritesASectionInPlaceOnceTheTotalsBeforeItAreKnown) {
+  // VgeoFileSink spools a section until the totals of every section before it in the file are known
+  // (expectTotal), then copies it into place and writes the rest of it there. Whatever totals come
+  // when, the file is the one serializeVgeo makes, and nothing else is left in its folder.
+  const VgeoData data = test::build(test::asset("horned_cube.obj"), 2);  // every section holds something
+  const std::vector<uint8_t> expected = serializeVgeo(data);
+  const std::vector<SectionBytes> sections = sectionsOf(data);
+  for (const SectionBytes& s : sections) ASSERT_GT(s.count, 0u) << sectionName(s.section);
+  const std::string dir = test::tempDir(), path = dir + "/placed.vgeo";
+  // Each section in three pieces, the sections taking turns; `expect(piece, sink)` runs before each
+  // round of pieces.
+  auto replay = [&](const std::function<void(int, SectionSink&)>& expect, int threads) {
+    {
+      VgeoFileSink sink(path);
+      for (int piece = 0; piece < 3; piece++) {
+        expect(piece, sink);
+        for (const SectionBytes& s : sections) {
+          const uint64_t begin = s.count * uint64_t(piece) / 3, end = s.count * uint64_t(piece + 1) / 3;
+          sink.append(s.section, s.bytes + begin * sectionElementSize(s.section), end - begin);
+        }
+      }
+      sink.commit(threads);
+    }
+    EXPECT_EQ(test::readFile(path), std::string(expected.begin(), expected.end()));
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()), 1);
+  };
+  auto expectAll = [&](SectionSink& sink, bool backwards) {
+    for (size_t i = 0; i < sections.size(); i++) {
+      const SectionBytes& s = sections[backwards ? sections.size() - 1 - i : i];
+      sink.expectTotal(s.section, s.count);
+    }
+  };
+  {
+    SCOPED_TRACE("no totals: every section spooled and copied at commit");
+    replay([](int, SectionSink&) {}, 1);
+  }
+  {
+    SCOPED_TRACE("every total first: every section written in place");
+    replay([&](int piece, SectionSink& sink) { piece == 0 ? expectAll(sink, false) : void(); }, 3);
+  }
+  {
+    SCOPED_TRACE("every total after a third of each section, last section first");
+    replay([&](int piece, SectionSink& sink) { piece == 1 ? expectAll(sink, true) : void(); }, 2);
+  }
+  {
+    SCOPED_TRACE("the totals of the first three sections only: the fourth placed, the rest spooled");
+    replay(
+        [&](int piece, SectionSink& sink) {
+          if (piece == 1)
+            for (size_t i = 0; i < 3; i++) sink.expectTotal(sections[i].section, sections[i].count);
+        },
+        1);
+  }
+  // Totals that do not hold are the caller's bug: a logic_error, and no file.
+  std::filesystem::remove(path);
+  {
+    VgeoFileSink sink(path);
+    sink.expectTotal(Section::Geometries, 1);
+    EXPECT_THROW(sink.expectTotal(Section::Geometries, 2), std::logic_error);
+    const SectionBytes& geometries = sections[0];
+    ASSERT_EQ(geometries.section, Section::Geometries);
+    sink.append(Section::Geometries, geometries.bytes, 1);
+    EXPECT_THROW(sink.append(Section::Geometries, geometries.bytes, 1), std::logic_error);
+    sink.expectTotal(Section::Instances, 2);
+    EXPECT_THROW(sink.commit(), std::logic_error);  // no instance appended
+  }
+  {
+    VgeoFileSink sink(path);
+    sink.append(Section::Geometries, sections[0].bytes, 1);
+    EXPECT_THROW(sink.expectTotal(Section::Geometries, 0), std::logic_error);
+  }
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()), 0);
 }
 
 TEST(Format, OutputIsTheSameForAnyThreadCount) {
