@@ -59,10 +59,10 @@ void addBuildCommand(CLI::App& app, int& exitCode) {
     options.creaseAngleDegrees = args->creaseAngle;
     options.progress = [&](double f, const char* stage) { bar.update(f, stage); };
     SceneBuildStats s;
-    VgeoFileSink file(args->output);
+    VgeoFileSink file(args->output, args->threads);
     buildScene(args->input, options, s, file);
     StageTimer writing(&s.stages, "write");
-    file.commit(args->threads);
+    file.commit();
     writing.stop();
     bar.finish();
     double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -1,6 +1,7 @@
 // atomic_file.h: output files that are either whole or absent (atomic_file.cpp).
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <cstdio>
 #include <stdexcept>
@@ -39,7 +40,7 @@ class AtomicFile {
  private:
   std::string path_, temp_;
   std::FILE* file_ = nullptr;
-  int error_ = 0;  // errno of the first failed write
+  std::atomic<int> error_{0};  // errno of the first failed write (writeAt may run on several threads)
 };
 
 // The whole of `bytes` to `path`, atomically.

@@ -1,12 +1,16 @@
-// section_sink.cpp: a .vgeo's sections kept in memory or spooled to disk (section_sink.h).
+// section_sink.cpp: a .vgeo's sections kept in memory or written to disk as they come (section_sink.h).
 #include "section_sink.h"
 
 #include <fcntl.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <condition_variable>
 #include <cstdlib>
 #include <cstring>
+#include <deque>
+#include <mutex>
+#include <thread>
 
 #include "atomic_file.h"
 #include "parallel.h"
@@ -18,6 +22,7 @@ namespace {
 constexpr size_t kSpoolBuffer = size_t(1) << 20;  // bytes a section collects before a write
 constexpr size_t kCopyChunk = size_t(4) << 20;    // bytes read back at a time to copy a spool into place
 constexpr size_t kSumChunk = size_t(1) << 20;     // and by each thread to checksum the file's sections
+constexpr size_t kBuffersInFlight = 8;            // full buffers the writer thread may lag behind: bounds the memory
 
 // A temporary file in `folder` that no name leads to: O_TMPFILE where the file system has it, else a
 // named file unlinked at once.
@@ -101,13 +106,95 @@ void VgeoDataSink::expected(Section s) {
   }
 }
 
-VgeoFileSink::VgeoFileSink(std::string path) : path_(std::move(path)), spools_(kSections) {
+// Each write: the bytes added to their section's checksum (where it is taken as written), written at
+// their offset and sent on to the disk. Threaded, the buffers go to the writer thread in order and the
+// caller gets an empty one back (a recycled one, or a new one while fewer than kBuffersInFlight are
+// out; else it waits for one); otherwise each write is done at once.
+class VgeoFileSink::Writer {
+ public:
+  Writer(AtomicFile& out, bool threaded) : out_(out) {
+    if (threaded) thread_ = std::thread([this] { run(); });
+  }
+  ~Writer() { finish(); }
+  // Takes the bytes of `buffer`, leaving it empty.
+  void write(std::vector<uint8_t>& buffer, uint64_t offset, VgeoChecksum* sum) {
+    if (!thread_.joinable()) {
+      perform(buffer, offset, sum);
+      buffer.clear();
+      return;
+    }
+    std::vector<uint8_t> next;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      changed_.wait(lock, [&] { return !free_.empty() || buffers_ < kBuffersInFlight; });
+      if (!free_.empty()) {
+        next = std::move(free_.back());
+        free_.pop_back();
+      } else {
+        buffers_++;
+      }
+      jobs_.push_back({std::move(buffer), offset, sum});
+    }
+    changed_.notify_all();
+    if (next.capacity() < kSpoolBuffer) next.reserve(kSpoolBuffer);
+    buffer = std::move(next);
+  }
+  // Waits for every write given so far.
+  void finish() {
+    if (!thread_.joinable()) return;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    changed_.notify_all();
+    thread_.join();
+  }
+
+ private:
+  struct Job {
+    std::vector<uint8_t> bytes;
+    uint64_t offset;
+    VgeoChecksum* sum;
+  };
+  void perform(const std::vector<uint8_t>& bytes, uint64_t offset, VgeoChecksum* sum) {
+    if (sum) sum->add(bytes.data(), bytes.size());
+    out_.writeAt(offset, bytes.data(), bytes.size());
+    out_.startWriteback(offset, bytes.size());
+  }
+  void run() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
+      changed_.wait(lock, [&] { return stop_ || !jobs_.empty(); });
+      if (jobs_.empty()) return;  // stopped, every job done
+      Job job = std::move(jobs_.front());
+      jobs_.pop_front();
+      lock.unlock();
+      perform(job.bytes, job.offset, job.sum);
+      job.bytes.clear();
+      lock.lock();
+      free_.push_back(std::move(job.bytes));
+      changed_.notify_all();
+    }
+  }
+  AtomicFile& out_;
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::deque<Job> jobs_;
+  std::vector<std::vector<uint8_t>> free_;
+  size_t buffers_ = 0;  // made for the thread so far
+  bool stop_ = false;
+  std::thread thread_;
+};
+
+VgeoFileSink::VgeoFileSink(std::string path, int threads)
+    : path_(std::move(path)), threads_(std::max(threads, 1)), spools_(kSections) {
   const size_t slash = path_.find_last_of('/');
   const std::string folder = slash == std::string::npos ? "." : slash == 0 ? "/" : path_.substr(0, slash);
   for (Spool& spool : spools_) spool.fd = anonymousFile(folder, path_);
 }
 
 VgeoFileSink::~VgeoFileSink() {
+  writer_.reset();  // before the file it writes to
   for (Spool& spool : spools_)
     if (spool.fd >= 0) ::close(spool.fd);
 }
@@ -115,21 +202,23 @@ VgeoFileSink::~VgeoFileSink() {
 void VgeoFileSink::flush(uint32_t section) {
   Spool& spool = spools_[section];
   if (spool.buffer.empty()) return;
+  const size_t bytes = spool.buffer.size();
   if (section < placed_) {
-    out_->writeAt(spool.offset + spool.sent, spool.buffer.data(), spool.buffer.size());
-    out_->startWriteback(spool.offset + spool.sent, spool.buffer.size());
+    if (spool.sent == 0 && totals_[section] != kUnknown && !spool.sum)
+      spool.sum.emplace(totals_[section] * sectionElementSize(Section(section + 1)));
+    writer_->write(spool.buffer, spool.offset + spool.sent, spool.sum ? &*spool.sum : nullptr);
   } else {
     const uint8_t* p = spool.buffer.data();
-    size_t left = spool.buffer.size();
+    size_t left = bytes;
     while (left > 0) {
       const ssize_t n = ::write(spool.fd, p, left);
       if (n < 0 && errno == EINTR) continue;
       if (n <= 0) throw OutputError(path_, std::string("write failed: ") + std::strerror(n < 0 ? errno : EIO));
       p += n, left -= size_t(n);
     }
+    spool.buffer.clear();
   }
-  spool.sent += spool.buffer.size();
-  spool.buffer.clear();
+  spool.sent += bytes;
 }
 
 void VgeoFileSink::write(Section s, const void* data, uint64_t count) {
@@ -150,7 +239,8 @@ void VgeoFileSink::expected(Section) { place(); }
 
 // Places the sections that follow the last placed one while the total of each section before them is
 // known, in file order, each 16-byte aligned after the header and table (placeVgeoSections); what a
-// section's spool holds is copied into place and the spool closed.
+// section's spool holds is copied into place (and summed, where its total is known) and the spool
+// closed. The copies are written here, on the calling thread: the writer has no write of theirs yet.
 void VgeoFileSink::place() {
   while (placed_ < kSections) {
     uint64_t end = kVgeoHeaderSize + uint64_t(kVgeoEntrySize) * kSections;  // of the last placed section
@@ -159,14 +249,19 @@ void VgeoFileSink::place() {
       if (totals_[last] == kUnknown) return;  // it may still grow
       end = spools_[last].offset + totals_[last] * sectionElementSize(Section(last + 1));
     }
-    if (!out_) out_ = std::make_unique<AtomicFile>(path_);
+    if (!out_) {
+      out_ = std::make_unique<AtomicFile>(path_);
+      writer_ = std::make_unique<Writer>(*out_, threads_ > 1);
+    }
     Spool& spool = spools_[placed_];
     spool.offset = (end + 15) / 16 * 16;
     static const uint8_t zeros[16] = {};
     out_->writeAt(end, zeros, size_t(spool.offset - end));
+    if (totals_[placed_] != kUnknown) spool.sum.emplace(totals_[placed_] * sectionElementSize(Section(placed_ + 1)));
     std::vector<uint8_t> chunk(size_t(std::min<uint64_t>(kCopyChunk, spool.sent)));
     uint64_t at = spool.offset;
     if (const int error = readBack(spool.fd, spool.sent, chunk, [&](const uint8_t* p, size_t n) {
+          if (spool.sum) spool.sum->add(p, n);
           out_->writeAt(at, p, n);
           at += n;
         }))
@@ -178,7 +273,7 @@ void VgeoFileSink::place() {
   }
 }
 
-void VgeoFileSink::commit(int threads) {
+void VgeoFileSink::commit() {
   // Every total is now the count; what is not placed yet is copied into place.
   for (uint32_t i = 0; i < kSections; i++)
     if (totals_[i] == kUnknown) totals_[i] = counts_[i];
@@ -187,18 +282,23 @@ void VgeoFileSink::commit(int threads) {
   for (uint32_t i = 0; i < kSections; i++) {
     if (counts_[i] != totals_[i]) throw std::logic_error("a .vgeo section ended short of its expected total");
     flush(i);
-    std::vector<uint8_t>().swap(spools_[i].buffer);
     entries[i] = {i + 1, sectionElementSize(Section(i + 1)), 0, counts_[i], 0};
   }
+  writer_->finish();
+  for (Spool& spool : spools_) std::vector<uint8_t>().swap(spool.buffer);
   const uint64_t fileSize = placeVgeoSections(entries);
   for (uint32_t i = 0; i < kSections; i++)
     if (entries[i].offset != spools_[i].offset) throw std::logic_error("a .vgeo section was placed out of order");
   out_->throwIfFailed();  // a full disk, say: its cause, not the read back it cut short
-  // The checksums, a section a thread, read back while the disk takes what was sent to it; the header
-  // and table, which hold them, go first into the file but are written last.
+  // The checksums not taken as written, a section a thread, read back while the disk takes what was
+  // sent to it; the header and table, which hold them, go first into the file but are written last.
   int readError = 0;
-  withThreads(threads, [&] {
-    parallelFor(entries.size(), threads, [&](size_t i) {
+  withThreads(threads_, [&] {
+    parallelFor(entries.size(), threads_, [&](size_t i) {
+      if (spools_[i].sum) {
+        entries[i].checksum = spools_[i].sum->finish();
+        return;
+      }
       const uint64_t bytes = entries[i].count * entries[i].elementSize;
       std::vector<uint8_t> chunk(size_t(std::min<uint64_t>(kSumChunk, bytes)));
       VgeoChecksum sum(bytes);

@@ -5,12 +5,14 @@
 
 #include <algorithm>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "atomic_file.h"
 #include "vgeo_file.h"
+#include "vgeo_head.h"
 
 namespace vgeo {
 
@@ -61,34 +63,40 @@ class VgeoDataSink : public SectionSink {
 };
 
 // The .vgeo file `path`, written atomically (atomic_file.h). A section goes straight to its place in
-// the file once the totals of every section before it are known (expectTotal), and is sent on to the
-// disk as it is written; until then it goes to a temporary file of its own in path's folder, unlinked
-// at once so that the system removes it however the process ends, and is copied into place when its
-// place is known (at the latest, at commit). Write failures throw OutputError("path: cause").
+// the file once the totals of every section before it are known (expectTotal): each full buffer is
+// added to the section's checksum, written and sent on to the disk, on a thread of its own when the
+// sink has `threads` > 1 (the appending thread then only fills buffers). Until then a section goes to
+// a temporary file of its own in path's folder, unlinked at once so that the system removes it however
+// the process ends, and is copied into place when its place is known (at the latest, at commit).
+// Write failures throw OutputError("path: cause").
 class VgeoFileSink : public SectionSink {
  public:
-  explicit VgeoFileSink(std::string path);
+  explicit VgeoFileSink(std::string path, int threads = 1);
   ~VgeoFileSink() override;
   VgeoFileSink(const VgeoFileSink&) = delete;
   VgeoFileSink& operator=(const VgeoFileSink&) = delete;
-  // Places what is left, takes the sections' checksums on up to `threads` threads, writes the header
-  // and table, and moves the file into place.
-  void commit(int threads = 1);
+  // Places what is left, takes the checksums not taken as written (reading those sections back), writes
+  // the header and table, and moves the file into place.
+  void commit();
 
  private:
   struct Spool {
-    int fd = -1;                  // the temporary file, until the section is placed
-    uint64_t offset = 0;          // where the section starts in the file, once placed
-    uint64_t sent = 0;            // bytes written out of the buffer so far
-    std::vector<uint8_t> buffer;  // written out when full
+    int fd = -1;                      // the temporary file, until the section is placed
+    uint64_t offset = 0;              // where the section starts in the file, once placed
+    uint64_t sent = 0;                // bytes written out of the buffer so far
+    std::vector<uint8_t> buffer;      // written out when full
+    std::optional<VgeoChecksum> sum;  // taken as written, where its total was known at its first byte
   };
+  class Writer;  // the writes into the file, in order, on a thread of their own or at once
   void write(Section s, const void* data, uint64_t count) override;
   void expected(Section s) override;
   void flush(uint32_t section);
   void place();
   std::string path_;
+  int threads_;
   std::vector<Spool> spools_;
   std::unique_ptr<AtomicFile> out_;  // from the first section placed on
+  std::unique_ptr<Writer> writer_;   // with out_
   uint32_t placed_ = 0;              // sections placed, in file order
 };
 

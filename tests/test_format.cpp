@@ -178,23 +178,23 @@ TEST(Format, TheFileWrittenAsItIsBuiltIsTheOneBuiltInMemory) {
   // `vgeo build` writes each section to disk as the layout makes it (VgeoFileSink): the last geometry's
   // part in place, what came before it spooled and copied into place. The same bytes as the in-memory
   // build writes, for a subdivided cage (patches, whose points are spooled before the DAG), a flat mesh,
-  // and a glTF of many meshes (each section holds every geometry's part, in order), whether the
-  // checksums are taken on one thread or several; the spools leave nothing behind.
+  // and a glTF of many meshes (each section holds every geometry's part, in order), whether the sink
+  // writes on a thread of its own or not; the spools leave nothing behind.
   const std::string dir = test::tempDir();
-  for (const auto& [path, subdiv, commitThreads] : std::vector<std::tuple<std::string, int, int>>{
+  for (const auto& [path, subdiv, sinkThreads] : std::vector<std::tuple<std::string, int, int>>{
            {test::asset("horned_cube.obj"), 2, 1},
            {test::cgalMesh("cow.off"), 0, 3},
            {test::assimpModel("2CylinderEngine-glTF-Binary/2CylinderEngine.glb"), 0, 1},
            {test::assimpModel("2CylinderEngine-glTF-Binary/2CylinderEngine.glb"), 0, 4}}) {
-    SCOPED_TRACE(path + " read back on " + std::to_string(commitThreads) + " threads");
+    SCOPED_TRACE(path + " with a sink of " + std::to_string(sinkThreads) + " threads");
     SceneBuildOptions options;
     options.subdivisionLevels = subdiv;
     options.threads = 2;
     SceneBuildStats stats;
     {
-      VgeoFileSink file(dir + "/spooled.vgeo");
+      VgeoFileSink file(dir + "/spooled.vgeo", sinkThreads);
       buildScene(path, options, stats, file);
-      file.commit(commitThreads);
+      file.commit();
     }
     const std::vector<uint8_t> expected = serializeVgeo(test::build(path, subdiv));
     EXPECT_EQ(test::readFile(dir + "/spooled.vgeo"), std::string(expected.begin(), expected.end()));
@@ -230,7 +230,7 @@ TEST(Format, TheFileSinkWritesASectionInPlaceOnceTheTotalsBeforeItAreKnown) {
   // round of pieces.
   auto replay = [&](const std::function<void(int, SectionSink&)>& expect, int threads) {
     {
-      VgeoFileSink sink(path);
+      VgeoFileSink sink(path, threads);
       for (int piece = 0; piece < 3; piece++) {
         expect(piece, sink);
         for (const SectionBytes& s : sections) {
@@ -238,7 +238,7 @@ TEST(Format, TheFileSinkWritesASectionInPlaceOnceTheTotalsBeforeItAreKnown) {
           sink.append(s.section, s.bytes + begin * sectionElementSize(s.section), end - begin);
         }
       }
-      sink.commit(threads);
+      sink.commit();
     }
     EXPECT_EQ(test::readFile(path), std::string(expected.begin(), expected.end()));
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()), 1);
