@@ -46,7 +46,7 @@ void untrack() { gTempActive = 0; }
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   temp_ = path_ + ".tmp." + std::to_string(::getpid());
   track(temp_);
-  file_ = std::fopen(temp_.c_str(), "w+b");  // read back by readAt
+  file_ = std::fopen(temp_.c_str(), "w+b");  // readable: see descriptor()
   if (!file_) {
     untrack();
     throw OutputError(path_, std::string("cannot write: ") + std::strerror(errno));
@@ -82,17 +82,6 @@ void AtomicFile::writeAt(uint64_t offset, const void* data, size_t size) {
     }
     p += n, size -= size_t(n), offset += uint64_t(n);
   }
-}
-
-int AtomicFile::readAt(uint64_t offset, void* data, size_t size) const {
-  uint8_t* p = static_cast<uint8_t*>(data);
-  while (size > 0) {
-    const ssize_t n = ::pread(::fileno(file_), p, size, off_t(offset));
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return n < 0 ? errno : EIO;
-    p += n, size -= size_t(n), offset += uint64_t(n);
-  }
-  return 0;
 }
 
 void AtomicFile::startWriteback(uint64_t offset, uint64_t size) {

@@ -27,9 +27,8 @@ class AtomicFile {
   void write(const void* data, size_t size);
   // Overwrites bytes already written, at `offset`; later writes still append.
   void writeAt(uint64_t offset, const void* data, size_t size);
-  // Reads back `size` bytes that writeAt wrote at `offset`, safe on several threads at once; returns 0,
-  // or the errno of a failed read (EIO where the file is shorter).
-  int readAt(uint64_t offset, void* data, size_t size) const;
+  // The temporary file, open for reading too: what writeAt wrote can be read back with pread.
+  int descriptor() const { return ::fileno(file_); }
   // Starts sending the bytes at [offset, offset + size) to disk, without waiting for them: commit()'s
   // flush then overlaps the work that follows instead of starting when it ends.
   void startWriteback(uint64_t offset, uint64_t size);

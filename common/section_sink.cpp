@@ -39,12 +39,14 @@ int anonymousFile(const std::string& folder, const std::string& path) {
   return fd;
 }
 
-// The first `bytes` of spool `fd` read back a buffer's size at a time, each piece handed to
-// use(data, size); returns 0, or the errno of a failed read (EIO where the spool is shorter).
+// The `bytes` at `offset` of file `fd` (a spool, or the output) read back a buffer's size at a time,
+// each piece handed to use(data, size); returns 0, or the errno of a failed read (EIO where the file is
+// shorter). Several threads may read one file at once.
 template <class Use>
-int readBack(int fd, uint64_t bytes, std::vector<uint8_t>& buffer, Use&& use) {
+int readBack(int fd, uint64_t offset, uint64_t bytes, std::vector<uint8_t>& buffer, Use&& use) {
   for (uint64_t at = 0; at < bytes;) {
-    const ssize_t n = ::pread(fd, buffer.data(), size_t(std::min<uint64_t>(buffer.size(), bytes - at)), off_t(at));
+    const ssize_t n =
+        ::pread(fd, buffer.data(), size_t(std::min<uint64_t>(buffer.size(), bytes - at)), off_t(offset + at));
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) return n < 0 ? errno : EIO;
     use(buffer.data(), size_t(n));
@@ -243,7 +245,7 @@ void VgeoFileSink::expected(Section) { place(); }
 // closed. The copies are written here, on the calling thread: the writer has no write of theirs yet.
 void VgeoFileSink::place() {
   while (placed_ < kSections) {
-    uint64_t end = kVgeoHeaderSize + uint64_t(kVgeoEntrySize) * kSections;  // of the last placed section
+    uint64_t end = vgeoTableEnd(kSections);  // of the last placed section
     if (placed_ > 0) {
       const uint32_t last = placed_ - 1;
       if (totals_[last] == kUnknown) return;  // it may still grow
@@ -254,13 +256,13 @@ void VgeoFileSink::place() {
       writer_ = std::make_unique<Writer>(*out_, threads_ > 1);
     }
     Spool& spool = spools_[placed_];
-    spool.offset = (end + 15) / 16 * 16;
+    spool.offset = vgeoSectionStart(end);
     static const uint8_t zeros[16] = {};
     out_->writeAt(end, zeros, size_t(spool.offset - end));
     if (totals_[placed_] != kUnknown) spool.sum.emplace(totals_[placed_] * sectionElementSize(Section(placed_ + 1)));
     std::vector<uint8_t> chunk(size_t(std::min<uint64_t>(kCopyChunk, spool.sent)));
     uint64_t at = spool.offset;
-    if (const int error = readBack(spool.fd, spool.sent, chunk, [&](const uint8_t* p, size_t n) {
+    if (const int error = readBack(spool.fd, 0, spool.sent, chunk, [&](const uint8_t* p, size_t n) {
           if (spool.sum) spool.sum->add(p, n);
           out_->writeAt(at, p, n);
           at += n;
@@ -302,14 +304,9 @@ void VgeoFileSink::commit() {
       const uint64_t bytes = entries[i].count * entries[i].elementSize;
       std::vector<uint8_t> chunk(size_t(std::min<uint64_t>(kSumChunk, bytes)));
       VgeoChecksum sum(bytes);
-      for (uint64_t at = 0; at < bytes; at += chunk.size()) {
-        const size_t n = size_t(std::min<uint64_t>(chunk.size(), bytes - at));
-        if (const int error = out_->readAt(entries[i].offset + at, chunk.data(), n)) {
-          __atomic_store_n(&readError, error, __ATOMIC_RELAXED);
-          break;
-        }
-        sum.add(chunk.data(), n);
-      }
+      if (const int error = readBack(out_->descriptor(), entries[i].offset, bytes, chunk,
+                                     [&](const uint8_t* p, size_t n) { sum.add(p, n); }))
+        __atomic_store_n(&readError, error, __ATOMIC_RELAXED);
       entries[i].checksum = sum.finish();
     });
   });

@@ -58,9 +58,9 @@ uint64_t vgeoChecksum(const uint8_t* p, size_t n) {
 }
 
 uint64_t placeVgeoSections(std::vector<VgeoEntry>& entries) {
-  uint64_t position = kVgeoHeaderSize + uint64_t(kVgeoEntrySize) * entries.size();
+  uint64_t position = vgeoTableEnd(entries.size());
   for (VgeoEntry& e : entries) {
-    position = (position + 15) / 16 * 16;
+    position = vgeoSectionStart(position);
     e.offset = position;
     position += e.count * e.elementSize;
   }
@@ -69,7 +69,7 @@ uint64_t placeVgeoSections(std::vector<VgeoEntry>& entries) {
 
 std::vector<uint8_t> vgeoHead(const std::vector<VgeoEntry>& entries, uint64_t fileSize) {
   std::vector<uint8_t> head(kVgeoMagic, kVgeoMagic + 8);
-  head.reserve(kVgeoHeaderSize + kVgeoEntrySize * entries.size());
+  head.reserve(vgeoTableEnd(entries.size()));
   put(head, kVgeoVersion);
   put(head, uint32_t(entries.size()));
   put(head, fileSize);

@@ -32,8 +32,12 @@ class VgeoChecksum {
 };
 uint64_t vgeoChecksum(const uint8_t* p, size_t n);
 
-// Where each of `count` sections of these element sizes and counts starts (16-byte aligned, after the
-// header and table); returns the file's size.
+// The sections' placement: the first follows the header and a table of `sections` entries, each starts
+// at the first 16-byte boundary after the end of the one before.
+inline uint64_t vgeoTableEnd(size_t sections) { return kVgeoHeaderSize + uint64_t(kVgeoEntrySize) * sections; }
+inline uint64_t vgeoSectionStart(uint64_t previousEnd) { return (previousEnd + 15) / 16 * 16; }
+// Where each of `count` sections of these element sizes and counts starts, as above; returns the file's
+// size.
 uint64_t placeVgeoSections(std::vector<VgeoEntry>& entries);
 // The header and section table for `entries` (checksums filled in) in a file of `fileSize` bytes.
 std::vector<uint8_t> vgeoHead(const std::vector<VgeoEntry>& entries, uint64_t fileSize);
