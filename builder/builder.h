@@ -313,8 +313,9 @@ struct Partition {
 // becomes ceil(w / targetWeight) parts of near equal weight (so parts are nearly full), each cut growing
 // one side from the set's extreme node in order of distance, so parts are compact and connected where
 // the graph allows. Then pieces cut off from their part move to a neighbouring part with room (up to
-// maxWeight). `fits(nodes, count)` may reject a part (then it is split in two). Every node weight must
-// be <= targetWeight <= maxWeight. Deterministic for any thread count.
+// maxWeight). `fits(nodes, count)` may reject a part (then it is split in two); it must be monotonic:
+// a set that fits still fits with some of its nodes taken out. Every node weight must be
+// <= targetWeight <= maxWeight. Deterministic for any thread count.
 Partition partitionGraph(const Graph& graph, const std::vector<uint8_t>& weights,
                          const FillLaterVector<glm::vec3>& positions, uint32_t maxWeight, uint32_t targetWeight,
                          int threads, const std::function<bool(const uint32_t*, size_t)>& fits = {});

@@ -338,8 +338,11 @@ struct Bisector {
 // Moves the fragments of parts (every connected piece but the largest) into the neighbouring part they
 // share most edges with, when it has room and still fits; parts keep their order, moved nodes go last.
 // A piece once moved is not looked at again, so a part's pieces at its turn are those it was made
-// with: they are found for all parts at once, on the threads, and kept for the turns of the parts in
-// pieces, the only ones that take a turn.
+// with. The turns run in part order, one after the other, but most of each is found beforehand: every
+// fragment's neighbouring parts and fit checks are found on the threads against the parts as they are
+// at the start. A turn takes those neighbours unless a node next to the fragment has moved since, and
+// a check unless its answer may have changed (a part that fitted has gained nodes, or one that did
+// not has lost some: the checks are monotonic): the same moves as asking everything at every turn.
 void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uint32_t maxWeight,
                     const std::function<bool(const uint32_t*, size_t)>& fits, int threads, Partition& p) {
   const size_t n = p.order.size(), parts = p.partCount();
@@ -353,43 +356,10 @@ void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uin
       weight[q] += weights[u];
     }
   });
-  // The connected pieces of part q, by flood fill in member order, moved nodes left out; `piece` is
-  // left as it was found.
-  FillLaterVector<uint32_t> piece = parallelFilled(n, UINT32_MAX, threads);
-  FillLaterVector<uint8_t> moved = parallelFilled(n, uint8_t(0), threads);
-  auto piecesOf = [&](uint32_t q) {
-    std::vector<std::vector<uint32_t>> pieces;
-    for (uint32_t start : members[q]) {
-      if (piece[start] != UINT32_MAX || moved[start]) continue;
-      pieces.push_back({start});
-      piece[start] = uint32_t(pieces.size() - 1);
-      for (size_t h = 0; h < pieces.back().size(); h++) {
-        uint32_t u = pieces.back()[h];
-        for (uint32_t e = graph.offsets[u]; e < graph.offsets[u + 1]; e++) {
-          uint32_t v = graph.adjacency[e];
-          if (owner[v] == q && piece[v] == UINT32_MAX && !moved[v]) {
-            piece[v] = piece[u];
-            pieces.back().push_back(v);
-          }
-        }
-      }
-    }
-    for (uint32_t u : members[q]) piece[u] = UINT32_MAX;
-    return pieces;
-  };
-  std::vector<std::vector<std::vector<uint32_t>>> piecesOfPart(parts);  // kept for parts in pieces only
-  parallelFor(parts, threads, [&](size_t q) {
-    std::vector<std::vector<uint32_t>> pieces = piecesOf(uint32_t(q));
-    if (pieces.size() > 1) piecesOfPart[q] = std::move(pieces);
-  });
-  auto largestOf = [](const std::vector<std::vector<uint32_t>>& pieces) {
-    size_t largest = 0;
-    for (size_t i = 1; i < pieces.size(); i++)
-      if (pieces[i].size() > pieces[largest].size()) largest = i;
-    return largest;
-  };
-  // A piece's weight, and the other parts it touches as (part, edges shared), most edges first.
-  auto neighbourParts = [&](uint32_t q, const std::vector<uint32_t>& piece, uint64_t& w) {
+  // A piece's weight, and the other parts it touches as (part, edges shared), most edges first; its
+  // neighbours in them as (node, part) in `around` when given.
+  auto neighbourParts = [&](uint32_t q, const std::vector<uint32_t>& piece, uint64_t& w,
+                            std::vector<std::pair<uint32_t, uint32_t>>* around = nullptr) {
     w = 0;
     std::vector<std::pair<uint32_t, uint32_t>> shared;
     for (uint32_t u : piece) {
@@ -397,6 +367,7 @@ void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uin
       for (uint32_t e = graph.offsets[u]; e < graph.offsets[u + 1]; e++) {
         uint32_t r = owner[graph.adjacency[e]];
         if (r == q) continue;
+        if (around) around->push_back({graph.adjacency[e], r});
         auto it = std::find_if(shared.begin(), shared.end(), [&](auto& x) { return x.first == r; });
         if (it == shared.end())
           shared.push_back({r, 1});
@@ -410,62 +381,122 @@ void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uin
   };
   auto fitsWith = [&](uint32_t r, const std::vector<uint32_t>& piece) {
     if (!fits) return true;
-    std::vector<uint32_t> merged = members[r];
+    thread_local std::vector<uint32_t> merged;
+    merged.assign(members[r].begin(), members[r].end());
     merged.insert(merged.end(), piece.begin(), piece.end());
     return fits(merged.data(), merged.size());
   };
-  // The part a piece of q moves into: the first neighbouring part, most shared edges first, with room
-  // for its weight `w` and for which fitsIn(part) holds; UINT32_MAX where none.
-  auto targetOf = [&](uint32_t q, const std::vector<uint32_t>& piece, uint64_t& w, auto&& fitsIn) {
-    for (const auto& candidate : neighbourParts(q, piece, w))
+  // The part a fragment moves into: the first of `neighbours` with room for its weight `w` and for
+  // which fitsIn(part) holds; UINT32_MAX where none.
+  auto targetOf = [&](const std::vector<std::pair<uint32_t, uint32_t>>& neighbours, uint64_t w, auto&& fitsIn) {
+    for (const auto& candidate : neighbours)
       if (weight[candidate.first] + w <= maxWeight && fitsIn(candidate.first)) return candidate.first;
     return UINT32_MAX;
   };
-  // The turns below are serial, and the fit checks their costliest step: each piece's checks are
-  // made first on the threads, against the parts as they are now, and a turn uses them for the parts
-  // that no turn before it has changed (the same answer), asking again only for the others.
-  std::vector<std::vector<std::vector<std::pair<uint32_t, bool>>>> fitOf(parts);  // (part, fits) a piece
+  struct Fragment {
+    std::vector<uint32_t> nodes;
+    uint64_t weight = 0;
+    std::vector<std::pair<uint32_t, uint32_t>> neighbours, around;  // as at the start
+    std::vector<std::pair<uint32_t, bool>> fitsIn;                  // (part, fits) as asked at the start
+    bool moved = false;
+  };
+  struct PartInPieces {
+    std::vector<Fragment> fragments;  // in the order the pieces were found
+    std::vector<uint32_t> pieceOf;    // of each member: its fragment, or kMainPiece
+  };
+  constexpr uint32_t kMainPiece = UINT32_MAX;
+  // The connected pieces of each part, by flood fill in member order, on the threads; a part in
+  // pieces keeps them, each with its neighbours and the checks its turn would ask as the parts are now.
+  std::vector<PartInPieces> split(parts);
+  FillLaterVector<uint32_t> piece = parallelFilled(n, UINT32_MAX, threads);
   parallelFor(parts, threads, [&](size_t q) {
-    const std::vector<std::vector<uint32_t>>& pieces = piecesOfPart[q];
-    fitOf[q].resize(pieces.size());
-    const size_t largest = largestOf(pieces);
+    std::vector<std::vector<uint32_t>> pieces;
+    for (uint32_t start : members[q]) {
+      if (piece[start] != UINT32_MAX) continue;
+      pieces.push_back({start});
+      piece[start] = uint32_t(pieces.size() - 1);
+      for (size_t h = 0; h < pieces.back().size(); h++) {
+        uint32_t u = pieces.back()[h];
+        for (uint32_t e = graph.offsets[u]; e < graph.offsets[u + 1]; e++) {
+          uint32_t v = graph.adjacency[e];
+          if (owner[v] == q && piece[v] == UINT32_MAX) {
+            piece[v] = piece[u];
+            pieces.back().push_back(v);
+          }
+        }
+      }
+    }
+    if (pieces.size() < 2) return;
+    size_t largest = 0;
+    for (size_t i = 1; i < pieces.size(); i++)
+      if (pieces[i].size() > pieces[largest].size()) largest = i;
+    PartInPieces& s = split[q];
+    s.pieceOf.resize(members[q].size());
+    for (size_t k = 0; k < members[q].size(); k++) {
+      const uint32_t i = piece[members[q][k]];
+      s.pieceOf[k] = i == largest ? kMainPiece : uint32_t(i - (i > largest));
+    }
     for (size_t i = 0; i < pieces.size(); i++) {
       if (i == largest) continue;
-      uint64_t w = 0;
-      targetOf(uint32_t(q), pieces[i], w, [&](uint32_t r) {
-        fitOf[q][i].push_back({r, fitsWith(r, pieces[i])});
-        return fitOf[q][i].back().second;
+      Fragment& f = s.fragments.emplace_back();
+      f.nodes = std::move(pieces[i]);
+      f.neighbours = neighbourParts(uint32_t(q), f.nodes, f.weight, &f.around);
+      targetOf(f.neighbours, f.weight, [&](uint32_t r) {  // the checks asked, not the target
+        f.fitsIn.push_back({r, fitsWith(r, f.nodes)});
+        return f.fitsIn.back().second;
       });
     }
   });
-  std::vector<uint8_t> changed(parts, 0);  // whether a turn moved nodes into or out of the part
+  FillLaterVector<uint32_t>().swap(piece);
+  // Whether a turn moved nodes out of the part, into it.
+  std::vector<uint8_t> lost(parts, 0), gained(parts, 0);
   bool anyMoved = false;
   for (uint32_t q = 0; q < parts; q++) {
-    std::vector<std::vector<uint32_t>> pieces = std::move(piecesOfPart[q]);
-    if (pieces.size() < 2) continue;
-    const size_t largest = largestOf(pieces);
-    for (size_t i = 0; i < pieces.size(); i++) {
-      if (i == largest) continue;
-      uint64_t w = 0;
-      const uint32_t r = targetOf(q, pieces[i], w, [&](uint32_t part) {
-        const auto& known = fitOf[q][i];
-        const auto it = std::find_if(known.begin(), known.end(), [&](auto& x) { return x.first == part; });
-        return (changed[part] || it == known.end()) ? fitsWith(part, pieces[i]) : it->second;
-      });
+    PartInPieces& s = split[q];
+    bool movedHere = false;
+    for (Fragment& f : s.fragments) {
+      // A check asked before stands where the part has since only lost nodes (it fitted) or only
+      // gained some (it did not).
+      auto fitsIn = [&](uint32_t part) {
+        const auto it = std::find_if(f.fitsIn.begin(), f.fitsIn.end(), [&](const auto& x) { return x.first == part; });
+        const bool known = it != f.fitsIn.end() && (it->second ? !gained[part] : !lost[part]);
+        return known ? it->second : fitsWith(part, f.nodes);
+      };
+      uint32_t r = UINT32_MAX;
+      if (std::all_of(f.around.begin(), f.around.end(), [&](const auto& x) { return owner[x.first] == x.second; })) {
+        r = targetOf(f.neighbours, f.weight, fitsIn);
+      } else {
+        uint64_t w = 0;
+        r = targetOf(neighbourParts(q, f.nodes, w), f.weight, fitsIn);
+      }
       if (r == UINT32_MAX) continue;
-      members[r].insert(members[r].end(), pieces[i].begin(), pieces[i].end());
-      weight[r] += w;
-      weight[q] -= w;
-      changed[r] = changed[q] = 1;
-      for (uint32_t u : pieces[i]) owner[u] = r, moved[u] = 1;
-      std::vector<uint32_t> rest;
-      for (uint32_t u : members[q])
-        if (owner[u] == q) rest.push_back(u);
-      members[q] = std::move(rest);
-      anyMoved = true;
+      members[r].insert(members[r].end(), f.nodes.begin(), f.nodes.end());
+      weight[r] += f.weight;
+      weight[q] -= f.weight;
+      gained[r] = lost[q] = 1;
+      for (uint32_t u : f.nodes) owner[u] = r;
+      f.moved = movedHere = true;
     }
+    if (!movedHere) continue;
+    // The members left: those of the pieces kept, then those moved in by earlier turns.
+    std::vector<uint32_t> rest;
+    for (size_t k = 0; k < members[q].size(); k++)
+      if (k >= s.pieceOf.size() || s.pieceOf[k] == kMainPiece || !s.fragments[s.pieceOf[k]].moved)
+        rest.push_back(members[q][k]);
+    members[q] = std::move(rest);
+    anyMoved = true;
   }
-  if (!anyMoved) return;
+  // The many small lists are freed on the threads too: one thread took milliseconds.
+  auto freeLists = [&] {
+    parallelFor(parts, threads, [&](size_t q) {
+      std::vector<uint32_t>().swap(members[q]);
+      split[q] = PartInPieces();
+    });
+  };
+  if (!anyMoved) {
+    freeLists();
+    return;
+  }
   p.partStart.assign(1, 0);
   std::vector<uint32_t> kept;  // the parts left with nodes
   for (uint32_t q = 0; q < parts; q++)
@@ -476,6 +507,7 @@ void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uin
   parallelFor(kept.size(), threads, [&](size_t k) {
     std::copy(members[kept[k]].begin(), members[kept[k]].end(), p.order.begin() + p.partStart[k]);
   });
+  freeLists();
 }
 
 }  // namespace
@@ -496,9 +528,11 @@ Partition partitionGraph(const Graph& graph, const std::vector<uint8_t>& weights
     withThreads(threads, [&] { b.split(0, n); });
   else
     b.split(0, n);
-  for (uint32_t i = 1; i < n; i++)
-    if (b.partHead[i]) result.partStart.push_back(i);
-  result.partStart.push_back(n);
+  const size_t heads = parallelNumber(
+      n - 1, threads, [&](size_t i) { return b.partHead[i + 1] != 0; },
+      [&](size_t total) { result.partStart.resize(total + 2); },
+      [&](size_t i, size_t k) { result.partStart[k + 1] = uint32_t(i + 1); });
+  result.partStart[heads + 1] = n;
   mergeFragments(graph, weights, maxWeight, fits, threads, result);
   return result;
 }

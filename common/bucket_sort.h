@@ -87,24 +87,25 @@ FillLaterVector<T> bucketSorted(size_t sources, int keyBits, int bucketBits, int
   } else {
     // Bucket b's items go in chunk order. The counts (a row a chunk) are read a block of buckets at a
     // time, the block's part of each row in turn (a walk down one bucket's column missed the cache on
-    // every step), the blocks on the threads: with many threads there are many rows.
-    constexpr size_t kBlock = 2048;
-    const size_t blocks = (buckets + kBlock - 1) / kBlock;
-    auto blockEnd = [&](size_t k) { return std::min(buckets, (k + 1) * kBlock); };
+    // every step), the blocks on the threads: with many threads there are many rows, so there are
+    // blocks enough for every thread (256 to 2,048 buckets).
+    const size_t block = std::clamp<size_t>(buckets / size_t(std::max(threads, 1)), 256, 2048);
+    const size_t blocks = (buckets + block - 1) / block;
+    auto blockEnd = [&](size_t k) { return std::min(buckets, (k + 1) * block); };
     bucketStart[0] = 0;
     parallelFor(blocks, threads, [&](size_t k) {
-      std::fill(bucketStart.begin() + long(k * kBlock) + 1, bucketStart.begin() + long(blockEnd(k)) + 1, size_t(0));
+      std::fill(bucketStart.begin() + long(k * block) + 1, bucketStart.begin() + long(blockEnd(k)) + 1, size_t(0));
       for (size_t c = 0; c < chunks; c++)
-        for (size_t b = k * kBlock; b < blockEnd(k); b++) bucketStart[b + 1] += next[c * buckets + b];
+        for (size_t b = k * block; b < blockEnd(k); b++) bucketStart[b + 1] += next[c * buckets + b];
     });
     for (size_t b = 0; b < buckets; b++) bucketStart[b + 1] += bucketStart[b];
     parallelFor(blocks, threads, [&](size_t k) {
-      std::vector<size_t> at(bucketStart.begin() + long(k * kBlock), bucketStart.begin() + long(blockEnd(k)));
+      std::vector<size_t> at(bucketStart.begin() + long(k * block), bucketStart.begin() + long(blockEnd(k)));
       for (size_t c = 0; c < chunks; c++)
-        for (size_t b = k * kBlock; b < blockEnd(k); b++) {
+        for (size_t b = k * block; b < blockEnd(k); b++) {
           const size_t n = next[c * buckets + b];
-          next[c * buckets + b] = at[b - k * kBlock];
-          at[b - k * kBlock] += n;
+          next[c * buckets + b] = at[b - k * block];
+          at[b - k * block] += n;
         }
     });
   }
