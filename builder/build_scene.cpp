@@ -31,8 +31,20 @@ void add(RepairReport& sum, const RepairReport& r) {
   sum.nonOrientableComponents += r.nonOrientableComponents;
 }
 
+// The mesh's triangles, counted a range of faces at a time on the threads.
+size_t triangleCount(const PolygonMesh& mesh, int threads) {
+  std::vector<size_t> rangeTriangles(parallelRangeCount(mesh.faceCount()), 0);
+  parallelForRanges(mesh.faceCount(), threads, [&](size_t begin, size_t end) {
+    rangeTriangles[begin / kParallelRange] = mesh.triangleCount(begin, end);
+  });
+  size_t n = 0;
+  for (size_t t : rangeTriangles) n += t;
+  return n;
+}
+
 // Vertices and triangles after `levels` rounds, exactly: V' = V + E + F, E' = 2E + C, F' = C, C' = 4C.
-void predictSize(const PolygonMesh& mesh, size_t boundaryEdges, int levels, double& vertices, double& triangles) {
+void predictSize(const PolygonMesh& mesh, size_t boundaryEdges, int levels, int threads, double& vertices,
+                 double& triangles) {
   double v = double(mesh.positions.size()), c = double(mesh.faceVertices.size()), f = double(mesh.faceCount());
   double e = (c + double(boundaryEdges)) / 2.0;
   for (int l = 0; l < levels; l++) {
@@ -40,7 +52,7 @@ void predictSize(const PolygonMesh& mesh, size_t boundaryEdges, int levels, doub
     v = v2, e = e2, f = f2, c = c2;
   }
   vertices = v;
-  triangles = levels > 0 ? 2.0 * f : double(mesh.triangleCount());
+  triangles = levels > 0 ? 2.0 * f : double(triangleCount(mesh, threads));
 }
 
 // Six times the signed volume enclosed by the faces (fanned from their first corner), summed a fixed
@@ -96,7 +108,7 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
   std::vector<bool> closed(scene.meshes.size());
   for (size_t m = 0; m < scene.meshes.size(); m++) {
     PolygonMesh& mesh = scene.meshes[m];
-    stats.inputTriangles += mesh.triangleCount();
+    stats.inputTriangles += triangleCount(mesh, options.threads);
     const std::string where = scene.meshes.size() > 1 ? path + " (mesh '" + scene.meshNames[m] + "')" : path;
     StageTimer repairing(&stats.stages, "repair");
     RepairReport report = repairMesh(mesh, where, options.threads);
@@ -107,7 +119,7 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
     // the visible side of a mesh that is inside out.
     closed[m] = report.boundaryEdges == 0 && report.splitVertices == 0 && signedVolume(mesh, options.threads) > 0.0;
     double vertices = 0, triangles = 0;
-    predictSize(mesh, report.boundaryEdges, options.subdivisionLevels, vertices, triangles);
+    predictSize(mesh, report.boundaryEdges, options.subdivisionLevels, options.threads, vertices, triangles);
     // Cluster triangles over all levels (~2x the leaves) and vertices must stay addressable by uint32.
     if (vertices > double(UINT32_MAX) || triangles * 2.0 > double(INT32_MAX))
       throw InputError(where, "too large for the format's 32-bit indices: --subdiv " +
@@ -138,8 +150,8 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
       closed[m] = closed[m] && positionsDistinct(leaves.positions, options.threads);
     }
     const bool trianglesOnly = leaves.faceVertices.size() == 3 * leaves.faceCount();  // before any fan
-    fanLargeFaces(leaves);
-    stats.leafTriangles += leaves.triangleCount();
+    fanLargeFaces(leaves, options.threads);
+    stats.leafTriangles += triangleCount(leaves, options.threads);
     subdividing.stop();
     stats.subdivideSeconds += secondsSince(subdivideStart);
 

@@ -4,6 +4,7 @@
 // thread count. Errors in the input are thrown as InputError with one line "FILE: cause".
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -41,10 +42,11 @@ struct PolygonMesh {
     if (normals) cornerNormals.insert(cornerNormals.end(), normals, normals + count);
     faceStart.push_back(uint32_t(faceVertices.size()));
   }
-  // Triangles when every face is fanned: sum of (corners - 2), faces of fewer than 3 corners counting 0.
-  size_t triangleCount() const {
+  // Triangles when every face is fanned: sum of (corners - 2), faces of fewer than 3 corners counting 0;
+  // of faces [begin, end) when given.
+  size_t triangleCount(size_t begin = 0, size_t end = SIZE_MAX) const {
     size_t n = 0;
-    for (size_t f = 0; f < faceCount(); f++) n += faceSize(f) > 2 ? faceSize(f) - 2 : 0;
+    for (size_t f = begin; f < std::min(end, faceCount()); f++) n += faceSize(f) > 2 ? faceSize(f) - 2 : 0;
     return n;
   }
 };
@@ -161,9 +163,9 @@ VertexFaces vertexFaces(std::span<const uint32_t> faceStart, std::span<const uin
 // wedgeNormal[w]; the wedges of vertex v are wedgeStart[v] .. wedgeStart[v + 1].
 struct ShadingNormals {
   std::vector<uint32_t> cornerWedge;  // one a corner of the mesh (faceVertices); empty when oneAVertex
-  std::vector<uint32_t> wedgeVertex;
-  std::vector<glm::vec3> wedgeNormal;  // unit
-  std::vector<uint32_t> wedgeStart;
+  FillLaterVector<uint32_t> wedgeVertex;
+  FillLaterVector<glm::vec3> wedgeNormal;  // unit
+  FillLaterVector<uint32_t> wedgeStart;
   bool oneAVertex = true;  // every vertex has one: wedge w is vertex w
   uint32_t wedgeOfCorner(const PolygonMesh& mesh, uint32_t corner) const {
     return oneAVertex ? mesh.faceVertices[corner] : cornerWedge[corner];
@@ -338,7 +340,7 @@ constexpr uint32_t kClusterFill = 126;
 // Faces of more than kMaxLeafFaceCorners corners are replaced by triangle fans: they could not be
 // patches and might not fit one cluster. Call before buildLeafClusters (a no-op on subdivided meshes).
 constexpr uint32_t kMaxLeafFaceCorners = 66;
-void fanLargeFaces(PolygonMesh& mesh);
+void fanLargeFaces(PolygonMesh& mesh, int threads);
 // Appends the triangles of face v[0..n): a quad split along its shorter diagonal, other faces fanned.
 void triangulateFace(const glm::vec3* positions, const uint32_t* v, uint32_t n, std::vector<uint32_t>& out);
 // Leaf clusters from whole faces of `mesh` (a face's triangles never part): faces adjacent by an edge

@@ -150,7 +150,9 @@ Graph dualGraph(std::span<const uint32_t> faceStart, std::span<const uint32_t> f
   g.offsets = parallelFilled(faceCount + 1, 0u, threads);
   parallelFor(chunks, threads,
               [&](size_t ch) { forNeighbours(ch, [&](uint32_t f, uint32_t) { g.offsets[f + 1]++; }); });
-  for (size_t f = 0; f < faceCount; f++) g.offsets[f + 1] += g.offsets[f];
+  parallelPrefix(
+      faceCount, threads, [&](size_t f) { return g.offsets[f + 1]; }, [](size_t) {},
+      [&](size_t f, size_t before, size_t count) { g.offsets[f + 1] = uint32_t(before + count); });
   g.adjacency.resize(g.offsets.back());
   parallelFor(chunks, threads, [&](size_t ch) {
     uint32_t filled = 0, face = kNone;
@@ -241,12 +243,23 @@ std::vector<BuildCluster> clustersFromFaces(std::span<const uint32_t> faceStart,
   return clusters;
 }
 
+// Whether a face of `mesh` has more than kMaxLeafFaceCorners corners, looked for on the threads.
+bool hasLargeFace(const PolygonMesh& mesh, int threads) {
+  bool found = false;
+  parallelForRanges(mesh.faceCount(), threads, [&](size_t begin, size_t end) {
+    for (size_t f = begin; f < end; f++)
+      if (mesh.faceSize(f) > kMaxLeafFaceCorners) {
+        __atomic_store_n(&found, true, __ATOMIC_RELAXED);
+        return;
+      }
+  });
+  return found;
+}
+
 }  // namespace
 
-void fanLargeFaces(PolygonMesh& mesh) {
-  bool needsFan = false;
-  for (size_t f = 0; f < mesh.faceCount() && !needsFan; f++) needsFan = mesh.faceSize(f) > kMaxLeafFaceCorners;
-  if (!needsFan) return;
+void fanLargeFaces(PolygonMesh& mesh, int threads) {
+  if (!hasLargeFace(mesh, threads)) return;
   PolygonMesh fanned;
   fanned.positions = std::move(mesh.positions);
   for (size_t f = 0; f < mesh.faceCount(); f++) {
@@ -267,8 +280,7 @@ void fanLargeFaces(PolygonMesh& mesh) {
 
 std::vector<BuildCluster> buildLeafClusters(const PolygonMesh& mesh, int threads, const ShadingNormals* shading,
                                             VertexFaces* around) {
-  for (size_t f = 0; f < mesh.faceCount(); f++)
-    if (mesh.faceSize(f) > kMaxLeafFaceCorners) throw std::logic_error("buildLeafClusters: call fanLargeFaces first");
+  if (hasLargeFace(mesh, threads)) throw std::logic_error("buildLeafClusters: call fanLargeFaces first");
   const bool hardEdges = shading && !shading->oneAVertex;
   return clustersFromFaces(mesh.faceStart, mesh.faceVertices, mesh.positions, threads, true, kClusterFill,
                            hardEdges ? &shading->cornerWedge : nullptr, around);

@@ -30,8 +30,12 @@ glm::vec4 sphereOfClusterVertices(const BuildCluster& c, const std::vector<glm::
   return sphereOfPoints(positions, v.data(), v.size());
 }
 
-BuildGroup makeGroup(std::vector<BuildCluster>& clusters, const std::vector<uint32_t>& members, uint32_t id,
-                     float addedError, uint32_t level) {
+// The group of `members`: its sphere encloses their self spheres, and its error is the larger of
+// their errors and this simplification's own (a Hausdorff distance to the group's input): monotonic, as
+// invariant 3 needs. Summing them instead, an upper bound of the distance to the leaves, tripled the
+// triangles drawn at tau = 1 for no visible gain (tests/Render).
+BuildGroup groupOf(const std::vector<BuildCluster>& clusters, const std::vector<uint32_t>& members, float addedError,
+                   uint32_t level) {
   BuildGroup g;
   g.members = members;
   g.level = level;
@@ -40,14 +44,18 @@ BuildGroup makeGroup(std::vector<BuildCluster>& clusters, const std::vector<uint
   for (uint32_t m : members) {
     spheres.push_back(clusters[m].selfSphere);
     maxError = std::max(maxError, clusters[m].selfError);
-    clusters[m].group = id;
   }
   g.sphere = sphereOfSpheres(spheres.data(), spheres.size());
-  // The larger of the members' errors and this simplification's own (a Hausdorff distance to the
-  // group's input): monotonic, as invariant 3 needs. Summing them instead, an upper bound of the
-  // distance to the leaves, tripled the triangles drawn at tau = 1 for no visible gain (tests/Render).
   g.error = std::max(maxError, addedError);
   return g;
+}
+
+// Adds the group to the DAG and names it in its members; returns its id.
+uint32_t addGroup(Dag& dag, BuildGroup&& group) {
+  const uint32_t id = uint32_t(dag.groups.size());
+  for (uint32_t m : group.members) dag.clusters[m].group = id;
+  dag.groups.push_back(std::move(group));
+  return id;
 }
 
 // Repair leaves every edge with at most two faces of opposite orientation, but a face's triangulation
@@ -106,13 +114,16 @@ size_t simplifyTarget(size_t triangles) {
 
 struct GroupOutcome {
   SimplifiedGroup simplified;
+  BuildGroup group;  // when halved
   std::vector<BuildCluster> produced;
 };
 
-// Each planned group's triangles simplified to half with its border locked, then split into clusters.
+// Each planned group's triangles simplified to half with its border locked, then split into clusters;
+// the groups of round `round`'s clusters, made at level round - 1.
 std::vector<GroupOutcome> simplifyGroups(const std::vector<GroupPlan>& plans, const std::vector<BuildCluster>& clusters,
                                          const std::vector<glm::vec3>& positions, const ChordRule& chords,
-                                         const std::vector<uint64_t>& openEdges, const BuildOptions& options) {
+                                         const std::vector<uint64_t>& openEdges, uint32_t round,
+                                         const BuildOptions& options) {
   std::vector<GroupOutcome> outcomes(plans.size());
   // Largest groups first, so that the round does not end waiting on a large one started last.
   std::vector<std::pair<uint64_t, uint32_t>> bySize(plans.size());
@@ -126,8 +137,10 @@ std::vector<GroupOutcome> simplifyGroups(const std::vector<GroupPlan>& plans, co
     auto chordAllowed = [&](uint32_t a, uint32_t b) { return chords.allowed(uint32_t(g), a, b); };
     outcomes[g].simplified =
         simplifyGroup(indices, positions, chordAllowed, openEdges, simplifyTarget(indices.size() / 3));
-    if (outcomes[g].simplified.halved)
+    if (outcomes[g].simplified.halved) {
+      outcomes[g].group = groupOf(clusters, plans[g].clusters, outcomes[g].simplified.error, round - 1);
       outcomes[g].produced = splitIntoClusters(outcomes[g].simplified, positions, options.shading);
+    }
     std::vector<uint32_t>().swap(outcomes[g].simplified.indices);  // held as the clusters now
     std::vector<uint32_t>().swap(outcomes[g].simplified.globals);
   });
@@ -148,8 +161,7 @@ std::vector<uint32_t> addRound(Dag& dag, const std::vector<GroupPlan>& plans, st
       next.insert(next.end(), plans[g].clusters.begin(), plans[g].clusters.end());
       continue;
     }
-    uint32_t groupId = uint32_t(dag.groups.size());
-    dag.groups.push_back(makeGroup(dag.clusters, plans[g].clusters, groupId, o.simplified.error, round - 1));
+    const uint32_t groupId = addGroup(dag, std::move(o.group));
     const BuildGroup& group = dag.groups.back();
     for (BuildCluster& c : o.produced) {
       c.selfSphere = group.sphere;
@@ -179,8 +191,7 @@ void addRootGroups(Dag& dag, const std::vector<uint32_t>& active, const std::vec
   else
     roots = groupClusters(dag.clusters, active, positions, options.groupSize, options.threads);
   for (const GroupPlan& plan : roots) {
-    uint32_t groupId = uint32_t(dag.groups.size());
-    dag.groups.push_back(makeGroup(dag.clusters, plan.clusters, groupId, 0.0f, uint32_t(dag.levelClusters.size() - 1)));
+    addGroup(dag, groupOf(dag.clusters, plan.clusters, 0.0f, uint32_t(dag.levelClusters.size() - 1)));
     dag.groups.back().error = INFINITY;
   }
 }
@@ -226,7 +237,7 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
     roundChords.stop();
     StageTimer simplifying(options.times, "simplify and split");
     std::vector<GroupOutcome> outcomes =
-        simplifyGroups(plans, dag.clusters, mesh.positions, chords, openEdges, options);
+        simplifyGroups(plans, dag.clusters, mesh.positions, chords, openEdges, round, options);
     simplifying.stop();
     StageTimer adding(options.times, "add round");
     const size_t firstProduced = dag.clusters.size();

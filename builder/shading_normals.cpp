@@ -37,10 +37,10 @@ constexpr int kSerialNormalThreads = 2;  // vertexFaces costs a 2-thread build m
 // where another does. Cutting the vertices into blocks, each walking a list of the faces that touch
 // it, scaled 2x on 16 threads (three passes over the faces, few blocks); finding a face's area again
 // at each of its corners took longer than the serial sums.
-std::vector<glm::vec3> faceSummedNormals(const PolygonMesh& mesh, int threads, VertexFaces* around) {
+FillLaterVector<glm::vec3> faceSummedNormals(const PolygonMesh& mesh, int threads, VertexFaces* around) {
   const size_t vertexCount = mesh.positions.size(), faceCount = mesh.faceCount();
   if (threads <= kSerialNormalThreads) {
-    std::vector<glm::vec3> normals(vertexCount);
+    FillLaterVector<glm::vec3> normals(vertexCount);
     std::vector<glm::dvec3> sums(vertexCount, glm::dvec3(0.0));
     for (size_t f = 0; f < faceCount; f++) {
       const glm::dvec3 n = areaVector(mesh, f);
@@ -56,7 +56,7 @@ std::vector<glm::vec3> faceSummedNormals(const PolygonMesh& mesh, int threads, V
   parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {
     for (size_t f = begin; f < end; f++) area[f] = areaVector(mesh, f);
   });
-  std::vector<glm::vec3> normals(vertexCount);
+  FillLaterVector<glm::vec3> normals(vertexCount);
   parallelForRanges(vertexCount, threads, [&](size_t begin, size_t end) {
     for (size_t v = begin; v < end; v++) {
       glm::dvec3 sum(0.0);
@@ -67,7 +67,7 @@ std::vector<glm::vec3> faceSummedNormals(const PolygonMesh& mesh, int threads, V
   return normals;
 }
 
-void normalizeAll(std::vector<glm::vec3>& normals, int threads) {
+void normalizeAll(FillLaterVector<glm::vec3>& normals, int threads) {
   parallelForRanges(normals.size(), threads, [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; i++) {
       const float len = glm::length(normals[i]);
@@ -85,16 +85,20 @@ ShadingNormals shadingNormals(const PolygonMesh& mesh, const std::vector<glm::ve
   const bool given = vertexNormals.size() == vertexCount && vertexCount > 0;
   const bool fromInput = !given && mesh.cornerNormals.size() == cornerCount;
   if (given || (!fromInput && creaseAngleDegrees >= 180.0f)) {
-    // One wedge a vertex, numbered as the vertices: nothing a corner to store.
+    // One wedge a vertex, numbered as the vertices: nothing a corner to store. The arrays are written
+    // on the threads (a large mesh's pages, first touched on one, took milliseconds).
     out.wedgeVertex.resize(vertexCount);
-    std::iota(out.wedgeVertex.begin(), out.wedgeVertex.end(), 0u);
     out.wedgeStart.resize(vertexCount + 1);
-    std::iota(out.wedgeStart.begin(), out.wedgeStart.end(), 0u);
-    if (given) {
-      out.wedgeNormal = vertexNormals;
-    } else {
-      out.wedgeNormal = faceSummedNormals(mesh, threads, leafFaces);
-    }
+    if (given) out.wedgeNormal.resize(vertexCount);
+    parallelForRanges(vertexCount + 1, threads, [&](size_t begin, size_t end) {
+      for (size_t v = begin; v < end; v++) {
+        out.wedgeStart[v] = uint32_t(v);
+        if (v == vertexCount) continue;
+        out.wedgeVertex[v] = uint32_t(v);
+        if (given) out.wedgeNormal[v] = vertexNormals[v];
+      }
+    });
+    if (!given) out.wedgeNormal = faceSummedNormals(mesh, threads, leafFaces);
     normalizeAll(out.wedgeNormal, threads);
     return out;
   }
