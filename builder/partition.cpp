@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cstring>
 #include <functional>
+#include <span>
 
 #include "../common/parallel.h"
 #include "builder.h"
@@ -346,14 +347,18 @@ struct Bisector {
 void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uint32_t maxWeight,
                     const std::function<bool(const uint32_t*, size_t)>& fits, int threads, Partition& p) {
   const size_t n = p.order.size(), parts = p.partCount();
+  // Part q's members: the first kept[q] of its run of p.order (a turn packs what stays to the front),
+  // then those that arrived from other parts' turns.
+  const std::vector<uint32_t> first = p.partStart;
+  std::vector<uint32_t> kept(parts);
+  std::vector<std::vector<uint32_t>> arrived(parts);
   FillLaterVector<uint32_t> owner(n);  // every node is in a part: all written below
-  std::vector<std::vector<uint32_t>> members(parts);
   std::vector<uint64_t> weight(parts, 0);
   parallelFor(parts, threads, [&](size_t q) {
-    members[q].assign(p.order.begin() + p.partStart[q], p.order.begin() + p.partStart[q + 1]);
-    for (uint32_t u : members[q]) {
-      owner[u] = uint32_t(q);
-      weight[q] += weights[u];
+    kept[q] = first[q + 1] - first[q];
+    for (uint32_t i = first[q]; i < first[q + 1]; i++) {
+      owner[p.order[i]] = uint32_t(q);
+      weight[q] += weights[p.order[i]];
     }
   });
   // A piece's weight, and the other parts it touches as (part, edges shared), most edges first; its
@@ -382,7 +387,8 @@ void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uin
   auto fitsWith = [&](uint32_t r, const std::vector<uint32_t>& piece) {
     if (!fits) return true;
     thread_local std::vector<uint32_t> merged;
-    merged.assign(members[r].begin(), members[r].end());
+    merged.assign(p.order.begin() + first[r], p.order.begin() + first[r] + kept[r]);
+    merged.insert(merged.end(), arrived[r].begin(), arrived[r].end());
     merged.insert(merged.end(), piece.begin(), piece.end());
     return fits(merged.data(), merged.size());
   };
@@ -402,7 +408,7 @@ void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uin
   };
   struct PartInPieces {
     std::vector<Fragment> fragments;  // in the order the pieces were found
-    std::vector<uint32_t> pieceOf;    // of each member: its fragment, or kMainPiece
+    std::vector<uint32_t> pieceOf;    // of each member of the part's run: its fragment, or kMainPiece
   };
   constexpr uint32_t kMainPiece = UINT32_MAX;
   // The connected pieces of each part, by flood fill in member order, on the threads; a part in
@@ -411,7 +417,8 @@ void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uin
   FillLaterVector<uint32_t> piece = parallelFilled(n, UINT32_MAX, threads);
   parallelFor(parts, threads, [&](size_t q) {
     std::vector<std::vector<uint32_t>> pieces;
-    for (uint32_t start : members[q]) {
+    const std::span<const uint32_t> members(&p.order[first[q]], first[q + 1] - first[q]);
+    for (uint32_t start : members) {
       if (piece[start] != UINT32_MAX) continue;
       pieces.push_back({start});
       piece[start] = uint32_t(pieces.size() - 1);
@@ -431,9 +438,9 @@ void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uin
     for (size_t i = 1; i < pieces.size(); i++)
       if (pieces[i].size() > pieces[largest].size()) largest = i;
     PartInPieces& s = split[q];
-    s.pieceOf.resize(members[q].size());
-    for (size_t k = 0; k < members[q].size(); k++) {
-      const uint32_t i = piece[members[q][k]];
+    s.pieceOf.resize(members.size());
+    for (size_t k = 0; k < members.size(); k++) {
+      const uint32_t i = piece[members[k]];
       s.pieceOf[k] = i == largest ? kMainPiece : uint32_t(i - (i > largest));
     }
     for (size_t i = 0; i < pieces.size(); i++) {
@@ -470,7 +477,7 @@ void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uin
         r = targetOf(neighbourParts(q, f.nodes, w), f.weight, fitsIn);
       }
       if (r == UINT32_MAX) continue;
-      members[r].insert(members[r].end(), f.nodes.begin(), f.nodes.end());
+      arrived[r].insert(arrived[r].end(), f.nodes.begin(), f.nodes.end());
       weight[r] += f.weight;
       weight[q] -= f.weight;
       gained[r] = lost[q] = 1;
@@ -478,36 +485,29 @@ void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uin
       f.moved = movedHere = true;
     }
     if (!movedHere) continue;
-    // The members left: those of the pieces kept, then those moved in by earlier turns.
-    std::vector<uint32_t> rest;
-    for (size_t k = 0; k < members[q].size(); k++)
-      if (k >= s.pieceOf.size() || s.pieceOf[k] == kMainPiece || !s.fragments[s.pieceOf[k]].moved)
-        rest.push_back(members[q][k]);
-    members[q] = std::move(rest);
+    // The members of the pieces kept, packed to the front of the part's run.
+    uint32_t at = first[q];
+    for (size_t k = 0; k < s.pieceOf.size(); k++)
+      if (s.pieceOf[k] == kMainPiece || !s.fragments[s.pieceOf[k]].moved) p.order[at++] = p.order[first[q] + k];
+    kept[q] = at - first[q];
     anyMoved = true;
   }
-  // The many small lists are freed on the threads too: one thread took milliseconds.
-  auto freeLists = [&] {
-    parallelFor(parts, threads, [&](size_t q) {
-      std::vector<uint32_t>().swap(members[q]);
-      split[q] = PartInPieces();
-    });
-  };
-  if (!anyMoved) {
-    freeLists();
-    return;
-  }
+  if (!anyMoved) return;
+  // The parts left with nodes, in order, each its kept run and then what arrived.
+  std::vector<uint32_t> left;
   p.partStart.assign(1, 0);
-  std::vector<uint32_t> kept;  // the parts left with nodes
   for (uint32_t q = 0; q < parts; q++)
-    if (!members[q].empty()) {
-      kept.push_back(q);
-      p.partStart.push_back(p.partStart.back() + uint32_t(members[q].size()));
+    if (kept[q] + arrived[q].size() > 0) {
+      left.push_back(q);
+      p.partStart.push_back(p.partStart.back() + kept[q] + uint32_t(arrived[q].size()));
     }
-  parallelFor(kept.size(), threads, [&](size_t k) {
-    std::copy(members[kept[k]].begin(), members[kept[k]].end(), p.order.begin() + p.partStart[k]);
+  FillLaterVector<uint32_t> order(n);
+  parallelFor(left.size(), threads, [&](size_t k) {
+    const uint32_t q = left[k];
+    std::copy(p.order.begin() + first[q], p.order.begin() + first[q] + kept[q], order.begin() + p.partStart[k]);
+    std::copy(arrived[q].begin(), arrived[q].end(), order.begin() + p.partStart[k] + kept[q]);
   });
-  freeLists();
+  p.order.swap(order);
 }
 
 }  // namespace
