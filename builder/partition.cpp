@@ -361,14 +361,12 @@ void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uin
       weight[q] += weights[p.order[i]];
     }
   });
-  // A piece's weight, and the other parts it touches as (part, edges shared), most edges first; its
-  // neighbours in them as (node, part) in `around` when given.
-  auto neighbourParts = [&](uint32_t q, const std::vector<uint32_t>& piece, uint64_t& w,
+  // The other parts a piece of q touches as (part, edges shared), most edges first; its neighbours in
+  // them as (node, part) in `around` when given.
+  auto neighbourParts = [&](uint32_t q, const std::vector<uint32_t>& piece,
                             std::vector<std::pair<uint32_t, uint32_t>>* around = nullptr) {
-    w = 0;
     std::vector<std::pair<uint32_t, uint32_t>> shared;
     for (uint32_t u : piece) {
-      w += weights[u];
       for (uint32_t e = graph.offsets[u]; e < graph.offsets[u + 1]; e++) {
         uint32_t r = owner[graph.adjacency[e]];
         if (r == q) continue;
@@ -402,7 +400,7 @@ void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uin
   struct Fragment {
     std::vector<uint32_t> nodes;
     uint64_t weight = 0;
-    std::vector<std::pair<uint32_t, uint32_t>> neighbours, around;  // as at the start
+    std::vector<std::pair<uint32_t, uint32_t>> neighbours, around;  // as at the start, or at its turn
     std::vector<std::pair<uint32_t, bool>> fitsIn;                  // (part, fits) as asked at the start
     bool moved = false;
   };
@@ -447,7 +445,8 @@ void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uin
       if (i == largest) continue;
       Fragment& f = s.fragments.emplace_back();
       f.nodes = std::move(pieces[i]);
-      f.neighbours = neighbourParts(uint32_t(q), f.nodes, f.weight, &f.around);
+      for (uint32_t u : f.nodes) f.weight += weights[u];
+      f.neighbours = neighbourParts(uint32_t(q), f.nodes, &f.around);
       targetOf(f.neighbours, f.weight, [&](uint32_t r) {  // the checks asked, not the target
         f.fitsIn.push_back({r, fitsWith(r, f.nodes)});
         return f.fitsIn.back().second;
@@ -469,13 +468,9 @@ void mergeFragments(const Graph& graph, const std::vector<uint8_t>& weights, uin
         const bool known = it != f.fitsIn.end() && (it->second ? !gained[part] : !lost[part]);
         return known ? it->second : fitsWith(part, f.nodes);
       };
-      uint32_t r = UINT32_MAX;
-      if (std::all_of(f.around.begin(), f.around.end(), [&](const auto& x) { return owner[x.first] == x.second; })) {
-        r = targetOf(f.neighbours, f.weight, fitsIn);
-      } else {
-        uint64_t w = 0;
-        r = targetOf(neighbourParts(q, f.nodes, w), f.weight, fitsIn);
-      }
+      if (!std::all_of(f.around.begin(), f.around.end(), [&](const auto& x) { return owner[x.first] == x.second; }))
+        f.neighbours = neighbourParts(q, f.nodes);
+      const uint32_t r = targetOf(f.neighbours, f.weight, fitsIn);
       if (r == UINT32_MAX) continue;
       arrived[r].insert(arrived[r].end(), f.nodes.begin(), f.nodes.end());
       weight[r] += f.weight;

@@ -90,14 +90,13 @@ ShadingNormals shadingNormals(const PolygonMesh& mesh, const std::vector<glm::ve
     out.wedgeVertex.resize(vertexCount);
     out.wedgeStart.resize(vertexCount + 1);
     if (given) out.wedgeNormal.resize(vertexCount);
-    parallelForRanges(vertexCount + 1, threads, [&](size_t begin, size_t end) {
+    parallelForRanges(vertexCount, threads, [&](size_t begin, size_t end) {
       for (size_t v = begin; v < end; v++) {
-        out.wedgeStart[v] = uint32_t(v);
-        if (v == vertexCount) continue;
-        out.wedgeVertex[v] = uint32_t(v);
+        out.wedgeStart[v] = out.wedgeVertex[v] = uint32_t(v);
         if (given) out.wedgeNormal[v] = vertexNormals[v];
       }
     });
+    out.wedgeStart[vertexCount] = uint32_t(vertexCount);
     if (!given) out.wedgeNormal = faceSummedNormals(mesh, threads, leafFaces);
     normalizeAll(out.wedgeNormal, threads);
     return out;
