@@ -383,11 +383,13 @@ struct GroupPlan {
 // partitioned side by side. Deterministic (fixed METIS seed, cuts that depend on the graph alone) for
 // any thread count. `openEdges`, when given, receives the
 // edges (min << 32 | max, ascending) on the border of one cluster only: the open boundary of the
-// surface, which is no group's shared border.
+// surface, which is no group's shared border. `beside`, when given, runs on the threads beside the
+// partition (it must not touch what grouping reads), after the graph is made.
 constexpr uint32_t kGroupingPiece = 2048;
 std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, const std::vector<uint32_t>& active,
                                      const std::vector<glm::vec3>& positions, uint32_t targetSize, int threads,
-                                     std::vector<uint64_t>* openEdges = nullptr);
+                                     std::vector<uint64_t>* openEdges = nullptr,
+                                     const std::function<void()>& beside = {});
 
 // ---- simplify.cpp -----------------------------------------------------------------------------------
 struct SimplifiedGroup {

@@ -45,11 +45,14 @@ class EdgeSet {
 class ChordRule {
  public:
   ChordRule(size_t vertices, int threads) : holders_(parallelFilled(vertices * kHolders, UINT32_MAX, threads)) {}
-  // Adds the edges of clusters [first, end) of `clusters` to the set of edges made so far. When `active`
-  // is given (the clusters of the next round), the edges of vertices none of them holds are dropped
-  // first: simplification only ever removes vertices, so no later group can ask for those.
-  void addClusters(const std::vector<BuildCluster>& clusters, size_t first, const std::vector<uint32_t>* active,
-                   int threads);
+  // Makes room in the set of edges made so far for the edges of clusters [first, end) of `clusters`.
+  // When `active` is given (the clusters of the next round), the edges of vertices none of them holds
+  // are dropped first: simplification only ever removes vertices, so no later group can ask for those.
+  void makeRoom(const std::vector<BuildCluster>& clusters, size_t first, const std::vector<uint32_t>* active,
+                int threads);
+  // Adds the edges of clusters [first, end) to the set, after makeRoom for them. It allocates only when
+  // the room made was too little, so that it can run beside other work without raising the peak.
+  void addClusters(const std::vector<BuildCluster>& clusters, size_t first, int threads);
   // Records which of this round's groups hold each vertex (up to kHolders; a vertex of more groups
   // takes no chord).
   void startRound(const std::vector<GroupPlan>& plans, const std::vector<BuildCluster>& clusters, int threads);
@@ -62,6 +65,7 @@ class ChordRule {
   FillLaterVector<uint8_t> holderCount_;
   FillLaterVector<uint32_t> holders_;
   uint32_t round_ = 0, roundGroups_ = 0;  // the first id of this round's groups, and how many
+  uint64_t newTriangles_ = 0;             // of the clusters makeRoom made room for
 };
 
 }  // namespace vgeo

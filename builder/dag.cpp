@@ -210,16 +210,16 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
   StageTimer leaves(options.times, "leaf clusters");
   dag.clusters = makeLeafClusters(mesh, options);
   leaves.stop();
-  StageTimer firstChords(options.times, "chord rule");
+  StageTimer newChords(options.times, "chord rule");
   ChordRule chords(mesh.positions.size(), options.threads);
-  chords.addClusters(dag.clusters, 0, nullptr, options.threads);
-  firstChords.stop();
+  newChords.stop();
   std::vector<uint32_t> active(dag.clusters.size());
   for (uint32_t i = 0; i < active.size(); i++) active[i] = i;
   dag.levelClusters.push_back(uint32_t(active.size()));
   dag.levelTriangles.push_back(triangleCount(dag.clusters, active));
   const double totalWork = double(dag.levelTriangles[0]) * 2.0;
   double doneWork = 0.0;
+  size_t unrecorded = 0;  // the first cluster whose edges are not in the chord rule's set yet
 
   // Go on while more than one cluster is left, and then keep halving the last one down to a few
   // triangles: far away, an instance costs only its root, so a small root keeps the triangles drawn
@@ -227,11 +227,25 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
   for (uint32_t round = 1;
        active.size() > 1 || (active.size() == 1 && triangleCount(dag.clusters, active) > kSmallestRoot); round++) {
     report(doneWork / totalWork, "simplifying");
+    // The last round's clusters' edges go into the chord rule's set beside this round's partition into
+    // groups, which does not read it: the inserts fill the threads that METIS leaves idle. The set's
+    // room is made first: memory allocated by two threads at once, each in its own malloc arena,
+    // raised the peak. The inserts' wall time counts as the chord rule's and as grouping's.
+    StageTimer room(options.times, "chord rule");
+    chords.makeRoom(dag.clusters, unrecorded, unrecorded == 0 ? nullptr : &active, options.threads);
+    room.stop();
+    StageTimes insertTimes;  // its own: the inserts stop their timer on another thread
+    auto recordEdges = [&] {
+      StageTimer recording(&insertTimes, "chord rule");
+      chords.addClusters(dag.clusters, unrecorded, options.threads);
+    };
     std::vector<uint64_t> openEdges;
     StageTimer grouping(options.times, "grouping");
-    const std::vector<GroupPlan> plans =
-        groupClusters(dag.clusters, active, mesh.positions, options.groupSize, options.threads, &openEdges);
+    const std::vector<GroupPlan> plans = groupClusters(dag.clusters, active, mesh.positions, options.groupSize,
+                                                       options.threads, &openEdges, recordEdges);
     grouping.stop();
+    if (options.times)
+      for (const auto& [stage, seconds] : insertTimes.seconds) options.times->add(stage, seconds);
     StageTimer roundChords(options.times, "chord rule");
     chords.startRound(plans, dag.clusters, options.threads);
     roundChords.stop();
@@ -240,15 +254,12 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
         simplifyGroups(plans, dag.clusters, mesh.positions, chords, openEdges, round, options);
     simplifying.stop();
     StageTimer adding(options.times, "add round");
-    const size_t firstProduced = dag.clusters.size();
+    unrecorded = dag.clusters.size();
     std::vector<uint32_t> next = addRound(dag, plans, outcomes, round);
     for (size_t g = 0; g < plans.size(); g++)
       if (outcomes[g].simplified.halved) doneWork += double(triangleCount(dag.clusters, plans[g].clusters));
     adding.stop();
-    StageTimer newChords(options.times, "chord rule");
-    chords.addClusters(dag.clusters, firstProduced, &next, options.threads);
-    newChords.stop();
-    const uint32_t producedCount = uint32_t(dag.clusters.size() - firstProduced);
+    const uint32_t producedCount = uint32_t(dag.clusters.size() - unrecorded);
     if (producedCount == 0) break;  // no group could be halved: what is left are the roots
     active = std::move(next);
     dag.levelClusters.push_back(producedCount);
