@@ -110,13 +110,22 @@ struct Bisector {
   // The extent of set [lo, hi), in one pass over ranges on the threads; exact (integer sums, minima and
   // maxima, firsts in a total order), so the same on any thread count.
   SetExtent extentOf(uint32_t lo, uint32_t hi) const {
+    // A node is first on an axis only where it is at the least position so far: the position is
+    // compared with that least one, kept at hand, and the ids only on a tie.
     auto pass = [&](uint32_t begin, uint32_t end, SetExtent& e) {
       for (uint32_t i = begin; i < end; i++) {
         const uint32_t node = order[i];
+        const glm::vec3 p = positions[node];
         e.weight += weights[node];
-        e.lower = glm::min(e.lower, positions[node]);
-        e.upper = glm::max(e.upper, positions[node]);
-        for (int axis = 0; axis < 3; axis++) keepFirst(e, axis, node);
+        e.upper = glm::max(e.upper, p);
+        for (int axis = 0; axis < 3; axis++) {
+          if (p[axis] < e.lower[axis]) {
+            e.lower[axis] = p[axis];
+            e.first[axis] = node;
+          } else if (p[axis] == e.lower[axis] && id(node) < id(e.first[axis])) {
+            e.first[axis] = node;
+          }
+        }
       }
     };
     SetExtent total;
