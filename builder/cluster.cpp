@@ -50,35 +50,41 @@ constexpr size_t kSmallSoupFaces = 65536;  // smaller soups keep their scratch a
 bool triangleDualGraph(std::span<const uint32_t> corners, size_t vertexCount, Graph& g) {
   const size_t faceCount = corners.size() / 3;
   constexpr uint32_t kNone = UINT32_MAX;
-  // edgesAt[v]: the first corner of each edge whose lower vertex is v, linked through nextEdge;
+  // edgesAt[v]: the first corner of each edge whose lower vertex is v, linked through listed[c].next,
+  // which holds the edge's upper vertex beside the link (a step along a list reads one entry);
   // partner[c]: the other triangle's corner on c's edge.
-  thread_local std::vector<uint32_t> keptEdgesAt, keptNextEdge, keptPartner;
-  std::vector<uint32_t> ownEdgesAt, ownNextEdge, ownPartner;
+  struct Listed {
+    uint32_t next, upper;
+  };
+  thread_local std::vector<uint32_t> keptEdgesAt, keptPartner;
+  thread_local std::vector<Listed> keptListed;
+  std::vector<uint32_t> ownEdgesAt, ownPartner;
+  std::vector<Listed> ownListed;
   const bool small = faceCount <= kSmallSoupFaces;
   std::vector<uint32_t>& edgesAt = small ? keptEdgesAt : ownEdgesAt;
-  std::vector<uint32_t>& nextEdge = small ? keptNextEdge : ownNextEdge;
+  std::vector<Listed>& listed = small ? keptListed : ownListed;
   std::vector<uint32_t>& partner = small ? keptPartner : ownPartner;
   edgesAt.assign(vertexCount, kNone);
-  nextEdge.resize(corners.size());
+  listed.resize(corners.size());
   partner.assign(corners.size(), kNone);
-  auto next = [&](size_t c) { return corners[c % 3 == 2 ? c - 2 : c + 1]; };  // the corner's edge's far end
-  auto upper = [&](size_t c) { return std::max(corners[c], next(c)); };
-  for (size_t c = 0; c < corners.size(); c++) {
-    const uint32_t a = corners[c], b = next(c);
-    if (a == b) return false;
-    const uint32_t low = std::min(a, b), high = std::max(a, b);
-    uint32_t e = edgesAt[low];
-    while (e != kNone && upper(e) != high) e = nextEdge[e];
-    if (e == kNone) {
-      nextEdge[c] = edgesAt[low];
-      edgesAt[low] = uint32_t(c);
-    } else if (partner[e] == kNone) {
-      partner[e] = uint32_t(c);
-      partner[c] = e;
-    } else {
-      return false;  // a third triangle on the edge
+  for (size_t t = 0; t < faceCount; t++)
+    for (size_t k = 0; k < 3; k++) {
+      const size_t c = 3 * t + k;
+      const uint32_t a = corners[c], b = corners[k == 2 ? c - 2 : c + 1];  // the corner's edge's ends
+      if (a == b) return false;
+      const uint32_t low = std::min(a, b), high = std::max(a, b);
+      uint32_t e = edgesAt[low];
+      while (e != kNone && listed[e].upper != high) e = listed[e].next;
+      if (e == kNone) {
+        listed[c] = {edgesAt[low], high};
+        edgesAt[low] = uint32_t(c);
+      } else if (partner[e] == kNone) {
+        partner[e] = uint32_t(c);
+        partner[c] = e;
+      } else {
+        return false;  // a third triangle on the edge
+      }
     }
-  }
   // A face's neighbours: the other triangle on each of its edges, in corner order.
   auto across = [&](size_t c) { return partner[c] == kNone ? kNone : partner[c] / 3; };
   g.offsets.resize(faceCount + 1);
