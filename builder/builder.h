@@ -328,6 +328,10 @@ struct BuildCluster {
   std::vector<uint32_t> indices;    // 3 per triangle, <= 128 triangles, <= 256 distinct vertices
   std::vector<uint32_t> cageFaces;  // leaves: the cage faces it holds (their triangles are consecutive)
   std::vector<uint32_t> wedges;     // the wedge of each index, where the mesh has hard edges (else empty)
+  // Its border: the edges (min << 32 | max, ascending) that one of its triangles alone has, as
+  // edgesUsedOnce(indices) gives them, found when a simplified group is split (its round's grouping
+  // reads them); empty for leaves, which grouping counts.
+  std::vector<uint64_t> border;
   glm::vec4 selfSphere{0.0f};
   float selfError = 0.0f;
   uint32_t producer = VGEO_NO_GROUP;  // the group that produced it

@@ -46,24 +46,24 @@ constexpr size_t kSmallSoupFaces = 65536;  // smaller soups keep their scratch a
 // simplified group on its way to clusters, where dualGraph's sort of every vertex's faces cost several
 // times the work itself, and a one-thread build's leaves (a third of dualGraph's time there). Returns
 // false, leaving `g` alone, where an edge has more than two triangles or a triangle a repeated vertex
-// (dualGraph keeps its own order of neighbours there).
-bool triangleDualGraph(std::span<const uint32_t> corners, size_t vertexCount, Graph& g) {
+// (dualGraph keeps its own order of neighbours there). partner[c]: the other triangle's corner on
+// corner c's edge (from c to the next corner), or UINT32_MAX where the edge has one triangle.
+bool triangleDualGraph(std::span<const uint32_t> corners, size_t vertexCount, Graph& g,
+                       std::vector<uint32_t>& partner) {
   const size_t faceCount = corners.size() / 3;
   constexpr uint32_t kNone = UINT32_MAX;
   // edgesAt[v]: the first corner of each edge whose lower vertex is v, linked through listed[c].next,
-  // which holds the edge's upper vertex beside the link (a step along a list reads one entry);
-  // partner[c]: the other triangle's corner on c's edge.
+  // which holds the edge's upper vertex beside the link (a step along a list reads one entry).
   struct Listed {
     uint32_t next, upper;
   };
-  thread_local std::vector<uint32_t> keptEdgesAt, keptPartner;
+  thread_local std::vector<uint32_t> keptEdgesAt;
   thread_local std::vector<Listed> keptListed;
-  std::vector<uint32_t> ownEdgesAt, ownPartner;
+  std::vector<uint32_t> ownEdgesAt;
   std::vector<Listed> ownListed;
   const bool small = faceCount <= kSmallSoupFaces;
   std::vector<uint32_t>& edgesAt = small ? keptEdgesAt : ownEdgesAt;
   std::vector<Listed>& listed = small ? keptListed : ownListed;
-  std::vector<uint32_t>& partner = small ? keptPartner : ownPartner;
   edgesAt.assign(vertexCount, kNone);
   listed.resize(corners.size());
   partner.assign(corners.size(), kNone);
@@ -197,17 +197,27 @@ bool fitsVertexLimit(std::span<const uint32_t> faceStart, std::span<const uint32
 
 // `wedges`, when given (one a corner, like faceVertices), are what the vertex limit counts, and each
 // cluster lists those of its triangles' corners. `around`: the faces' vertexFaces when made already.
+// With `findBorders`, each cluster's border is found too; leaves go without (grouping counts theirs),
+// so that they are not held from the leaves' making through the first round's peak.
 std::vector<BuildCluster> clustersFromFaces(std::span<const uint32_t> faceStart, std::span<const uint32_t> faceVertices,
                                             const std::vector<glm::vec3>& positions, int threads, bool keepFaces,
-                                            uint32_t targetTriangles, const std::vector<uint32_t>* wedges,
-                                            VertexFaces* around = nullptr) {
+                                            bool findBorders, uint32_t targetTriangles,
+                                            const std::vector<uint32_t>* wedges, VertexFaces* around = nullptr) {
   const size_t faceCount = faceStart.size() - 1;
+  // A soup's partner corners, where its graph was found through them: each cluster's border is then
+  // read off them instead of counted again.
+  thread_local std::vector<uint32_t> keptPartner;
+  std::vector<uint32_t> ownPartner;
+  std::vector<uint32_t>& partner = faceCount <= kSmallSoupFaces ? keptPartner : ownPartner;
+  bool paired = false;
   Partition parts;
   {  // the graph and its node data are freed before the clusters are made
     Graph graph;
     const bool listed = faceVertices.size() == 3 * faceCount && (faceCount <= kSmallSoupFaces || threads <= 1);
-    if (!listed || !triangleDualGraph(faceVertices, positions.size(), graph))
-      graph = dualGraph(faceStart, faceVertices, positions.size(), threads, around);
+    paired = listed && triangleDualGraph(faceVertices, positions.size(), graph, partner);
+    if (!paired) graph = dualGraph(faceStart, faceVertices, positions.size(), threads, around);
+    // A large soup's partner corners (12 bytes a triangle) are freed here where no border is wanted.
+    if (!findBorders) std::vector<uint32_t>().swap(ownPartner);
     if (around) *around = VertexFaces();  // freed, unused by the soup's lists
     std::vector<uint8_t> weights(faceCount);
     FillLaterVector<glm::vec3> centroids(faceCount);
@@ -224,6 +234,11 @@ std::vector<BuildCluster> clustersFromFaces(std::span<const uint32_t> faceStart,
     auto fits = [&](const uint32_t* faces, size_t count) { return fitsVertexLimit(faceStart, limited, faces, count); };
     parts = partitionGraph(graph, weights, centroids, VGEO_MAX_CLUSTER_TRIANGLES, targetTriangles, threads, fits);
   }
+  std::vector<uint32_t> partOf(findBorders && paired ? faceCount : 0);
+  if (!partOf.empty())
+    parallelFor(parts.partCount(), threads, [&](size_t p) {
+      for (uint32_t i = parts.partStart[p]; i < parts.partStart[p + 1]; i++) partOf[parts.order[i]] = uint32_t(p);
+    });
   std::vector<BuildCluster> clusters(parts.partCount());
   parallelFor(parts.partCount(), threads, [&](size_t p) {
     BuildCluster& c = clusters[p];
@@ -245,6 +260,20 @@ std::vector<BuildCluster> clustersFromFaces(std::span<const uint32_t> faceStart,
         c.wedges.push_back((*wedges)[corner]);
       }
     }
+    if (!findBorders) return;
+    if (!paired) {
+      c.border = edgesUsedOnce(c.indices);
+      return;
+    }
+    // A triangle's edge is on the border where no triangle of the cluster is across it.
+    for (uint32_t i = parts.partStart[p]; i < parts.partStart[p + 1]; i++)
+      for (uint32_t k = 0, t = parts.order[i]; k < 3; k++) {
+        const uint32_t corner = 3 * t + k, across = partner[corner];
+        if (across != UINT32_MAX && partOf[across / 3] == p) continue;
+        const uint32_t a = faceVertices[corner], b = faceVertices[k == 2 ? corner - 2 : corner + 1];
+        c.border.push_back(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
+      }
+    std::sort(c.border.begin(), c.border.end());
   });
   return clusters;
 }
@@ -288,7 +317,7 @@ std::vector<BuildCluster> buildLeafClusters(const PolygonMesh& mesh, int threads
                                             VertexFaces* around) {
   if (hasLargeFace(mesh, threads)) throw std::logic_error("buildLeafClusters: call fanLargeFaces first");
   const bool hardEdges = shading && !shading->oneAVertex;
-  return clustersFromFaces(mesh.faceStart, mesh.faceVertices, mesh.positions, threads, true, kClusterFill,
+  return clustersFromFaces(mesh.faceStart, mesh.faceVertices, mesh.positions, threads, true, false, kClusterFill,
                            hardEdges ? &shading->cornerWedge : nullptr, around);
 }
 
@@ -310,9 +339,15 @@ std::vector<BuildCluster> splitIntoClusters(const SimplifiedGroup& group, const 
     }
   }
   std::vector<BuildCluster> clusters =
-      clustersFromFaces(faceStart, local, points, 1, false, kClusterFill, wedges.empty() ? nullptr : &wedges);
-  for (BuildCluster& c : clusters)
+      clustersFromFaces(faceStart, local, points, 1, false, true, kClusterFill, wedges.empty() ? nullptr : &wedges);
+  for (BuildCluster& c : clusters) {
     for (uint32_t& v : c.indices) v = globals[v];
+    for (uint64_t& edge : c.border) {
+      const uint32_t a = globals[edge >> 32], b = globals[edge & 0xffffffffu];
+      edge = uint64_t(std::min(a, b)) << 32 | std::max(a, b);
+    }
+    std::sort(c.border.begin(), c.border.end());
+  }
   return clusters;
 }
 

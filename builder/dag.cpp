@@ -196,6 +196,11 @@ void addRootGroups(Dag& dag, const std::vector<uint32_t>& active, const std::vec
   }
 }
 
+// The borders of clusters `ids`, read by their round only.
+void freeBorders(std::vector<BuildCluster>& clusters, const std::vector<uint32_t>& ids, int threads) {
+  parallelFor(ids.size(), threads, [&](size_t i) { std::vector<uint64_t>().swap(clusters[ids[i]].border); });
+}
+
 constexpr uint64_t kSmallestRoot = 16;  // triangles
 
 }  // namespace
@@ -243,6 +248,7 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
     StageTimer grouping(options.times, "grouping");
     const std::vector<GroupPlan> plans = groupClusters(dag.clusters, active, mesh.positions, options.groupSize,
                                                        options.threads, &openEdges, recordEdges);
+    freeBorders(dag.clusters, active, options.threads);
     grouping.stop();
     if (options.times)
       for (const auto& [stage, seconds] : insertTimes.seconds) options.times->add(stage, seconds);
@@ -267,6 +273,7 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
   }
   StageTimer rootGroups(options.times, "root groups");
   addRootGroups(dag, active, mesh.positions, options);
+  freeBorders(dag.clusters, active, options.threads);
   rootGroups.stop();
   report(1.0, "done");
   return dag;

@@ -127,11 +127,16 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
   const size_t n = active.size();
   // Border edges of each cluster (edges used once inside it), listed cluster after cluster: entry `at`
   // of cluster `slot` is at borderStart[slot] + its place in the cluster's list.
-  std::vector<std::vector<uint64_t>> clusterBorders(n);
-  parallelFor(n, threads, [&](size_t slot) { clusterBorders[slot] = edgesUsedOnce(clusters[active[slot]].indices); });
+  std::vector<std::vector<uint64_t>> counted(n);  // of the clusters made without their border
+  parallelFor(n, threads, [&](size_t slot) {
+    if (clusters[active[slot]].border.empty()) counted[slot] = edgesUsedOnce(clusters[active[slot]].indices);
+  });
+  auto borderOf = [&](size_t slot) -> const std::vector<uint64_t>& {
+    const std::vector<uint64_t>& made = clusters[active[slot]].border;
+    return made.empty() ? counted[slot] : made;
+  };
   std::vector<uint32_t> borderStart(n + 1, 0);
-  for (size_t slot = 0; slot < n; slot++)
-    borderStart[slot + 1] = borderStart[slot] + uint32_t(clusterBorders[slot].size());
+  for (size_t slot = 0; slot < n; slot++) borderStart[slot + 1] = borderStart[slot] + uint32_t(borderOf(slot).size());
   // The same entries by edge (bucketed by its lower vertex), then cluster: an edge's clusters are a run.
   struct BorderEdge {
     uint64_t edge;
@@ -147,13 +152,14 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
   FillLaterVector<BorderEdge> borders = bucketSorted<BorderEdge>(
       n, vertexBits, bucketBits, threads,
       [&](size_t slot, auto&& emit) {
-        for (uint32_t k = 0; k < clusterBorders[slot].size(); k++) {
-          const uint64_t edge = clusterBorders[slot][k];
+        const std::vector<uint64_t>& border = borderOf(slot);
+        for (uint32_t k = 0; k < border.size(); k++) {
+          const uint64_t edge = border[k];
           emit(edge >> 32, BorderEdge{edge, uint32_t(slot), borderStart[slot] + k});
         }
       },
       std::less<BorderEdge>());
-  std::vector<std::vector<uint64_t>>().swap(clusterBorders);
+  std::vector<std::vector<uint64_t>>().swap(counted);
   // An edge on one cluster's border only is open: kept a range of the sorted borders at a time, joined
   // in order (the open edges stay ascending). An edge k clusters share gives each of them k - 1
   // neighbour entries, placed where its border entry's are: each cluster's entries follow its border

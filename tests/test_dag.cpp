@@ -282,5 +282,29 @@ TEST(DagBuild, DenseBorderEdgesMatchTheHashedOnes) {
   }
 }
 
+TEST(DagBuild, ClustersCarryTheBorderTheirTrianglesHave) {
+  // A simplified group's clusters carry their border, read off the soup's partner corners (or counted
+  // where the soup has an edge of three triangles); it must be what edgesUsedOnce counts on their
+  // triangles, on groups of a round's size cut from real meshes (closed, with open boundaries and
+  // holes, unstitched, quads). Leaves carry none: grouping counts theirs.
+  for (const char* name : {"bunny00.off", "mesh_with_border.off", "elephant-with-holes.off", "blade.off",
+                           "quads_to_stitch.off", "cross_quad.off"}) {
+    PolygonMesh mesh = loadMeshFile(test::cgalMesh(name)).meshes[0];
+    fanLargeFaces(mesh, 1);
+    for (const BuildCluster& c : buildLeafClusters(mesh, 1)) ASSERT_TRUE(c.border.empty()) << name;
+    std::vector<uint32_t> triangles;
+    for (size_t f = 0; f < mesh.faceCount(); f++)
+      triangulateFace(mesh.positions.data(), mesh.face(f), mesh.faceSize(f), triangles);
+    for (size_t first = 0; first < triangles.size(); first += 3 * 2048) {
+      const size_t end = std::min(triangles.size(), first + 3 * 2048);
+      SimplifiedGroup group;
+      localIds(std::vector<uint32_t>(triangles.begin() + long(first), triangles.begin() + long(end)), group.globals,
+               group.indices);
+      for (const BuildCluster& c : splitIntoClusters(group, mesh.positions))
+        ASSERT_EQ(c.border, edgesUsedOnce(c.indices)) << name << " triangles " << first / 3 << " to " << end / 3;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace vgeo
