@@ -215,9 +215,9 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
   StageTimer leaves(options.times, "leaf clusters");
   dag.clusters = makeLeafClusters(mesh, options);
   leaves.stop();
-  StageTimer newChords(options.times, "chord rule");
+  StageTimer chordSetUp(options.times, "chord rule");
   ChordRule chords(mesh.positions.size(), options.threads);
-  newChords.stop();
+  chordSetUp.stop();
   std::vector<uint32_t> active(dag.clusters.size());
   for (uint32_t i = 0; i < active.size(); i++) active[i] = i;
   dag.levelClusters.push_back(uint32_t(active.size()));

@@ -281,7 +281,8 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
       for (size_t p = 0; p < pieces.partCount(); p++) partitionPiece(p);
   };
   // `beside` runs on the threads that the METIS calls leave idle: a cut of thousands of clusters is one
-  // thread's work, and the first cuts of a level are a chain.
+  // thread's work, and the first cuts of a level are a chain. The calling thread takes the partition
+  // (parallelInvoke's last), so that its arrays come from the malloc arena they came from before.
   if (beside && threads > 1) {
     withThreads(threads, [&] { parallelInvoke(true, beside, partition); });
   } else {

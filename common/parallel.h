@@ -158,7 +158,8 @@ FillLaterVector<T> parallelFilled(size_t count, const T& value, int threads) {
 }
 
 // a() and b(), side by side when `together` (inside withThreads, on its threads), else one after the
-// other: for divide-and-conquer work whose halves are independent.
+// other: for divide-and-conquer work whose halves are independent. Side by side, oneTBB runs b() on
+// the calling thread and a() as a task another thread may take.
 template <class A, class B>
 void parallelInvoke(bool together, A&& a, B&& b) {
   if (together) {
