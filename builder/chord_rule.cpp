@@ -85,14 +85,23 @@ void EdgeSet::retainAndReserve(Keep&& keep, size_t edges, int threads) {
   count_ = promised_ = keys.size();
 }
 
+namespace {
+
+// Triangles of clusters [first, end).
+uint64_t triangleCount(const std::vector<BuildCluster>& clusters, size_t first) {
+  uint64_t triangles = 0;
+  for (size_t i = first; i < clusters.size(); i++) triangles += clusters[i].indices.size() / 3;
+  return triangles;
+}
+
+}  // namespace
+
 void ChordRule::makeRoom(const std::vector<BuildCluster>& clusters, size_t first, const std::vector<uint32_t>* active,
                          int threads) {
   // Room for about 1.6 edges a new triangle (a surface's 1.5 and the clusters' borders); inserting
   // stops short of a full table when that was too few (a triangle soup has 3), and then the batch,
   // a set's insertion being idempotent, runs again with room for 3 a triangle.
-  newTriangles_ = 0;
-  for (size_t i = first; i < clusters.size(); i++) newTriangles_ += clusters[i].indices.size() / 3;
-  const size_t room = size_t(newTriangles_ * 8 / 5);
+  const size_t room = size_t(triangleCount(clusters, first) * 8 / 5);
   if (active) {
     FillLaterVector<uint8_t> held = parallelFilled(holders_.size() / kHolders, uint8_t(0), threads);
     parallelFor(active->size(), threads, [&](size_t i) {
@@ -110,7 +119,7 @@ void ChordRule::addClusters(const std::vector<BuildCluster>& clusters, size_t fi
       if (!edges_.insertTriangles(clusters[first + i].indices)) __atomic_store_n(&full, true, __ATOMIC_RELAXED);
     });
     if (!full) break;
-    edges_.retainAndReserve([](uint64_t) { return true; }, size_t(newTriangles_ * 3), threads);
+    edges_.retainAndReserve([](uint64_t) { return true; }, size_t(triangleCount(clusters, first) * 3), threads);
   }
 }
 

@@ -65,7 +65,6 @@ class ChordRule {
   FillLaterVector<uint8_t> holderCount_;
   FillLaterVector<uint32_t> holders_;
   uint32_t round_ = 0, roundGroups_ = 0;  // the first id of this round's groups, and how many
-  uint64_t newTriangles_ = 0;             // of the clusters makeRoom made room for
 };
 
 }  // namespace vgeo

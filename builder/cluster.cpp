@@ -197,8 +197,9 @@ bool fitsVertexLimit(std::span<const uint32_t> faceStart, std::span<const uint32
 
 // `wedges`, when given (one a corner, like faceVertices), are what the vertex limit counts, and each
 // cluster lists those of its triangles' corners. `around`: the faces' vertexFaces when made already.
-// With `findBorders`, each cluster's border is found too; leaves go without (grouping counts theirs),
-// so that they are not held from the leaves' making through the first round's peak.
+// With `findBorders`, each cluster's border is found too, in the ids of faceVertices and in no order
+// (the caller renumbers and sorts it); leaves go without (grouping counts theirs), so that they are
+// not held from the leaves' making through the first round's peak.
 std::vector<BuildCluster> clustersFromFaces(std::span<const uint32_t> faceStart, std::span<const uint32_t> faceVertices,
                                             const std::vector<glm::vec3>& positions, int threads, bool keepFaces,
                                             bool findBorders, uint32_t targetTriangles,
@@ -273,7 +274,6 @@ std::vector<BuildCluster> clustersFromFaces(std::span<const uint32_t> faceStart,
         const uint32_t a = faceVertices[corner], b = faceVertices[k == 2 ? corner - 2 : corner + 1];
         c.border.push_back(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
       }
-    std::sort(c.border.begin(), c.border.end());
   });
   return clusters;
 }

@@ -119,6 +119,83 @@ void bisectRecursively(const MetisGraph& graph, idx_t parts, idx_t* part, bool t
     for (size_t i = 0; i < members[s].size(); i++) part[members[s][i]] = halfPart[s][i] + (s ? leftParts : 0);
 }
 
+// Cluster i's neighbours as (slot, edges shared): neighbourList[neighbourStart[i] .. neighbourStart[i + 1]).
+std::span<const std::pair<uint32_t, int>> neighboursOf(const std::vector<uint32_t>& neighbourStart,
+                                                       const std::vector<std::pair<uint32_t, int>>& neighbourList,
+                                                       size_t i) {
+  return {neighbourList.data() + neighbourStart[i], neighbourStart[i + 1] - neighbourStart[i]};
+}
+
+// Each of the level's clusters' group (`part`), numbered piece after piece: METIS partitions the
+// whole level, or compact pieces of a large one, one at a time. Returns the number of groups.
+idx_t partitionIntoGroups(const std::vector<uint32_t>& neighbourStart,
+                          const std::vector<std::pair<uint32_t, int>>& neighbourList,
+                          const std::vector<BuildCluster>& clusters, const std::vector<uint32_t>& active,
+                          const std::vector<glm::vec3>& positions, uint32_t targetSize, int threads,
+                          std::vector<idx_t>& part) {
+  const size_t n = active.size();
+  auto neighbours = [&](size_t i) { return neighboursOf(neighbourStart, neighbourList, i); };
+  Partition pieces;
+  if (n > 2 * size_t(kGroupingPiece)) {
+    Graph graph;
+    graph.offsets.assign(neighbourStart.begin(), neighbourStart.end());
+    graph.adjacency.resize(neighbourList.size());
+    parallelForRanges(neighbourList.size(), threads, [&](size_t begin, size_t end) {
+      for (size_t k = begin; k < end; k++) graph.adjacency[k] = neighbourList[k].first;
+    });
+    FillLaterVector<glm::vec3> centroids(n);
+    parallelFor(n, threads, [&](size_t slot) {
+      glm::dvec3 sum(0.0);
+      const auto& idx = clusters[active[slot]].indices;
+      for (uint32_t v : idx) sum += glm::dvec3(positions[v]);
+      centroids[slot] = glm::vec3(sum / double(std::max<size_t>(idx.size(), 1)));
+    });
+    pieces = partitionGraph(graph, std::vector<uint8_t>(n, 1), centroids, kGroupingPiece + kGroupingPiece / 4,
+                            kGroupingPiece, threads);
+  } else {
+    pieces.order.resize(n);
+    for (uint32_t i = 0; i < n; i++) pieces.order[i] = i;
+    pieces.partStart.push_back(uint32_t(n));
+  }
+  // Each piece's groups are numbered after the earlier pieces'.
+  std::vector<idx_t> partBase(pieces.partCount() + 1, 0);
+  for (size_t p = 0; p < pieces.partCount(); p++)
+    partBase[p + 1] =
+        partBase[p] + idx_t((pieces.partStart[p + 1] - pieces.partStart[p] + targetSize - 1) / targetSize);
+  std::vector<uint32_t> localOf(n);
+  for (size_t p = 0; p < pieces.partCount(); p++)
+    for (uint32_t k = pieces.partStart[p]; k < pieces.partStart[p + 1]; k++)
+      localOf[pieces.order[k]] = k - pieces.partStart[p];
+  const KeptSignalHandlers keptSignalHandlers;
+  auto partitionPiece = [&](size_t p) {
+    const uint32_t* slots = &pieces.order[pieces.partStart[p]];
+    const idx_t count = idx_t(pieces.partStart[p + 1] - pieces.partStart[p]);
+    const idx_t pieceParts = partBase[p + 1] - partBase[p];
+    std::vector<idx_t> local(size_t(count), 0);
+    if (pieceParts > 1) {
+      // The piece's own graph: its clusters and the edges between them.
+      MetisGraph piece;
+      for (idx_t k = 0; k < count; k++) {
+        for (auto [j, w] : neighbours(slots[k])) {
+          const uint32_t at = localOf[j];
+          if (at >= uint32_t(count) || pieces.order[pieces.partStart[p] + at] != j) continue;  // in another piece
+          piece.adjncy.push_back(idx_t(at));
+          piece.adjwgt.push_back(idx_t(w));
+        }
+        piece.xadj.push_back(idx_t(piece.adjncy.size()));
+      }
+      bisectRecursively(piece, pieceParts, local.data(), threads > 1);
+    }
+    for (idx_t k = 0; k < count; k++) part[slots[k]] = partBase[p] + local[size_t(k)];
+  };
+  // Inside the arena even for one piece: its bisections' sides run as tasks.
+  if (threads > 1)
+    withThreads(threads, [&] { parallelFor(pieces.partCount(), threads, partitionPiece); });
+  else
+    for (size_t p = 0; p < pieces.partCount(); p++) partitionPiece(p);
+  return partBase.back();
+}
+
 }  // namespace
 
 std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, const std::vector<uint32_t>& active,
@@ -210,75 +287,12 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
     }
   });
   std::vector<uint32_t>().swap(entries);
-  auto neighbours = [&](size_t i) {
-    return std::span<const std::pair<uint32_t, int>>(neighbourList.data() + neighbourStart[i],
-                                                     neighbourStart[i + 1] - neighbourStart[i]);
-  };
+  auto neighbours = [&](size_t i) { return neighboursOf(neighbourStart, neighbourList, i); };
 
-  // Each cluster's group, numbered piece after piece: the pieces METIS partitions one at a time are the
-  // whole level, or compact pieces of a large one.
   std::vector<idx_t> part(n, 0);
   idx_t nparts = 0;
   auto partition = [&] {
-    Partition pieces;
-    if (n > 2 * size_t(kGroupingPiece)) {
-      Graph graph;
-      graph.offsets.assign(neighbourStart.begin(), neighbourStart.end());
-      graph.adjacency.resize(neighbourList.size());
-      parallelForRanges(neighbourList.size(), threads, [&](size_t begin, size_t end) {
-        for (size_t k = begin; k < end; k++) graph.adjacency[k] = neighbourList[k].first;
-      });
-      FillLaterVector<glm::vec3> centroids(n);
-      parallelFor(n, threads, [&](size_t slot) {
-        glm::dvec3 sum(0.0);
-        const auto& idx = clusters[active[slot]].indices;
-        for (uint32_t v : idx) sum += glm::dvec3(positions[v]);
-        centroids[slot] = glm::vec3(sum / double(std::max<size_t>(idx.size(), 1)));
-      });
-      pieces = partitionGraph(graph, std::vector<uint8_t>(n, 1), centroids, kGroupingPiece + kGroupingPiece / 4,
-                              kGroupingPiece, threads);
-    } else {
-      pieces.order.resize(n);
-      for (uint32_t i = 0; i < n; i++) pieces.order[i] = i;
-      pieces.partStart.push_back(uint32_t(n));
-    }
-    // Each piece's groups are numbered after the earlier pieces'.
-    std::vector<idx_t> partBase(pieces.partCount() + 1, 0);
-    for (size_t p = 0; p < pieces.partCount(); p++)
-      partBase[p + 1] =
-          partBase[p] + idx_t((pieces.partStart[p + 1] - pieces.partStart[p] + targetSize - 1) / targetSize);
-    nparts = partBase.back();
-    std::vector<uint32_t> localOf(n);
-    for (size_t p = 0; p < pieces.partCount(); p++)
-      for (uint32_t k = pieces.partStart[p]; k < pieces.partStart[p + 1]; k++)
-        localOf[pieces.order[k]] = k - pieces.partStart[p];
-    const KeptSignalHandlers keptSignalHandlers;
-    auto partitionPiece = [&](size_t p) {
-      const uint32_t* slots = &pieces.order[pieces.partStart[p]];
-      const idx_t count = idx_t(pieces.partStart[p + 1] - pieces.partStart[p]);
-      const idx_t pieceParts = partBase[p + 1] - partBase[p];
-      std::vector<idx_t> local(size_t(count), 0);
-      if (pieceParts > 1) {
-        // The piece's own graph: its clusters and the edges between them.
-        MetisGraph piece;
-        for (idx_t k = 0; k < count; k++) {
-          for (auto [j, w] : neighbours(slots[k])) {
-            const uint32_t at = localOf[j];
-            if (at >= uint32_t(count) || pieces.order[pieces.partStart[p] + at] != j) continue;  // in another piece
-            piece.adjncy.push_back(idx_t(at));
-            piece.adjwgt.push_back(idx_t(w));
-          }
-          piece.xadj.push_back(idx_t(piece.adjncy.size()));
-        }
-        bisectRecursively(piece, pieceParts, local.data(), threads > 1);
-      }
-      for (idx_t k = 0; k < count; k++) part[slots[k]] = partBase[p] + local[size_t(k)];
-    };
-    // Inside the arena even for one piece: its bisections' sides run as tasks.
-    if (threads > 1)
-      withThreads(threads, [&] { parallelFor(pieces.partCount(), threads, partitionPiece); });
-    else
-      for (size_t p = 0; p < pieces.partCount(); p++) partitionPiece(p);
+    nparts = partitionIntoGroups(neighbourStart, neighbourList, clusters, active, positions, targetSize, threads, part);
   };
   // `beside` runs on the threads that the METIS calls leave idle: a cut of thousands of clusters is one
   // thread's work, and the first cuts of a level are a chain. The calling thread takes the partition
