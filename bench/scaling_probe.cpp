@@ -18,7 +18,7 @@
 
 namespace {
 
-std::atomic<uint64_t> sink{0};  // every result lands here, so no work is optimised away
+std::atomic<uint64_t> sink{0};  // every result lands here (an atomic's updates are kept), so no work is dropped
 
 void arithmetic(int) {
   uint64_t a = 1, b = 2, c = 3, d = 4;
@@ -90,5 +90,4 @@ int main() {
       std::fflush(stdout);
     }
   }
-  return sink == 42 ? 1 : 0;  // never: keeps the sink read
 }

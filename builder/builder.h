@@ -139,6 +139,8 @@ struct SurfaceTopology {
   uint64_t boundaryLoops = 0;  // of edges with one triangle (loops that touch count once)
   uint64_t genus = 0;          // summed over the components, from V - E + F = 2 - 2g - b each
 };
+// An undirected edge as one key, min << 32 | max: the builder's edge sets and sorts use it.
+inline uint64_t undirectedEdge(uint32_t a, uint32_t b) { return uint64_t(std::min(a, b)) << 32 | std::max(a, b); }
 // The topology of the surface of `indices` (triangles, any vertex ids).
 SurfaceTopology surfaceTopology(const std::vector<uint32_t>& indices);
 // The edges (min << 32 | max, ascending) that one triangle of `indices` alone has: a cluster's or a

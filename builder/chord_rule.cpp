@@ -47,7 +47,7 @@ bool EdgeSet::insertTriangles(const std::vector<uint32_t>& indices) {
   for (size_t t = 0; t + 2 < indices.size(); t += 3)
     for (size_t k = 0; k < 3; k++) {
       const uint32_t a = indices[t + k], b = indices[t + (k + 1) % 3];
-      keys[t + k] = uint64_t(std::min(a, b)) << 32 | std::max(a, b);
+      keys[t + k] = undirectedEdge(a, b);
       __builtin_prefetch(&slots_[home(keys[t + k])]);
     }
   size_t added = 0;  // counted here, added once: one counter shared by every thread's inserts would not scale
@@ -146,7 +146,7 @@ void ChordRule::startRound(const std::vector<GroupPlan>& plans, const std::vecto
 }
 
 bool ChordRule::allowed(uint32_t g, uint32_t a, uint32_t b) const {
-  if (edges_.contains(uint64_t(std::min(a, b)) << 32 | std::max(a, b))) return false;
+  if (edges_.contains(undirectedEdge(a, b))) return false;
   if (holderCount_[a] > kHolders || holderCount_[b] > kHolders) return false;
   // Of the groups holding both ends, only the first may make the chord this round.
   for (uint32_t i = 0; i < holderCount_[a]; i++)

@@ -272,7 +272,7 @@ std::vector<BuildCluster> clustersFromFaces(std::span<const uint32_t> faceStart,
         const uint32_t corner = 3 * t + k, across = partner[corner];
         if (across != UINT32_MAX && partOf[across / 3] == p) continue;
         const uint32_t a = faceVertices[corner], b = faceVertices[k == 2 ? corner - 2 : corner + 1];
-        c.border.push_back(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
+        c.border.push_back(undirectedEdge(a, b));
       }
   });
   return clusters;
@@ -344,7 +344,7 @@ std::vector<BuildCluster> splitIntoClusters(const SimplifiedGroup& group, const 
     for (uint32_t& v : c.indices) v = globals[v];
     for (uint64_t& edge : c.border) {
       const uint32_t a = globals[edge >> 32], b = globals[edge & 0xffffffffu];
-      edge = uint64_t(std::min(a, b)) << 32 | std::max(a, b);
+      edge = undirectedEdge(a, b);
     }
     std::sort(c.border.begin(), c.border.end());
   }

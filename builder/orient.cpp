@@ -51,7 +51,7 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads, OrientedEdges* oriented
   auto edgeKey = [&](uint32_t c) {
     const uint32_t f = cornerFace[c], next = c + 1 == mesh.faceStart[f + 1] ? mesh.faceStart[f] : c + 1;
     const uint32_t a = mesh.faceVertices[c], b = mesh.faceVertices[next];
-    return uint64_t(std::min(a, b)) << 32 | std::max(a, b);
+    return undirectedEdge(a, b);
   };
 
   auto area = [&](size_t f) {

@@ -362,7 +362,7 @@ size_t countBoundaryEdges(const PolygonMesh& out, int threads) {
   for (size_t f = 0; f < out.faceCount(); f++)
     for (uint32_t i = 0; i < out.faceSize(f); i++) {
       uint32_t a = out.face(f)[i], b = out.face(f)[(i + 1) % out.faceSize(f)];
-      keys.push_back(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
+      keys.push_back(undirectedEdge(a, b));
     }
   parallelSort(keys, threads);
   for (size_t i = 0; i < keys.size();) {

@@ -203,9 +203,7 @@ class Simplifier {
       if (openEdges.empty()) continue;
       for (int k = 0; k < 3; k++) {
         uint32_t e0 = tri_[3 * t + k], e1 = tri_[3 * t + (k + 1) % 3];
-        if (!std::binary_search(openEdges.begin(), openEdges.end(),
-                                uint64_t(std::min(e0, e1)) << 32 | std::max(e0, e1)))
-          continue;
+        if (!std::binary_search(openEdges.begin(), openEdges.end(), undirectedEdge(e0, e1))) continue;
         glm::dvec3 edge = p_[e1] - p_[e0];
         glm::dvec3 side = glm::cross(edge, normal);
         double length = glm::length(side);
@@ -483,7 +481,7 @@ SimplifiedGroup simplifyGroup(const std::vector<uint32_t>& indices, const std::v
   std::vector<uint64_t> localOpen;
   for (const uint64_t edge : edgesUsedOnceDense(local, uint32_t(globals.size()))) {
     const uint32_t a = uint32_t(edge >> 32), b = uint32_t(edge);
-    const uint64_t global = uint64_t(std::min(globals[a], globals[b])) << 32 | std::max(globals[a], globals[b]);
+    const uint64_t global = undirectedEdge(globals[a], globals[b]);
     if (std::binary_search(openEdges.begin(), openEdges.end(), global)) {
       localOpen.push_back(edge);
       for (uint32_t v : {a, b})

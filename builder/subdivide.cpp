@@ -30,7 +30,7 @@ PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh) {
     uint32_t n = mesh.faceSize(f);
     for (uint32_t i = 0; i < n; i++) {
       uint32_t a = mesh.face(f)[i], b = mesh.face(f)[(i + 1) % n];
-      edgeOfCorner[mesh.faceStart[f] + i] = {uint64_t(std::min(a, b)) << 32 | std::max(a, b), mesh.faceStart[f] + i};
+      edgeOfCorner[mesh.faceStart[f] + i] = {undirectedEdge(a, b), mesh.faceStart[f] + i};
     }
   }
   std::sort(edgeOfCorner.begin(), edgeOfCorner.end());

@@ -34,7 +34,7 @@ std::vector<uint64_t> edgesUsedOnce(std::span<const uint32_t> indices) {
   for (size_t t = 0; t < corners; t += 3)
     for (size_t k = 0; k < 3; k++) {
       const uint32_t a = indices[t + k], b = indices[t + (k + 1) % 3];
-      const uint64_t key = uint64_t(std::min(a, b)) << 32 | std::max(a, b);
+      const uint64_t key = undirectedEdge(a, b);
       size_t i = size_t((key * 0x9e3779b97f4a7c15ull) >> (64 - bits));
       while (keys[i] != kEmpty && keys[i] != key) i = (i + 1) & mask;
       const bool fresh = keys[i] == kEmpty;
@@ -105,7 +105,7 @@ SurfaceTopology surfaceTopology(const std::vector<uint32_t>& indices) {
   for (size_t i = 0; i + 2 < indices.size(); i += 3)
     for (int k = 0; k < 3; k++) {
       uint32_t a = id(indices[i + size_t(k)]), b = id(indices[i + size_t((k + 1) % 3)]);
-      edges.push_back(uint64_t(std::min(a, b)) << 32 | std::max(a, b));
+      edges.push_back(undirectedEdge(a, b));
       components.unite(a, b);
     }
   std::sort(edges.begin(), edges.end());
