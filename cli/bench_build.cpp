@@ -91,13 +91,20 @@ void runBenchBuild(const BuildBenchArgs& a) {
           break;
         }
       }
-      for (int threads : parseList<int>(a.threads)) {
-        std::vector<nlohmann::json> runs;
+      // The thread counts take turns, a build of each per repeat, so that the medians of one and of 16
+      // threads come from the same stretch of the machine's time (a host's speed drifts between runs).
+      const std::vector<int> threadCounts = parseList<int>(a.threads);
+      std::vector<std::vector<nlohmann::json>> runsOf(threadCounts.size());
+      for (uint32_t i = 0; i < std::max(a.repeat, 1u); i++)
+        for (size_t k = 0; k < threadCounts.size(); k++)
+          runsOf[k].push_back(buildInChild(input, subdiv, threadCounts[k], dir));
+      for (size_t k = 0; k < threadCounts.size(); k++) {
+        const int threads = threadCounts[k];
+        const std::vector<nlohmann::json>& runs = runsOf[k];
         std::vector<double> dag, total;
-        for (uint32_t i = 0; i < std::max(a.repeat, 1u); i++) {
-          runs.push_back(buildInChild(input, subdiv, threads, dir));
-          dag.push_back(runs.back()["build_seconds"].get<double>());
-          total.push_back(runs.back()["total_seconds"].get<double>());
+        for (const nlohmann::json& run : runs) {
+          dag.push_back(run["build_seconds"].get<double>());
+          total.push_back(run["total_seconds"].get<double>());
         }
         const nlohmann::json& s = runs.front();  // the output is identical for every run
         double leaves = s["leaf_triangles"].get<double>();
@@ -116,6 +123,7 @@ void runBenchBuild(const BuildBenchArgs& a) {
         r["dag_seconds"] = median(dag);
         r["total_seconds"] = median(total);
         r["dag_seconds_all"] = dag;
+        r["total_seconds_all"] = total;
         r["mtri_per_second"] = leaves / 1e6 / median(dag);
         r["peak_rss_bytes"] = peak;
         r["bytes_per_triangle"] = double(peak) / leaves;

@@ -118,9 +118,15 @@ TEST(BenchFrame, ForestWithAndWithoutOcclusionCulling) {
 TEST(BenchBuild, OneRecordPerMeshSubdivAndThreads) {
   std::string dir = test::tempDir();
   nlohmann::json records = benchRecords(
-      "build " + test::asset("horned_cube.obj") + " --subdiv 0,1 --threads 1,2 --repeat 1", dir + "/build.json");
+      "build " + test::asset("horned_cube.obj") + " --subdiv 0,1 --threads 1,2 --repeat 2", dir + "/build.json");
   ASSERT_EQ(records.size(), 4u);
+  for (size_t i = 0; i < records.size(); i++) {  // by level, then by thread count, as given
+    EXPECT_EQ(records[i]["subdiv"].get<int>(), int(i / 2));
+    EXPECT_EQ(records[i]["threads"].get<int>(), int(i % 2) + 1);
+  }
   for (const auto& rec : records) {
+    EXPECT_EQ(rec["dag_seconds_all"].size(), 2u);  // every run's, of the turns the thread counts took
+    EXPECT_EQ(rec["total_seconds_all"].size(), 2u);
     for (const char* key : {"dag_seconds", "total_seconds", "mtri_per_second", "peak_rss_bytes", "levels",
                             "root_clusters", "relaxed_groups"})
       EXPECT_TRUE(rec.contains(key)) << key;
