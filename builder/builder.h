@@ -331,8 +331,9 @@ struct BuildCluster {
   std::vector<uint32_t> cageFaces;  // leaves: the cage faces it holds (their triangles are consecutive)
   std::vector<uint32_t> wedges;     // the wedge of each index, where the mesh has hard edges (else empty)
   // Its border: the edges (min << 32 | max, ascending) that one of its triangles alone has, as
-  // edgesUsedOnce(indices) gives them, found when a simplified group is split (its round's grouping
-  // reads them); empty for leaves, which grouping counts.
+  // edgesUsedOnce(indices) gives them, found when a simplified group is split and for the leaves
+  // before the first round (its round's grouping and chord rule read them); grouping counts them
+  // where they are empty.
   std::vector<uint64_t> border;
   glm::vec4 selfSphere{0.0f};
   float selfError = 0.0f;

@@ -33,7 +33,7 @@ bool EdgeSet::insert(uint64_t key) {
   }
 }
 
-bool EdgeSet::insertTriangles(const std::vector<uint32_t>& indices) {
+bool EdgeSet::insertCluster(const std::vector<uint32_t>& indices, const std::vector<uint64_t>& border) {
   // Up to 3 new edges a triangle are promised first, so that the table never fills: linear probing
   // would not end in a full one.
   const size_t promise = indices.size();
@@ -41,15 +41,22 @@ bool EdgeSet::insertTriangles(const std::vector<uint32_t>& indices) {
     __atomic_sub_fetch(&promised_, promise, __ATOMIC_RELAXED);
     return false;
   }
-  // The keys' home slots are all asked for before the first insert, so that their cache misses overlap.
+  // An edge of two of the cluster's triangles runs one way in each (a surface is oriented, and the
+  // build stops where it folds), so it is the one of its two that runs up (a < b); an edge of one
+  // triangle is on the border. That is about 1.6 keys a triangle instead of 3. The keys' home slots
+  // are all asked for before the first insert, so that their cache misses overlap.
   thread_local std::vector<uint64_t> keys;
-  keys.resize(indices.size() / 3 * 3);
+  keys.resize(indices.size() / 3 * 3 + border.size());
+  size_t n = 0;
   for (size_t t = 0; t + 2 < indices.size(); t += 3)
     for (size_t k = 0; k < 3; k++) {
       const uint32_t a = indices[t + k], b = indices[t + (k + 1) % 3];
-      keys[t + k] = undirectedEdge(a, b);
-      __builtin_prefetch(&slots_[home(keys[t + k])]);
+      keys[n] = undirectedEdge(a, b);
+      n += a < b;
     }
+  std::copy(border.begin(), border.end(), keys.begin() + long(n));
+  keys.resize(n + border.size());
+  for (const uint64_t key : keys) __builtin_prefetch(&slots_[home(key)]);
   size_t added = 0;  // counted here, added once: one counter shared by every thread's inserts would not scale
   for (const uint64_t key : keys) added += insert(key);
   __atomic_add_fetch(&count_, added, __ATOMIC_RELAXED);
@@ -59,21 +66,31 @@ bool EdgeSet::insertTriangles(const std::vector<uint32_t>& indices) {
 
 template <class Keep>
 void EdgeSet::retainAndReserve(Keep&& keep, size_t edges, int threads) {
-  // The edges kept, gathered a range of slots at a time, then the table made again at its new size
-  // (the old one freed first: the two are never held at once).
-  std::vector<std::vector<uint64_t>> kept(parallelRangeCount(capacity_));
+  // The edges kept, counted and then copied out a range of slots at a time straight into one array
+  // (no list of each range's to grow and join), then the table made again at its new size (the old
+  // one freed first: the two are never held at once). Whether a slot is kept is unpredictable, so it
+  // is no branch: every slot is written at the range's next place, which only a kept one takes.
+  auto kept = [&](size_t i) {
+    const uint64_t key = slots_[i];
+    return (key != kEmpty) & keep(key == kEmpty ? 0 : key);
+  };
+  std::vector<size_t> keptStart(parallelRangeCount(capacity_) + 1, 0);
   parallelForRanges(capacity_, threads, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; i++)
-      if (slots_[i] != kEmpty && keep(slots_[i])) kept[begin / kParallelRange].push_back(slots_[i]);
+    size_t n = 0;
+    for (size_t i = begin; i < end; i++) n += kept(i);
+    keptStart[begin / kParallelRange + 1] = n;
+  });
+  for (size_t r = 1; r < keptStart.size(); r++) keptStart[r] += keptStart[r - 1];
+  FillLaterVector<uint64_t> keys(keptStart.back());
+  parallelForRanges(capacity_, threads, [&](size_t begin, size_t end) {
+    // Past the range's last kept slot nothing is written: the next place is the next range's.
+    for (size_t i = begin, n = keptStart[begin / kParallelRange], last = keptStart[begin / kParallelRange + 1];
+         i < end && n < last; i++) {
+      keys[n] = slots_[i];
+      n += kept(i);
+    }
   });
   slots_.reset();
-  std::vector<size_t> keptStart(kept.size() + 1, 0);
-  for (size_t r = 0; r < kept.size(); r++) keptStart[r + 1] = keptStart[r] + kept[r].size();
-  FillLaterVector<uint64_t> keys(keptStart.back());
-  parallelFor(kept.size(), threads, [&](size_t r) {
-    std::copy(kept[r].begin(), kept[r].end(), keys.begin() + long(keptStart[r]));
-    std::vector<uint64_t>().swap(kept[r]);
-  });
   capacity_ = std::max<size_t>((keys.size() + edges) * 3 / 2 + 1, 1024);
   limit_ = capacity_ - capacity_ / 10;
   slots_.reset(new uint64_t[capacity_]);
@@ -107,7 +124,8 @@ void ChordRule::makeRoom(const std::vector<BuildCluster>& clusters, size_t first
     parallelFor(active->size(), threads, [&](size_t i) {
       for (uint32_t v : clusters[(*active)[i]].indices) __atomic_store_n(&held[v], uint8_t(1), __ATOMIC_RELAXED);
     });
-    edges_.retainAndReserve([&](uint64_t key) { return held[key >> 32] && held[key & 0xffffffffu]; }, room, threads);
+    edges_.retainAndReserve([&](uint64_t key) { return (held[key >> 32] & held[key & 0xffffffffu]) != 0; }, room,
+                            threads);
   }
   if (!edges_.hasRoomFor(room)) edges_.retainAndReserve([](uint64_t) { return true; }, room, threads);
 }
@@ -116,7 +134,8 @@ void ChordRule::addClusters(const std::vector<BuildCluster>& clusters, size_t fi
   for (;;) {
     bool full = false;
     parallelFor(clusters.size() - first, threads, [&](size_t i) {
-      if (!edges_.insertTriangles(clusters[first + i].indices)) __atomic_store_n(&full, true, __ATOMIC_RELAXED);
+      const BuildCluster& c = clusters[first + i];
+      if (!edges_.insertCluster(c.indices, c.border)) __atomic_store_n(&full, true, __ATOMIC_RELAXED);
     });
     if (!full) break;
     edges_.retainAndReserve([](uint64_t) { return true; }, size_t(triangleCount(clusters, first) * 3), threads);
@@ -130,18 +149,23 @@ void ChordRule::startRound(const std::vector<GroupPlan>& plans, const std::vecto
   round_ += roundGroups_;  // this round's groups hold ids round_ + g: entries of earlier rounds are below
   roundGroups_ = uint32_t(plans.size());
   parallelFor(plans.size(), threads, [&](size_t g) {
-    // A group's vertex is counted once: a group runs on one thread, so it sees its own earlier
-    // entry; one beyond kHolders is not stored, but then the vertex takes no chord anyway.
+    // Only a vertex on a cluster's border can be locked in a group (a group's border is made of its
+    // clusters'), and every group holding a locked vertex has it on a border: a vertex has one fan,
+    // and a group holding part of it has an edge of the fan the rest of it holds. So the borders'
+    // vertices are the ones recorded. A group's vertex is counted once: a group runs on one thread,
+    // so it sees its own earlier entry; one beyond kHolders is not stored, but then the vertex takes
+    // no chord anyway.
     const uint32_t id = round_ + uint32_t(g);
     for (uint32_t m : plans[g].clusters)
-      for (uint32_t v : clusters[m].indices) {
-        uint32_t* held = &holders_[size_t(v) * kHolders];
-        bool seen = false;
-        for (uint32_t i = 0; i < kHolders && !seen; i++) seen = __atomic_load_n(&held[i], __ATOMIC_RELAXED) == id;
-        if (seen) continue;
-        uint8_t slot = __atomic_fetch_add(&holderCount_[v], uint8_t(1), __ATOMIC_RELAXED);
-        if (slot < kHolders) __atomic_store_n(&held[slot], id, __ATOMIC_RELAXED);
-      }
+      for (uint64_t edge : clusters[m].border)
+        for (uint32_t v : {uint32_t(edge >> 32), uint32_t(edge)}) {
+          uint32_t* held = &holders_[size_t(v) * kHolders];
+          bool seen = false;
+          for (uint32_t i = 0; i < kHolders && !seen; i++) seen = __atomic_load_n(&held[i], __ATOMIC_RELAXED) == id;
+          if (seen) continue;
+          uint8_t slot = __atomic_fetch_add(&holderCount_[v], uint8_t(1), __ATOMIC_RELAXED);
+          if (slot < kHolders) __atomic_store_n(&held[slot], id, __ATOMIC_RELAXED);
+        }
   });
 }
 

@@ -25,9 +25,9 @@ class EdgeSet {
   void retainAndReserve(Keep&& keep, size_t edges, int threads);
   // Whether `edges` more fit with the set at most two thirds full.
   bool hasRoomFor(size_t edges) const { return (count_ + edges) * 3 / 2 + 1 <= capacity_; }
-  // Inserts the edges of the triangles `indices` (thread-safe with itself); false, inserting nothing,
-  // when they might not fit.
-  bool insertTriangles(const std::vector<uint32_t>& indices);
+  // Inserts the edges of a cluster's triangles `indices`, given its `border` (edgesUsedOnce of them),
+  // thread-safe with itself; false, inserting nothing, when they might not fit.
+  bool insertCluster(const std::vector<uint32_t>& indices, const std::vector<uint64_t>& border);
 
  private:
   static constexpr uint64_t kEmpty = ~uint64_t(0);
@@ -50,11 +50,12 @@ class ChordRule {
   // are dropped first: simplification only ever removes vertices, so no later group can ask for those.
   void makeRoom(const std::vector<BuildCluster>& clusters, size_t first, const std::vector<uint32_t>* active,
                 int threads);
-  // Adds the edges of clusters [first, end) to the set, after makeRoom for them. It allocates only when
-  // the room made was too little, so that it can run beside other work without raising the peak.
+  // Adds the edges of clusters [first, end) to the set, after makeRoom for them; their `border` must
+  // be set. It allocates only when the room made was too little, so that it can run beside other work
+  // without raising the peak.
   void addClusters(const std::vector<BuildCluster>& clusters, size_t first, int threads);
-  // Records which of this round's groups hold each vertex (up to kHolders; a vertex of more groups
-  // takes no chord).
+  // Records which of this round's groups hold each vertex on a border of their clusters (up to
+  // kHolders; a vertex of more groups takes no chord); the clusters' `border` must be set.
   void startRound(const std::vector<GroupPlan>& plans, const std::vector<BuildCluster>& clusters, int threads);
   // Whether group g of this round may make the chord (a, b).
   bool allowed(uint32_t g, uint32_t a, uint32_t b) const;

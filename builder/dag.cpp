@@ -94,6 +94,7 @@ std::vector<BuildCluster> makeLeafClusters(const PolygonMesh& mesh, const BuildO
   if (!options.leavesAreRepairedFaces) checkNoFold(clusters, mesh.positions, options.threads);
   parallelFor(clusters.size(), options.threads, [&](size_t i) {
     BuildCluster& c = clusters[i];
+    c.border = edgesUsedOnce(c.indices);  // for the first round's grouping and chord rule
     c.selfSphere = sphereOfClusterVertices(c, mesh.positions);
     if (options.leafFaceErrors && !options.leafFaceErrors->empty())
       for (uint32_t f : c.cageFaces) c.selfError = std::max(c.selfError, (*options.leafFaceErrors)[f].face);
@@ -248,12 +249,12 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
     StageTimer grouping(options.times, "grouping");
     const std::vector<GroupPlan> plans = groupClusters(dag.clusters, active, mesh.positions, options.groupSize,
                                                        options.threads, &openEdges, recordEdges);
-    freeBorders(dag.clusters, active, options.threads);
     grouping.stop();
     if (options.times)
       for (const auto& [stage, seconds] : insertTimes.seconds) options.times->add(stage, seconds);
     StageTimer roundChords(options.times, "chord rule");
     chords.startRound(plans, dag.clusters, options.threads);
+    freeBorders(dag.clusters, active, options.threads);
     roundChords.stop();
     StageTimer simplifying(options.times, "simplify and split");
     std::vector<GroupOutcome> outcomes =
