@@ -1,0 +1,18 @@
+#!/bin/bash
+# A/B on a device host: vgeo_base against vgeo_new alternating at 16 threads (and two one-thread pairs).
+set -u
+D=$(pwd)/.dev; W=/tmp/w; mkdir -p $W; export LD_LIBRARY_PATH=$D/lib
+{ nproc; lscpu | grep "Model name"; uname -r; date -u; } > $OUT/host.txt 2>&1
+for l in 2 3 4; do $D/peers/prep $D/data/armadillo.off $W/a$l.bin $l loop >/dev/null && $D/peers/bin2obj $W/a$l.bin $W/a$l.obj >/dev/null; done
+run() { # bin mesh threads round
+  rm -f $W/o.vgeo $W/s.json; sync
+  $D/$1 build $W/$2.obj -o $W/o.vgeo --threads $3 --stats $W/s.json > /dev/null 2>$W/err || { echo "FAIL $*"; cat $W/err; }
+  [ -s $W/err ] && { echo "STDERR $*"; head -3 $W/err; } >> $OUT/host.txt
+  echo "{\"bin\":\"$1\",\"mesh\":\"$2\",\"threads\":$3,\"round\":$4,\"stats\":$(tr -d '\n' < $W/s.json)}" >> $OUT/runs.jsonl
+  cmp -s $W/o.vgeo $W/ref_$2.vgeo 2>/dev/null || { [ -f $W/ref_$2.vgeo ] && echo "DIFF $*" >> $OUT/host.txt || cp $W/o.vgeo $W/ref_$2.vgeo; }
+}
+for r in 1 2 3 4; do for b in vgeo_base vgeo_new vgeo_new vgeo_base; do run $b a2 16 $r; done; done
+for r in 1 2; do for b in vgeo_base vgeo_new; do run $b a2 1 $r; done; done
+for r in 1 2; do for b in vgeo_base vgeo_new vgeo_new vgeo_base; do run $b a3 16 $r; done; done
+for r in 1 2; do for b in vgeo_base vgeo_new vgeo_new vgeo_base; do run $b a4 16 $r; done; done
+grep -c . $OUT/runs.jsonl
