@@ -7,6 +7,7 @@
 #include <set>
 #include <nlohmann/json.hpp>
 
+#include "../builder/chord_rule.h"
 #include "test_util.h"
 
 namespace vgeo {
@@ -286,7 +287,7 @@ TEST(DagBuild, ClustersCarryTheBorderTheirTrianglesHave) {
   // A simplified group's clusters carry their border, read off the soup's partner corners (or counted
   // where the soup has an edge of three triangles); it must be what edgesUsedOnce counts on their
   // triangles, on groups of a round's size cut from real meshes (closed, with open boundaries and
-  // holes, unstitched, quads). Leaves carry none: grouping counts theirs.
+  // holes, unstitched, quads). buildLeafClusters leaves the leaves' empty: the DAG build counts them.
   for (const char* name : {"bunny00.off", "mesh_with_border.off", "elephant-with-holes.off", "blade.off",
                            "quads_to_stitch.off", "cross_quad.off"}) {
     PolygonMesh mesh = loadMeshFile(test::cgalMesh(name)).meshes[0];
@@ -304,6 +305,59 @@ TEST(DagBuild, ClustersCarryTheBorderTheirTrianglesHave) {
         ASSERT_EQ(c.border, edgesUsedOnce(c.indices)) << name << " triangles " << first / 3 << " to " << end / 3;
     }
   }
+}
+
+TEST(DagBuild, TheChordRuleForbidsEveryEdgeAClusterHas) {
+  // The chord rule's set takes a cluster's edges as the upward half of each edge two of its triangles
+  // share and its border: on real meshes (closed, open, with holes, unstitched, quads), as leaves and
+  // as a simplified group's clusters, every edge of every triangle must be in it, on any thread count,
+  // and a chord between border vertices no cluster joins must still be allowed somewhere.
+  size_t allowedChords[2] = {0, 0};  // on 1 and on 4 threads, of the first few pairs tried in each mesh
+  for (const char* name : {"bunny00.off", "mesh_with_border.off", "elephant-with-holes.off", "blade.off",
+                           "quads_to_stitch.off", "cross_quad.off"}) {
+    PolygonMesh mesh = loadMeshFile(test::cgalMesh(name)).meshes[0];
+    repairMesh(mesh, name);  // oriented, as the build has it
+    fanLargeFaces(mesh, 1);
+    std::vector<BuildCluster> clusters = buildLeafClusters(mesh, 1);
+    for (BuildCluster& c : clusters) c.border = edgesUsedOnce(c.indices);
+    std::vector<uint32_t> triangles;
+    for (size_t f = 0; f < mesh.faceCount(); f++)
+      triangulateFace(mesh.positions.data(), mesh.face(f), mesh.faceSize(f), triangles);
+    for (size_t first = 0; first < triangles.size(); first += 3 * 2048) {
+      const size_t end = std::min(triangles.size(), first + 3 * 2048);
+      SimplifiedGroup group;
+      localIds(std::vector<uint32_t>(triangles.begin() + long(first), triangles.begin() + long(end)), group.globals,
+               group.indices);
+      for (BuildCluster& c : splitIntoClusters(group, mesh.positions)) clusters.push_back(std::move(c));
+    }
+    std::set<uint64_t> edges;
+    for (const BuildCluster& c : clusters)
+      for (size_t t = 0; t + 2 < c.indices.size(); t += 3)
+        for (size_t k = 0; k < 3; k++) edges.insert(undirectedEdge(c.indices[t + k], c.indices[t + (k + 1) % 3]));
+    std::vector<GroupPlan> plans(clusters.size());  // a group a cluster
+    for (uint32_t i = 0; i < clusters.size(); i++) plans[i].clusters = {i};
+    for (int threads : {1, 4}) {
+      size_t& allowed = allowedChords[threads > 1];
+      const size_t before = allowed;
+      ChordRule chords(mesh.positions.size(), threads);
+      chords.makeRoom(clusters, 0, nullptr, threads);
+      chords.addClusters(clusters, 0, threads);
+      chords.startRound(plans, clusters, threads);
+      size_t e = 0;
+      for (const uint64_t edge : edges)  // each asked of one group: the set answers for all of them
+        ASSERT_FALSE(chords.allowed(uint32_t(e++ % clusters.size()), uint32_t(edge >> 32), uint32_t(edge)))
+            << name << " threads " << threads;
+      for (uint32_t g = 0; g < clusters.size(); g++) {
+        const std::vector<uint64_t>& border = clusters[g].border;
+        for (size_t i = 0; i + 2 < border.size() && allowed < before + 8; i += 3)
+          if (uint32_t(border[i] >> 32) != uint32_t(border[i + 2]) &&
+              !edges.count(undirectedEdge(uint32_t(border[i] >> 32), uint32_t(border[i + 2]))))
+            allowed += chords.allowed(g, uint32_t(border[i] >> 32), uint32_t(border[i + 2]));
+      }
+    }
+  }
+  EXPECT_GT(allowedChords[0], 0u);
+  EXPECT_EQ(allowedChords[0], allowedChords[1]);
 }
 
 }  // namespace
