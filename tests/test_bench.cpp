@@ -132,13 +132,17 @@ TEST(BenchBuild, OneRecordPerMeshSubdivAndThreads) {
       EXPECT_TRUE(rec.contains(key)) << key;
     EXPECT_GT(rec["peak_rss_bytes"].get<uint64_t>(), 0u);
     EXPECT_LE(rec["dag_seconds"].get<double>(), rec["total_seconds"].get<double>());
-    // Each step's seconds: every step of the run, none more than the whole.
-    double steps = 0.0;
+    // Each step's seconds: every step of the run, none more than the whole. A step's median and the
+    // total's may come from different runs (of two, the median is the slower), so the steps together
+    // are held to the runs' totals together: each run's steps fit in its own total.
+    double steps = 0.0, totals = 0.0;
     for (const char* stage : {"load", "repair", "leaf clusters", "grouping", "simplify and split", "layout", "write"}) {
       ASSERT_TRUE(rec["stage_seconds"].contains(stage)) << stage;
+      EXPECT_LE(rec["stage_seconds"][stage].get<double>(), rec["total_seconds"].get<double>()) << stage;
       steps += rec["stage_seconds"][stage].get<double>();
     }
-    EXPECT_LE(steps, rec["total_seconds"].get<double>() * 1.1);
+    for (const auto& total : rec["total_seconds_all"]) totals += total.get<double>();
+    EXPECT_LE(steps, totals);
   }
   // Every face of a level-1 cage is a quad: 684 triangles (342 quads) -> 4 x 342 quads = 2,736 triangles.
   EXPECT_EQ(records[2]["leaf_triangles"].get<int>(), 2736);
