@@ -283,53 +283,57 @@ TEST(DagBuild, DenseBorderEdgesMatchTheHashedOnes) {
   }
 }
 
+// CGAL meshes closed, with open boundaries and holes, unstitched, and of quads.
+constexpr const char* kBorderMeshes[] = {"bunny00.off", "mesh_with_border.off", "elephant-with-holes.off",
+                                         "blade.off",   "quads_to_stitch.off",  "cross_quad.off"};
+
+// The mesh's faces cut into groups of a round's size (2,048 triangles, in face order), each split into
+// clusters as a simplified group is: split(first, end, clusters) for triangles [first, end).
+template <class Split>
+void splitRoundSizedGroups(const PolygonMesh& mesh, Split&& split) {
+  std::vector<uint32_t> triangles;
+  for (size_t f = 0; f < mesh.faceCount(); f++)
+    triangulateFace(mesh.positions.data(), mesh.face(f), mesh.faceSize(f), triangles);
+  for (size_t first = 0; first < triangles.size(); first += 3 * 2048) {
+    const size_t end = std::min(triangles.size(), first + 3 * 2048);
+    SimplifiedGroup group;
+    localIds(std::vector<uint32_t>(triangles.begin() + long(first), triangles.begin() + long(end)), group.globals,
+             group.indices);
+    split(first / 3, end / 3, splitIntoClusters(group, mesh.positions));
+  }
+}
+
 TEST(DagBuild, ClustersCarryTheBorderTheirTrianglesHave) {
   // A simplified group's clusters carry their border, read off the soup's partner corners (or counted
   // where the soup has an edge of three triangles); it must be what edgesUsedOnce counts on their
-  // triangles, on groups of a round's size cut from real meshes (closed, with open boundaries and
-  // holes, unstitched, quads). buildLeafClusters leaves the leaves' empty: the DAG build counts them.
-  for (const char* name : {"bunny00.off", "mesh_with_border.off", "elephant-with-holes.off", "blade.off",
-                           "quads_to_stitch.off", "cross_quad.off"}) {
+  // triangles, on groups of a round's size cut from real meshes. buildLeafClusters leaves the leaves'
+  // empty: the DAG build counts them.
+  for (const char* name : kBorderMeshes) {
     PolygonMesh mesh = loadMeshFile(test::cgalMesh(name)).meshes[0];
     fanLargeFaces(mesh, 1);
     for (const BuildCluster& c : buildLeafClusters(mesh, 1)) ASSERT_TRUE(c.border.empty()) << name;
-    std::vector<uint32_t> triangles;
-    for (size_t f = 0; f < mesh.faceCount(); f++)
-      triangulateFace(mesh.positions.data(), mesh.face(f), mesh.faceSize(f), triangles);
-    for (size_t first = 0; first < triangles.size(); first += 3 * 2048) {
-      const size_t end = std::min(triangles.size(), first + 3 * 2048);
-      SimplifiedGroup group;
-      localIds(std::vector<uint32_t>(triangles.begin() + long(first), triangles.begin() + long(end)), group.globals,
-               group.indices);
-      for (const BuildCluster& c : splitIntoClusters(group, mesh.positions))
-        ASSERT_EQ(c.border, edgesUsedOnce(c.indices)) << name << " triangles " << first / 3 << " to " << end / 3;
-    }
+    splitRoundSizedGroups(mesh, [&](size_t first, size_t end, std::vector<BuildCluster> clusters) {
+      for (const BuildCluster& c : clusters)
+        ASSERT_EQ(c.border, edgesUsedOnce(c.indices)) << name << " triangles " << first << " to " << end;
+    });
   }
 }
 
 TEST(DagBuild, TheChordRuleForbidsEveryEdgeAClusterHas) {
   // The chord rule's set takes a cluster's edges as the upward half of each edge two of its triangles
-  // share and its border: on real meshes (closed, open, with holes, unstitched, quads), as leaves and
-  // as a simplified group's clusters, every edge of every triangle must be in it, on any thread count,
-  // and a chord between border vertices no cluster joins must still be allowed somewhere.
+  // share and its border: on real meshes, as leaves and as a simplified group's clusters, every edge of
+  // every triangle must be in it, on any thread count, and a chord between border vertices no cluster
+  // joins must still be allowed somewhere.
   size_t allowedChords[2] = {0, 0};  // on 1 and on 4 threads, of the first few pairs tried in each mesh
-  for (const char* name : {"bunny00.off", "mesh_with_border.off", "elephant-with-holes.off", "blade.off",
-                           "quads_to_stitch.off", "cross_quad.off"}) {
+  for (const char* name : kBorderMeshes) {
     PolygonMesh mesh = loadMeshFile(test::cgalMesh(name)).meshes[0];
     repairMesh(mesh, name);  // oriented, as the build has it
     fanLargeFaces(mesh, 1);
     std::vector<BuildCluster> clusters = buildLeafClusters(mesh, 1);
     for (BuildCluster& c : clusters) c.border = edgesUsedOnce(c.indices);
-    std::vector<uint32_t> triangles;
-    for (size_t f = 0; f < mesh.faceCount(); f++)
-      triangulateFace(mesh.positions.data(), mesh.face(f), mesh.faceSize(f), triangles);
-    for (size_t first = 0; first < triangles.size(); first += 3 * 2048) {
-      const size_t end = std::min(triangles.size(), first + 3 * 2048);
-      SimplifiedGroup group;
-      localIds(std::vector<uint32_t>(triangles.begin() + long(first), triangles.begin() + long(end)), group.globals,
-               group.indices);
-      for (BuildCluster& c : splitIntoClusters(group, mesh.positions)) clusters.push_back(std::move(c));
-    }
+    splitRoundSizedGroups(mesh, [&](size_t, size_t, std::vector<BuildCluster> split) {
+      for (BuildCluster& c : split) clusters.push_back(std::move(c));
+    });
     std::set<uint64_t> edges;
     for (const BuildCluster& c : clusters)
       for (size_t t = 0; t + 2 < c.indices.size(); t += 3)
