@@ -1,6 +1,6 @@
 # gpu_env.sh: sourced by the bench/gpu_*.sh scripts, on an NVIDIA machine without the project's packages.
 # Beside the checkout: .gl/ (the Vulkan loader .debs), .dev/vgeo (the binary built here), .dev/lib/ (the
-# shared libraries `ldd build/vgeo` lists that the machine lacks: libtinygltf, libmetis, libstb),
+# shared libraries `ldd build/vgeo` lists that the machine lacks: libtinygltf, libstb),
 # .dev/data/ (armadillo.off, corner_tris_with_hole.off) and the vulkan-validationlayers .deb in .dev/.
 # Unpacks the loaders, sets V to the binary and records the GPU and driver in gpu.txt of folder $1
 # (default $OUT); `validated COMMAND...` runs a command with the Khronos validation layer found.

@@ -2,7 +2,7 @@
 # GPU renderer benchmark on an NVIDIA machine without the project's packages: 10,000 and 100,000 instances
 # of armadillo --subdiv 2 (1.25M triangles) at 1920x1080, tau 1, each traversal; a validation run.
 # Expects, beside the checkout: .gl/ (Vulkan loader debs), .dev/vgeo (the binary built here), .dev/lib/
-# (libtinygltf, libmetis, libstb from `ldd build/vgeo`), .dev/data/armadillo.off, and the
+# (libtinygltf, libstb from `ldd build/vgeo`), .dev/data/armadillo.off, and the
 # vulkan-validationlayers .deb in .dev/. Writes JSON to $OUT.
 set -uo pipefail
 source bench/gpu_env.sh

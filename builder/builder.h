@@ -307,6 +307,17 @@ struct Graph {
   FillLaterVector<uint32_t> adjacency;
   size_t nodeCount() const { return offsets.size() - 1; }
 };
+// A graph whose edges have weights: weights[e] beside adjacency[e].
+struct WeightedGraph {
+  std::vector<uint32_t> offsets{0}, adjacency, weights;
+  size_t nodeCount() const { return offsets.size() - 1; }
+};
+// Groups of about `target` connected nodes with light edges between groups (group_merge.cpp):
+// group[v] is node v's, numbered in order of first node; returns how many. No group holds more than
+// target + target / 3 nodes; a group with no neighbour that fits may hold fewer than target. Groups
+// of whole components (no edge out) are joined by the nearness of their nodes' `centroids`, and
+// only those can be disconnected.
+uint32_t mergeIntoGroups(const WeightedGraph& graph, const glm::vec3* centroids, uint32_t target, uint32_t* group);
 // The parts as contiguous runs of a node permutation: part p is order[partStart[p] .. partStart[p+1]).
 struct Partition {
   FillLaterVector<uint32_t> order;
@@ -381,14 +392,12 @@ struct GroupPlan {
   std::vector<uint32_t> clusters;  // cluster ids, ascending
   bool isWholeComponent = false;   // no cluster outside the group shares an edge with it
 };
-// Partitions the `active` clusters into groups of about `targetSize` neighbours: METIS on the graph
-// of clusters sharing an edge, edges weighted by the shared edge count, so that groups have short
-// borders (the locked part of the next simplification). A level of more than kGroupingPiece * 2
+// Partitions the `active` clusters into groups of about `targetSize` neighbours: mergeIntoGroups on
+// the graph of clusters sharing an edge, edges weighted by the shared edge count, so that groups have
+// short borders (the locked part of the next simplification). A level of more than kGroupingPiece * 2
 // clusters is first cut into compact pieces of about kGroupingPiece (partitionGraph, by the clusters'
-// centroids over `positions`), each partitioned by METIS on its own (the pieces' graphs made side by
-// side), and a piece of many groups is bisected by METIS a cut at a time, the two sides of each cut
-// partitioned side by side. Deterministic (fixed METIS seed, cuts that depend on the graph alone) for
-// any thread count. `openEdges`, when given, receives the
+// centroids over `positions`), each grouped on its own, side by side. The same groups on any thread
+// count. `openEdges`, when given, receives the
 // edges (min << 32 | max, ascending) on the border of one cluster only: the open boundary of the
 // surface, which is no group's shared border. `beside`, when given, runs on the threads beside the
 // partition (it must not touch what grouping reads), after the graph is made.

@@ -234,7 +234,7 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
        active.size() > 1 || (active.size() == 1 && triangleCount(dag.clusters, active) > kSmallestRoot); round++) {
     report(doneWork / totalWork, "simplifying");
     // The last round's clusters' edges go into the chord rule's set beside this round's partition into
-    // groups, which does not read it: the inserts fill the threads that METIS leaves idle. The set's
+    // groups, which does not read it: the inserts fill the threads that the grouping leaves idle. The set's
     // room is made first: memory allocated by two threads at once, each in its own malloc arena,
     // raised the peak. The inserts' wall time counts as the chord rule's and as grouping's.
     StageTimer room(options.times, "chord rule");

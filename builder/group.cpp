@@ -1,12 +1,9 @@
 // group.cpp: neighbouring clusters into groups for simplification (Nanite's grouping step).
 // Two clusters are neighbours when they share an edge; the edge weight is how many edges they share,
-// so METIS's partition, which minimises the cut weight, makes groups whose outer border is short.
-// That border is what the simplifier must lock, so a short border leaves room to halve the group.
-#include <metis.h>
-
+// so merging the neighbours that share most (group_merge.cpp) makes groups whose outer border is
+// short. That border is what the simplifier must lock, so a short border leaves room to halve the
+// group.
 #include <algorithm>
-#include <csignal>
-#include <cstdlib>
 #include <span>
 
 #include "../common/bucket_sort.h"
@@ -14,110 +11,9 @@
 
 #include "builder.h"
 
-// METIS draws its random numbers from the C library's rand(), whose one state the whole process
-// shares: METIS calls side by side would draw from each other's sequence and partition differently
-// on every run. So the builder defines rand and srand itself, over a state for each thread kept by
-// the C library's own generator (random_r with the 128-byte state is the sequence glibc's rand gives):
-// each METIS call seeds first and then sees the numbers it would see alone, whatever runs beside it.
-namespace {
-struct ThreadRandom {
-  char state[128] = {};
-  random_data data = {};
-  ThreadRandom() { initstate_r(1, state, sizeof state, &data); }
-};
-thread_local ThreadRandom threadRandom;
-
-// Each METIS call points SIGABRT and SIGTERM at its own error trap and then puts back the handler it
-// found; calls side by side can put back each other's trap, which would outlive them. The handlers
-// from before the calls are restored after them.
-struct KeptSignalHandlers {
-  struct sigaction abortHandler = {}, termHandler = {};
-  KeptSignalHandlers() {
-    sigaction(SIGABRT, nullptr, &abortHandler);
-    sigaction(SIGTERM, nullptr, &termHandler);
-  }
-  ~KeptSignalHandlers() {
-    sigaction(SIGABRT, &abortHandler, nullptr);
-    sigaction(SIGTERM, &termHandler, nullptr);
-  }
-};
-}  // namespace
-
-extern "C" void srand(unsigned seed) noexcept { srandom_r(seed, &threadRandom.data); }
-extern "C" int rand() noexcept {
-  int32_t value = 0;
-  random_r(&threadRandom.data, &value);
-  return value;
-}
-
 namespace vgeo {
 
 namespace {
-
-struct MetisGraph {
-  std::vector<idx_t> xadj{0}, adjncy, adjwgt;
-  idx_t nodes() const { return idx_t(xadj.size() - 1); }
-};
-
-// METIS_PartGraphRecursive on `graph` into `parts` parts of the given shares (equal when null).
-void partGraph(const MetisGraph& graph, idx_t parts, real_t* shares, idx_t* part) {
-  idx_t nvtxs = graph.nodes(), ncon = 1, objval = 0;
-  idx_t options[METIS_NOPTIONS];
-  METIS_SetDefaultOptions(options);
-  options[METIS_OPTION_SEED] = 1;
-  options[METIS_OPTION_NUMBERING] = 0;
-  // Recursive bisection rather than k-way: with ~16 clusters a part, k-way cannot coarsen the graph
-  // and was 6x slower; recursive bisection also gave shorter borders (armadillo, --subdiv 2).
-  const int status = METIS_PartGraphRecursive(
-      &nvtxs, &ncon, const_cast<idx_t*>(graph.xadj.data()), const_cast<idx_t*>(graph.adjncy.data()), nullptr, nullptr,
-      const_cast<idx_t*>(graph.adjwgt.data()), &parts, shares, nullptr, options, &objval, part);
-  if (status != METIS_OK)
-    throw std::runtime_error("METIS_PartGraphRecursive failed with status " + std::to_string(status));
-}
-
-// Parts this few are left to one METIS call; only the cuts above it run side by side.
-constexpr idx_t kOneCallParts = 8;
-
-// `parts` parts of `graph` by recursive bisection, as METIS_PartGraphRecursive makes them (each cut
-// gives the two sides the shares of the parts they will hold), but with each cut's two sides
-// partitioned side by side when `together`: one METIS call over a level of thousands of clusters was
-// the serial part of the build. The cuts depend on the graph alone, never on the threads.
-void bisectRecursively(const MetisGraph& graph, idx_t parts, idx_t* part, bool together) {
-  if (parts <= kOneCallParts) {
-    partGraph(graph, parts, nullptr, part);
-    return;
-  }
-  const idx_t n = graph.nodes(), leftParts = parts / 2;
-  real_t shares[2] = {real_t(leftParts) / real_t(parts), 0};
-  shares[1] = 1 - shares[0];
-  std::vector<idx_t> side(size_t(n), 0), at(size_t(n), 0);
-  partGraph(graph, 2, shares, side.data());
-  MetisGraph halves[2];
-  std::vector<idx_t> members[2];
-  for (idx_t v = 0; v < n; v++) {
-    at[size_t(v)] = idx_t(members[side[size_t(v)]].size());
-    members[side[size_t(v)]].push_back(v);
-  }
-  for (int s = 0; s < 2; s++)
-    for (const idx_t v : members[s]) {
-      for (idx_t e = graph.xadj[size_t(v)]; e < graph.xadj[size_t(v) + 1]; e++) {
-        const idx_t u = graph.adjncy[size_t(e)];
-        if (side[size_t(u)] != s) continue;
-        halves[s].adjncy.push_back(at[size_t(u)]);
-        halves[s].adjwgt.push_back(graph.adjwgt[size_t(e)]);
-      }
-      halves[s].xadj.push_back(idx_t(halves[s].adjncy.size()));
-    }
-  std::vector<idx_t> halfPart[2] = {std::vector<idx_t>(members[0].size()), std::vector<idx_t>(members[1].size())};
-  auto partitionHalf = [&](int s) {
-    if (!members[s].empty())
-      bisectRecursively(halves[s], s ? parts - leftParts : leftParts, halfPart[s].data(), together);
-  };
-  parallelInvoke(
-      together, [&] { partitionHalf(0); }, [&] { partitionHalf(1); });
-  for (int s = 0; s < 2; s++)
-    for (size_t i = 0; i < members[s].size(); i++) part[members[s][i]] = halfPart[s][i] + (s ? leftParts : 0);
-}
 
 // Cluster i's neighbours as (slot, edges shared): neighbourList[neighbourStart[i] .. neighbourStart[i + 1]).
 std::span<const std::pair<uint32_t, int>> neighboursOf(const std::vector<uint32_t>& neighbourStart,
@@ -126,15 +22,22 @@ std::span<const std::pair<uint32_t, int>> neighboursOf(const std::vector<uint32_
   return {neighbourList.data() + neighbourStart[i], neighbourStart[i + 1] - neighbourStart[i]};
 }
 
-// Each of the level's clusters' group (`part`), numbered piece after piece: METIS partitions the
-// whole level, or compact pieces of a large one, one at a time. Returns the number of groups.
-idx_t partitionIntoGroups(const std::vector<uint32_t>& neighbourStart,
-                          const std::vector<std::pair<uint32_t, int>>& neighbourList,
-                          const std::vector<BuildCluster>& clusters, const std::vector<uint32_t>& active,
-                          const std::vector<glm::vec3>& positions, uint32_t targetSize, int threads,
-                          std::vector<idx_t>& part) {
+// Each of the level's clusters' group (`part`), numbered piece after piece: the whole level, or
+// compact pieces of a large one, grouped side by side. Returns the number of groups.
+uint32_t partitionIntoGroups(const std::vector<uint32_t>& neighbourStart,
+                             const std::vector<std::pair<uint32_t, int>>& neighbourList,
+                             const std::vector<BuildCluster>& clusters, const std::vector<uint32_t>& active,
+                             const std::vector<glm::vec3>& positions, uint32_t targetSize, int threads,
+                             std::vector<uint32_t>& part) {
   const size_t n = active.size();
   auto neighbours = [&](size_t i) { return neighboursOf(neighbourStart, neighbourList, i); };
+  FillLaterVector<glm::vec3> centroids(n);
+  parallelFor(n, threads, [&](size_t slot) {
+    glm::dvec3 sum(0.0);
+    const auto& idx = clusters[active[slot]].indices;
+    for (uint32_t v : idx) sum += glm::dvec3(positions[v]);
+    centroids[slot] = glm::vec3(sum / double(std::max<size_t>(idx.size(), 1)));
+  });
   Partition pieces;
   if (n > 2 * size_t(kGroupingPiece)) {
     Graph graph;
@@ -143,13 +46,6 @@ idx_t partitionIntoGroups(const std::vector<uint32_t>& neighbourStart,
     parallelForRanges(neighbourList.size(), threads, [&](size_t begin, size_t end) {
       for (size_t k = begin; k < end; k++) graph.adjacency[k] = neighbourList[k].first;
     });
-    FillLaterVector<glm::vec3> centroids(n);
-    parallelFor(n, threads, [&](size_t slot) {
-      glm::dvec3 sum(0.0);
-      const auto& idx = clusters[active[slot]].indices;
-      for (uint32_t v : idx) sum += glm::dvec3(positions[v]);
-      centroids[slot] = glm::vec3(sum / double(std::max<size_t>(idx.size(), 1)));
-    });
     pieces = partitionGraph(graph, std::vector<uint8_t>(n, 1), centroids, kGroupingPiece + kGroupingPiece / 4,
                             kGroupingPiece, threads);
   } else {
@@ -157,43 +53,39 @@ idx_t partitionIntoGroups(const std::vector<uint32_t>& neighbourStart,
     for (uint32_t i = 0; i < n; i++) pieces.order[i] = i;
     pieces.partStart.push_back(uint32_t(n));
   }
-  // Each piece's groups are numbered after the earlier pieces'.
-  std::vector<idx_t> partBase(pieces.partCount() + 1, 0);
-  for (size_t p = 0; p < pieces.partCount(); p++)
-    partBase[p + 1] =
-        partBase[p] + idx_t((pieces.partStart[p + 1] - pieces.partStart[p] + targetSize - 1) / targetSize);
   std::vector<uint32_t> localOf(n);
   for (size_t p = 0; p < pieces.partCount(); p++)
     for (uint32_t k = pieces.partStart[p]; k < pieces.partStart[p + 1]; k++)
       localOf[pieces.order[k]] = k - pieces.partStart[p];
-  const KeptSignalHandlers keptSignalHandlers;
-  auto partitionPiece = [&](size_t p) {
+  // Each piece's groups numbered from 0 in `part`, and how many it has.
+  std::vector<uint32_t> pieceGroups(pieces.partCount());
+  parallelFor(pieces.partCount(), threads, [&](size_t p) {
     const uint32_t* slots = &pieces.order[pieces.partStart[p]];
-    const idx_t count = idx_t(pieces.partStart[p + 1] - pieces.partStart[p]);
-    const idx_t pieceParts = partBase[p + 1] - partBase[p];
-    std::vector<idx_t> local(size_t(count), 0);
-    if (pieceParts > 1) {
-      // The piece's own graph: its clusters and the edges between them.
-      MetisGraph piece;
-      for (idx_t k = 0; k < count; k++) {
-        for (auto [j, w] : neighbours(slots[k])) {
-          const uint32_t at = localOf[j];
-          if (at >= uint32_t(count) || pieces.order[pieces.partStart[p] + at] != j) continue;  // in another piece
-          piece.adjncy.push_back(idx_t(at));
-          piece.adjwgt.push_back(idx_t(w));
-        }
-        piece.xadj.push_back(idx_t(piece.adjncy.size()));
+    const uint32_t count = pieces.partStart[p + 1] - pieces.partStart[p];
+    // The piece's own graph: its clusters and the edges between them.
+    WeightedGraph piece;
+    std::vector<glm::vec3> pieceCentroids(count);
+    for (uint32_t k = 0; k < count; k++) {
+      pieceCentroids[k] = centroids[slots[k]];
+      for (auto [j, w] : neighbours(slots[k])) {
+        const uint32_t at = localOf[j];
+        if (at >= count || pieces.order[pieces.partStart[p] + at] != j) continue;  // in another piece
+        piece.adjacency.push_back(at);
+        piece.weights.push_back(uint32_t(w));
       }
-      bisectRecursively(piece, pieceParts, local.data(), threads > 1);
+      piece.offsets.push_back(uint32_t(piece.adjacency.size()));
     }
-    for (idx_t k = 0; k < count; k++) part[slots[k]] = partBase[p] + local[size_t(k)];
-  };
-  // Inside the arena even for one piece: its bisections' sides run as tasks.
-  if (threads > 1)
-    withThreads(threads, [&] { parallelFor(pieces.partCount(), threads, partitionPiece); });
-  else
-    for (size_t p = 0; p < pieces.partCount(); p++) partitionPiece(p);
-  return partBase.back();
+    std::vector<uint32_t> local(count);
+    pieceGroups[p] = mergeIntoGroups(piece, pieceCentroids.data(), targetSize, local.data());
+    for (uint32_t k = 0; k < count; k++) part[slots[k]] = local[k];
+  });
+  // Each piece's groups numbered after the earlier pieces'.
+  uint32_t groups = 0;
+  for (size_t p = 0; p < pieces.partCount(); p++) {
+    for (uint32_t k = pieces.partStart[p]; k < pieces.partStart[p + 1]; k++) part[pieces.order[k]] += groups;
+    groups += pieceGroups[p];
+  }
+  return groups;
 }
 
 }  // namespace
@@ -289,13 +181,13 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
   std::vector<uint32_t>().swap(entries);
   auto neighbours = [&](size_t i) { return neighboursOf(neighbourStart, neighbourList, i); };
 
-  std::vector<idx_t> part(n, 0);
-  idx_t nparts = 0;
+  std::vector<uint32_t> part(n, 0);
+  uint32_t nparts = 0;
   auto partition = [&] {
     nparts = partitionIntoGroups(neighbourStart, neighbourList, clusters, active, positions, targetSize, threads, part);
   };
-  // `beside` runs on the threads that the METIS calls leave idle: a cut of thousands of clusters is one
-  // thread's work, and the first cuts of a level are a chain. The calling thread takes the partition
+  // `beside` runs on the threads that the grouping leaves idle: each piece's merging is one thread's
+  // work, and a level has a few pieces at most. The calling thread takes the partition
   // (parallelInvoke's last), so that its arrays come from the malloc arena they came from before.
   if (beside && threads > 1) {
     withThreads(threads, [&] { parallelInvoke(true, beside, partition); });
@@ -303,12 +195,12 @@ std::vector<GroupPlan> groupClusters(const std::vector<BuildCluster>& clusters, 
     if (beside) beside();
     partition();
   }
-  std::vector<GroupPlan> groups(size_t(std::max<idx_t>(nparts, 1)));
+  std::vector<GroupPlan> groups(std::max<uint32_t>(nparts, 1));
   std::vector<bool> touchesOther(groups.size(), false);
   for (size_t i = 0; i < n; i++) {
-    groups[size_t(part[i])].clusters.push_back(active[i]);
+    groups[part[i]].clusters.push_back(active[i]);
     for (auto [j, w] : neighbours(i))
-      if (part[j] != part[i]) touchesOther[size_t(part[i])] = true;
+      if (part[j] != part[i]) touchesOther[part[i]] = true;
   }
   std::vector<GroupPlan> result;
   for (size_t g = 0; g < groups.size(); g++) {

@@ -505,7 +505,9 @@ SimplifiedGroup simplifyGroup(const std::vector<uint32_t>& indices, const std::v
   error = std::max(error, s.removedVertexError());
   SimplifiedGroup result;
   result.error = float(error);
-  result.halved = s.triangleCount() <= size_t(float(triangles) * kHalvedRatio);
+  // Nothing left is no halving: a group must produce a cluster (a group of loose triangles, whose
+  // open edges all collapse, can simplify to none).
+  result.halved = s.triangleCount() > 0 && s.triangleCount() <= size_t(float(triangles) * kHalvedRatio);
   result.relaxation = error > kBoundedError * glm::distance(lower, upper) ? 1 : 0;
   result.indices = s.triangles();
   result.globals = std::move(globals);

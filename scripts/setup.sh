@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(
   cmake g++ make pkg-config git ca-certificates
   libopenmesh-dev libcgal-dev libglm-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev libstb-dev
-  libmetis-dev libtbb-dev libgtest-dev
+  libtbb-dev libgtest-dev
   libvulkan-dev glslang-tools mesa-vulkan-drivers vulkan-validationlayers
   libglfw3-dev libimgui-dev xvfb xauth twm
   libcgal-demo assimp-testmodels python3 python3-matplotlib

@@ -34,7 +34,6 @@ TEST(Check, FindsALeafVertexOffItsPatch) {
 TEST(Check, FindsNeighboursThatDisagreeOnAnEdge) {
   VgeoData data = scene();
   data.patches[3].edgeError[1] *= 1.5f;
-  data.patches[3].faceError *= 1.5f;
   expectViolation(data, "disagree on its chord error");
   data = scene();
   data.patches[5].info ^= 1u << 17;  // lock or unlock edge 1 on one side only

@@ -1,9 +1,8 @@
 // test_dag.cpp: the invariants of docs/design.md on real meshes (CGAL's demo data, the shipped cage, a
 // multi-mesh glTF), through the same checker as `vgeo check`, plus the builder's promises on sizes.
-#include <dlfcn.h>
-
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <set>
 #include <nlohmann/json.hpp>
 
@@ -137,7 +136,8 @@ TEST(DagBuild, OnlySubdividedCagesKeepCageFaces) {
 
 TEST(DagBuild, ATriangleSoupBuildsTheSameOnAnyThreadCount) {
   // 3,000 triangles sharing no vertex: three new edges a triangle, past the room the chord rule's edge
-  // set makes at first (about 1.6), so its insertion stops and runs again with more.
+  // set makes at first (about 1.6), so its insertion stops and runs again with more. Its clusters
+  // share no edge, so they are grouped by position, and the soup still halves to one root.
   std::string obj;
   for (int i = 0; i < 3000; i++) {
     const float x = float(i % 60), y = float(i / 60);
@@ -149,42 +149,15 @@ TEST(DagBuild, ATriangleSoupBuildsTheSameOnAnyThreadCount) {
   SceneBuildStats stats;
   VgeoData one = test::build(path, 0, 1, &stats), two = test::build(path, 0, 2);
   EXPECT_EQ(stats.leafTriangles, 3000u);
+  EXPECT_EQ(stats.rootClusters, 1u);
   EXPECT_EQ(serializeVgeo(one), serializeVgeo(two));
   CheckResult result = checkVgeo(one, {8, 7});
   EXPECT_TRUE(result.ok) << result.firstViolation;
 }
 
-TEST(DagBuild, RandIsTheCLibrarysSequenceKeptPerThread) {
-  // METIS's random numbers: the builder's rand and srand give glibc's sequence for every seed, from a
-  // state of each thread's own.
-  using RandFunction = int (*)();
-  using SrandFunction = void (*)(unsigned);
-  auto libcRand = reinterpret_cast<RandFunction>(dlsym(RTLD_NEXT, "rand"));
-  auto libcSrand = reinterpret_cast<SrandFunction>(dlsym(RTLD_NEXT, "srand"));
-  ASSERT_TRUE(libcRand && libcSrand);
-  ASSERT_NE(reinterpret_cast<void*>(libcRand), reinterpret_cast<void*>(&rand));
-  for (unsigned seed : {0u, 1u, 7u, 123456789u}) {
-    srand(seed);
-    libcSrand(seed);
-    for (int i = 0; i < 1000; i++) ASSERT_EQ(rand(), libcRand()) << "seed " << seed << ", draw " << i;
-  }
-  srand(5);
-  const int first = rand();
-  int otherThreads = 0;
-  std::thread other([&] {
-    srand(99);
-    otherThreads = rand();
-  });
-  other.join();
-  srand(5);
-  EXPECT_EQ(rand(), first);
-  libcSrand(99);
-  EXPECT_EQ(otherThreads, libcRand());
-}
-
 TEST(DagBuild, GroupsAreTheSameOnAnyThreadCount) {
   // 6,400 clusters of 2 x 2 grid cells on a wavy sheet: past 2 * kGroupingPiece, so the level is cut
-  // into pieces and METIS partitions them side by side.
+  // into pieces grouped side by side.
   constexpr uint32_t kCells = 160;
   std::vector<glm::vec3> positions;
   for (uint32_t y = 0; y <= kCells; y++)
@@ -317,6 +290,80 @@ TEST(DagBuild, ClustersCarryTheBorderTheirTrianglesHave) {
         ASSERT_EQ(c.border, edgesUsedOnce(c.indices)) << name << " triangles " << first << " to " << end;
     });
   }
+}
+
+TEST(DagBuild, MergedGroupsAreConnectedBoundedAndCannotMergeFurther) {
+  // The leaf clusters of real meshes as a graph weighted by the edges two clusters share: every group
+  // is connected, holds at most 16 + 16 / 3 clusters, and no two neighbouring groups under 16 would fit
+  // together; the groups' borders are shorter than those of the clusters' own order cut into runs of
+  // 16 over the six meshes, in no more groups (the clusters come out of a recursive bisection, so
+  // runs are compact too: merging gave 4,162 shared edges against the runs' 5,501).
+  constexpr uint32_t kTarget = 16, kMost = kTarget + kTarget / 3;
+  uint64_t mergedCut = 0, runsCut = 0;
+  for (const char* name : kBorderMeshes) {
+    PolygonMesh mesh = loadMeshFile(test::cgalMesh(name)).meshes[0];
+    repairMesh(mesh, name);
+    fanLargeFaces(mesh, 1);
+    const std::vector<BuildCluster> clusters = buildLeafClusters(mesh, 1);
+    std::map<uint64_t, std::vector<uint32_t>> edgeClusters;
+    for (uint32_t c = 0; c < clusters.size(); c++)
+      for (uint64_t edge : edgesUsedOnce(clusters[c].indices)) edgeClusters[edge].push_back(c);
+    std::vector<std::map<uint32_t, uint32_t>> shared(clusters.size());
+    for (const auto& [edge, holders] : edgeClusters)
+      for (uint32_t a : holders)
+        for (uint32_t b : holders)
+          if (a != b) shared[a][b]++;
+    WeightedGraph graph;
+    for (const auto& row : shared) {
+      for (const auto& [b, w] : row) graph.adjacency.push_back(b), graph.weights.push_back(w);
+      graph.offsets.push_back(uint32_t(graph.adjacency.size()));
+    }
+    std::vector<uint32_t> group(clusters.size());
+    std::vector<glm::vec3> centroids;
+    for (const BuildCluster& c : clusters) {
+      glm::vec3 sum(0.0f);
+      for (uint32_t v : c.indices) sum += mesh.positions[v];
+      centroids.push_back(sum / float(c.indices.size()));
+    }
+    const uint32_t groups = mergeIntoGroups(graph, centroids.data(), kTarget, group.data());
+    std::vector<std::vector<uint32_t>> members(groups);
+    uint32_t next = 0;
+    for (uint32_t c = 0; c < clusters.size(); c++) {
+      ASSERT_LE(group[c], next) << name << ": groups numbered in order of first cluster";
+      next = std::max(next, group[c] + 1);
+      members[group[c]].push_back(c);
+    }
+    ASSERT_EQ(next, groups) << name;
+    auto cutOf = [&](const std::vector<uint32_t>& of) {
+      uint64_t cut = 0;
+      for (uint32_t a = 0; a < clusters.size(); a++)
+        for (const auto& [b, w] : shared[a]) cut += of[a] != of[b] ? w : 0;
+      return cut / 2;
+    };
+    for (uint32_t g = 0; g < groups; g++) {
+      ASSERT_LE(members[g].size(), kMost) << name << " group " << g;
+      std::set<uint32_t> reached{members[g][0]};
+      for (std::vector<uint32_t> front{members[g][0]}; !front.empty();) {
+        const uint32_t a = front.back();
+        front.pop_back();
+        for (const auto& [b, w] : shared[a])
+          if (group[b] == g && reached.insert(b).second) front.push_back(b);
+      }
+      EXPECT_EQ(reached.size(), members[g].size()) << name << ": group " << g << " is not connected";
+      for (uint32_t a : members[g])
+        for (const auto& [b, w] : shared[a]) {
+          const size_t mine = members[g].size(), theirs = members[group[b]].size();
+          EXPECT_FALSE(group[b] != g && mine < kTarget && theirs < kTarget && mine + theirs <= kMost)
+              << name << ": groups " << g << " and " << group[b] << " would still fit together";
+        }
+    }
+    std::vector<uint32_t> runs(clusters.size());
+    for (uint32_t c = 0; c < clusters.size(); c++) runs[c] = c / kTarget;
+    EXPECT_LE(groups, (clusters.size() + kTarget - 1) / kTarget) << name;
+    mergedCut += cutOf(group);
+    runsCut += cutOf(runs);
+  }
+  EXPECT_LT(mergedCut * 5, runsCut * 4);
 }
 
 TEST(DagBuild, TheChordRuleForbidsEveryEdgeAClusterHas) {
