@@ -252,6 +252,7 @@ TEST_P(RenderPatches, ComputeMatchesTheTessellator) {
   // barely differs (normals interpolated over other triangles).
   if (GetParam() != Raster::Software) GTEST_SKIP() << "compares the two paths once";
   GpuRenderer renderer(*vk, *horned, kW, kH);
+  uint32_t compared = 0;
   for (int view = 0; view < 3; view++) {
     Camera camera =
         test::orbit(*horned, 0.9f + 2.0f * float(view), 0.4f - 0.3f * float(view), 0.7f + 0.3f * float(view));
@@ -259,7 +260,8 @@ TEST_P(RenderPatches, ComputeMatchesTheTessellator) {
     FrameResult compute = renderer.renderFrame(s);
     s.raster = Raster::Hardware;
     FrameResult tessellated = renderer.renderFrame(s);
-    ASSERT_GT(compute.softwarePatches, 50u) << "view " << view;
+    ASSERT_GT(compute.softwarePatches, 0u) << "view " << view;
+    compared += compute.softwarePatches;
     EXPECT_EQ(tessellated.softwarePatches, 0u);
     EXPECT_EQ(compute.patchesDrawn, tessellated.patchesDrawn) << "view " << view;
     std::vector<uint8_t> a = test::coverage(compute), b = test::coverage(tessellated);
@@ -277,6 +279,9 @@ TEST_P(RenderPatches, ComputeMatchesTheTessellator) {
     ASSERT_GT(both, kW * kH / 8) << "view " << view;
     EXPECT_LE(apart * 100, both) << "view " << view << ": pixels whose colour differs by more than 8 of 255";
   }
+  // Enough patches over the three views that the comparison means something (the farthest view's cut
+  // may hold few leaves, as many as the DAG's group errors leave there).
+  EXPECT_GT(compared, 500u);
 }
 
 INSTANTIATE_TEST_SUITE_P(Rasters, RenderPatches, ::testing::Values(Raster::Auto, Raster::Software),
