@@ -29,6 +29,13 @@ uint32_t mergeIntoGroups(const WeightedGraph& graph, const glm::vec3* centroids,
   std::make_heap(waiting.begin(), waiting.end(), std::greater<uint64_t>());
   std::vector<uint64_t> shared(n, 0);  // edge weight from the group at hand to each group, while it looks
   std::vector<uint32_t> touched;
+  // Group `from` into group `into`: its members relabelled and appended to into's list.
+  auto join = [&](uint32_t into, uint32_t from) {
+    for (uint32_t v = from; v != UINT32_MAX; v = nextMember[v]) groupOf[v] = into;
+    nextMember[lastMember[into]] = from;
+    lastMember[into] = lastMember[from];
+    size[into] += size[from];
+  };
   while (!waiting.empty()) {
     std::pop_heap(waiting.begin(), waiting.end(), std::greater<uint64_t>());
     const uint32_t g = uint32_t(waiting.back()), entrySize = uint32_t(waiting.back() >> 32);
@@ -58,10 +65,7 @@ uint32_t mergeIntoGroups(const WeightedGraph& graph, const glm::vec3* centroids,
       done[g] = 1;  // no neighbour fits: it stays as it is
       continue;
     }
-    for (uint32_t v = best; v != UINT32_MAX; v = nextMember[v]) groupOf[v] = g;
-    nextMember[lastMember[g]] = best;
-    lastMember[g] = lastMember[best];
-    size[g] += size[best];
+    join(g, best);
     waiting.push_back(uint64_t(size[g]) << 32 | g);
     std::push_heap(waiting.begin(), waiting.end(), std::greater<uint64_t>());
   }
@@ -105,10 +109,7 @@ uint32_t mergeIntoGroups(const WeightedGraph& graph, const glm::vec3* centroids,
         into = g;
         continue;
       }
-      for (uint32_t v = g; v != UINT32_MAX; v = nextMember[v]) groupOf[v] = into;
-      nextMember[lastMember[into]] = g;
-      lastMember[into] = lastMember[g];
-      size[into] += size[g];
+      join(into, g);
     }
   }
   // The groups numbered in order of their first node.
