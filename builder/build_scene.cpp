@@ -132,7 +132,7 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
   std::vector<shaderio::Instance> instances;
   for (size_t m = 0; m < scene.meshes.size(); m++) {
     auto subdivideStart = std::chrono::steady_clock::now();
-    StageTimer subdividing(&stats.stages, "subdivide and limit");
+    StageTimer subdividing(&stats.stages, "subdivide");
     PolygonMesh leaves = std::move(scene.meshes[m]);
     std::vector<glm::vec3> leafNormals;    // limit normals of a subdivided cage
     MeshPatches patches;                   // and its limit-surface patches
@@ -141,18 +141,26 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
       if (options.progress) options.progress(double(m) / double(scene.meshes.size()), "subdividing");
       leaves = subdivideCatmullClark(leaves);
     }
+    subdividing.stop();
     // A subdivided cage's leaves sample the limit surface: limit positions and normals (limit.cpp).
     if (options.subdivisionLevels >= 1) {
       const uint32_t threads = uint32_t(std::max(options.threads, 1));
+      StageTimer patching(&stats.stages, "patches");
       patches = buildPatches(leaves, leaves.positions, threads);
-      moveToLimit(leaves, leafNormals);
+      patching.stop();
+      StageTimer limiting(&stats.stages, "limit");
+      moveToLimit(leaves, leafNormals, options.threads);
+      limiting.stop();
+      StageTimer chords(&stats.stages, "patch chord errors");
       patchErrors = patchChordErrors(leaves, patches, threads);
+      chords.stop();
       closed[m] = closed[m] && positionsDistinct(leaves.positions, options.threads);
     }
     const bool trianglesOnly = leaves.faceVertices.size() == 3 * leaves.faceCount();  // before any fan
+    StageTimer fanning(&stats.stages, "fans");
     fanLargeFaces(leaves, options.threads);
     stats.leafTriangles += triangleCount(leaves, options.threads);
-    subdividing.stop();
+    fanning.stop();
     stats.subdivideSeconds += secondsSince(subdivideStart);
 
     auto buildStart = std::chrono::steady_clock::now();

@@ -221,8 +221,8 @@ PolygonMesh facesAround(const PolygonMesh& mesh, const std::vector<glm::vec3>& p
 // ---- limit.cpp --------------------------------------------------------------------------------------
 // Moves every vertex of a quad mesh (a Catmull-Clark cage after >= 1 round) to its limit position and
 // sets `normals` to the limit normals (oriented like the faces). Returns false, changing nothing, when
-// some face is not a quad.
-bool moveToLimit(PolygonMesh& mesh, std::vector<glm::vec3>& normals);
+// some face is not a quad. Vertices are independent: on up to `threads` threads.
+bool moveToLimit(PolygonMesh& mesh, std::vector<glm::vec3>& normals, int threads = 1);
 
 // Distance from p to the triangle abc (simplify.cpp).
 double pointTriangleDistance(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c);
@@ -284,6 +284,8 @@ struct MeshPatches {
   bool patched(size_t face) const { return shaderio::patchKind(info[face]) != VGEO_PATCH_NONE; }
   // Face `face`'s patch at (s, t), with its unit normal; not for VGEO_PATCH_NONE faces.
   glm::vec3 evaluate(uint32_t face, float s, float t, glm::vec3* normal = nullptr) const;
+  // The same positions at `count` (<= 32) parameters of one face, sharing the work they have in common.
+  void evaluateAt(uint32_t face, const glm::vec2* st, int count, glm::vec3* out) const;
 };
 MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints, uint32_t threads);
 

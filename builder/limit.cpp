@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../common/parallel.h"
 #include "builder.h"
 
 namespace vgeo {
@@ -45,82 +46,86 @@ glm::dvec3 crossBoundaryTangent(const PolygonMesh& mesh, const QuadCorners& q, u
   return inner;  // relative to v, which sits at the origin
 }
 
-}  // namespace
-
-bool moveToLimit(PolygonMesh& mesh, std::vector<glm::vec3>& normals) {
-  const size_t vertexCount = mesh.positions.size(), faceCount = mesh.faceCount();
-  for (size_t f = 0; f < faceCount; f++)
-    if (mesh.faceSize(f) != 4) return false;
+// Vertex v's limit position and normal (the masks above); `ring` is scratch.
+void moveVertex(const PolygonMesh& mesh, const QuadCorners& q, uint32_t v, std::vector<uint32_t>& ring,
+                glm::vec3& limitPoint, glm::vec3& limitNormal) {
   // Around a vertex, a corner's successor is the corner whose next vertex is this corner's previous;
   // walks start at a corner without predecessor where there is one (a boundary vertex), so they see
   // every face.
-  const QuadCorners q(mesh);
-  std::vector<uint32_t> firstCorner(vertexCount, UINT32_MAX);
-  for (uint32_t v = 0; v < vertexCount; v++)
-    for (uint32_t i = q.offsets()[v]; i < q.offsets()[v + 1]; i++) {
-      uint32_t c = q.corners()[i];
-      if (firstCorner[v] == UINT32_MAX || q.withPrev(v, q.at(c, 1)) == UINT32_MAX) firstCorner[v] = c;
+  uint32_t firstCorner = UINT32_MAX;
+  for (uint32_t i = q.offsets()[v]; i < q.offsets()[v + 1]; i++) {
+    uint32_t c = q.corners()[i];
+    if (firstCorner == UINT32_MAX || q.withPrev(v, q.at(c, 1)) == UINT32_MAX) firstCorner = c;
+  }
+  if (firstCorner == UINT32_MAX) return;  // unused vertex
+  // The corners around v in rotation order; closed when the walk returns to the start.
+  ring.clear();
+  uint32_t c = firstCorner;
+  bool closed = false;
+  while (ring.size() <= 64) {
+    ring.push_back(c);
+    c = q.withNext(v, q.at(c, 3));
+    if (c == UINT32_MAX) break;
+    if (c == ring.front()) {
+      closed = true;
+      break;
     }
+  }
+  glm::dvec3 p(mesh.positions[v]), faceNormal(0.0);
+  for (uint32_t r : ring) {
+    glm::dvec3 a(mesh.positions[q.at(r, 1)]), b(mesh.positions[q.at(r, 3)]);
+    faceNormal += glm::cross(a - p, b - p);
+  }
+  glm::dvec3 t1(0.0), t2(0.0);
+  const size_t n = ring.size();
+  if (closed) {
+    const double pi = 3.14159265358979323846, nn = double(n);
+    double a = 1.0 + std::cos(2.0 * pi / nn) + std::cos(pi / nn) * std::sqrt(2.0 * (9.0 + std::cos(2.0 * pi / nn)));
+    glm::dvec3 sumE(0.0), sumF(0.0);
+    for (size_t j = 0; j < n; j++) {
+      glm::dvec3 e(mesh.positions[q.at(ring[j], 1)]), f(mesh.positions[q.at(ring[j], 2)]);
+      sumE += e;
+      sumF += f;
+      double c0 = std::cos(2.0 * pi * double(j) / nn), c1 = std::cos(2.0 * pi * double(j + 1) / nn);
+      double s0 = std::sin(2.0 * pi * double(j) / nn), s1 = std::sin(2.0 * pi * double(j + 1) / nn);
+      t1 += a * c0 * e + (c0 + c1) * f;
+      t2 += a * s0 * e + (s0 + s1) * f;
+    }
+    limitPoint = glm::vec3((nn * nn * p + 4.0 * sumE + sumF) / (nn * (nn + 5.0)));
+  } else if (n >= 2) {
+    // Boundary: ring[0]'s next and ring[n-1]'s prev are the boundary neighbours.
+    glm::dvec3 a(mesh.positions[q.at(ring[0], 1)]), b(mesh.positions[q.at(ring[n - 1], 3)]);
+    glm::dvec3 curve = (a + 4.0 * p + b) / 6.0;
+    limitPoint = glm::vec3(curve);
+    t1 = b - a;
+    if (n == 2) {
+      glm::dvec3 c(mesh.positions[q.at(ring[0], 3)]), da(mesh.positions[q.at(ring[0], 2)]),
+          db(mesh.positions[q.at(ring[1], 2)]);
+      t2 = (da + 4.0 * c + db) / 6.0 - curve;
+    } else {
+      t2 = crossBoundaryTangent(mesh, q, v);
+    }
+  }  // corner: stays, normal of its face
+  glm::dvec3 normal = glm::cross(t1, t2);
+  if (!(glm::length(normal) > 1e-12 * glm::dot(t1, t1) + 1e-30)) normal = faceNormal;
+  if (glm::dot(normal, faceNormal) < 0.0) normal = -normal;
+  double len = glm::length(normal);
+  if (len > 0.0) limitNormal = glm::vec3(normal / len);
+}
 
+}  // namespace
+
+bool moveToLimit(PolygonMesh& mesh, std::vector<glm::vec3>& normals, int threads) {
+  const size_t vertexCount = mesh.positions.size(), faceCount = mesh.faceCount();
+  for (size_t f = 0; f < faceCount; f++)
+    if (mesh.faceSize(f) != 4) return false;
+  const QuadCorners q(mesh);
   std::vector<glm::vec3> limit(mesh.positions);
   normals.assign(vertexCount, glm::vec3(0.0f, 0.0f, 1.0f));
-  std::vector<uint32_t> ring;
-  for (uint32_t v = 0; v < vertexCount; v++) {
-    if (firstCorner[v] == UINT32_MAX) continue;  // unused vertex
-    // The corners around v in rotation order; closed when the walk returns to the start.
-    ring.clear();
-    uint32_t c = firstCorner[v];
-    bool closed = false;
-    while (ring.size() <= 64) {
-      ring.push_back(c);
-      c = q.withNext(v, q.at(c, 3));
-      if (c == UINT32_MAX) break;
-      if (c == ring.front()) {
-        closed = true;
-        break;
-      }
-    }
-    glm::dvec3 p(mesh.positions[v]), faceNormal(0.0);
-    for (uint32_t r : ring) {
-      glm::dvec3 a(mesh.positions[q.at(r, 1)]), b(mesh.positions[q.at(r, 3)]);
-      faceNormal += glm::cross(a - p, b - p);
-    }
-    glm::dvec3 t1(0.0), t2(0.0);
-    const size_t n = ring.size();
-    if (closed) {
-      const double pi = 3.14159265358979323846, nn = double(n);
-      double a = 1.0 + std::cos(2.0 * pi / nn) + std::cos(pi / nn) * std::sqrt(2.0 * (9.0 + std::cos(2.0 * pi / nn)));
-      glm::dvec3 sumE(0.0), sumF(0.0);
-      for (size_t j = 0; j < n; j++) {
-        glm::dvec3 e(mesh.positions[q.at(ring[j], 1)]), f(mesh.positions[q.at(ring[j], 2)]);
-        sumE += e;
-        sumF += f;
-        double c0 = std::cos(2.0 * pi * double(j) / nn), c1 = std::cos(2.0 * pi * double(j + 1) / nn);
-        double s0 = std::sin(2.0 * pi * double(j) / nn), s1 = std::sin(2.0 * pi * double(j + 1) / nn);
-        t1 += a * c0 * e + (c0 + c1) * f;
-        t2 += a * s0 * e + (s0 + s1) * f;
-      }
-      limit[v] = glm::vec3((nn * nn * p + 4.0 * sumE + sumF) / (nn * (nn + 5.0)));
-    } else if (n >= 2) {
-      // Boundary: ring[0]'s next and ring[n-1]'s prev are the boundary neighbours.
-      glm::dvec3 a(mesh.positions[q.at(ring[0], 1)]), b(mesh.positions[q.at(ring[n - 1], 3)]);
-      glm::dvec3 curve = (a + 4.0 * p + b) / 6.0;
-      limit[v] = glm::vec3(curve);
-      t1 = b - a;
-      if (n == 2) {
-        glm::dvec3 c(mesh.positions[q.at(ring[0], 3)]), da(mesh.positions[q.at(ring[0], 2)]),
-            db(mesh.positions[q.at(ring[1], 2)]);
-        t2 = (da + 4.0 * c + db) / 6.0 - curve;
-      } else {
-        t2 = crossBoundaryTangent(mesh, q, v);
-      }
-    }  // corner: stays, normal of its face
-    glm::dvec3 normal = glm::cross(t1, t2);
-    if (!(glm::length(normal) > 1e-12 * glm::dot(t1, t1) + 1e-30)) normal = faceNormal;
-    if (glm::dot(normal, faceNormal) < 0.0) normal = -normal;
-    double len = glm::length(normal);
-    if (len > 0.0) normals[v] = glm::vec3(normal / len);
-  }
+  parallelForRanges(vertexCount, threads, [&](size_t begin, size_t end) {
+    std::vector<uint32_t> ring;
+    for (uint32_t v = uint32_t(begin); v < end; v++) moveVertex(mesh, q, v, ring, limit[v], normals[v]);
+  });
   mesh.positions = std::move(limit);
   return true;
 }

@@ -143,6 +143,12 @@ glm::vec3 MeshPatches::evaluate(uint32_t face, float s, float t, glm::vec3* norm
   return p;
 }
 
+void MeshPatches::evaluateAt(uint32_t face, const glm::vec2* st, int count, glm::vec3* out) const {
+  shaderio::evaluatePatchWordsAt(
+      info[face], words.data() + first[face], [&](uint32_t i) { return points[i]; },
+      [](uint32_t) { return glm::vec3(0.0f); }, st, count, out);
+}
+
 std::vector<PatchErrors> patchChordErrors(const PolygonMesh& limitMesh, const MeshPatches& patches, uint32_t threads) {
   const size_t faceCount = limitMesh.faceCount();
   std::vector<PatchErrors> own(faceCount), merged(faceCount);
@@ -158,29 +164,40 @@ std::vector<PatchErrors> patchChordErrors(const PolygonMesh& limitMesh, const Me
     own[f].patched = true;
     const uint32_t* v = limitMesh.face(f);
     PatchErrors& e = own[f];
+    // The samples: quarters along each edge this face measures, then the 3 x 3 inner quarters.
+    glm::vec2 st[21];
+    int count = 0, edgeFirst[4];
     for (int k = 0; k < 4; k++) {
       const uint32_t n = patches.neighbours[f][size_t(k)];
-      if (n != UINT32_MAX && (n >> 2) < f) continue;
-      glm::dvec3 a(x[v[k]]), b(x[v[(k + 1) % 4]]);
-      double worst = 0.0;
+      edgeFirst[k] = n != UINT32_MAX && (n >> 2) < f ? -1 : count;
+      if (edgeFirst[k] < 0) continue;
       for (int i = 1; i < 4; i++) {
         float u = float(i) / 4.0f;
-        float s = kCorner[k][0] + u * (kCorner[(k + 1) % 4][0] - kCorner[k][0]),
-              t = kCorner[k][1] + u * (kCorner[(k + 1) % 4][1] - kCorner[k][1]);
-        worst = std::max(worst, pointSegmentDistance(glm::dvec3(patches.evaluate(uint32_t(f), s, t)), a, b));
+        st[count++] = {kCorner[k][0] + u * (kCorner[(k + 1) % 4][0] - kCorner[k][0]),
+                       kCorner[k][1] + u * (kCorner[(k + 1) % 4][1] - kCorner[k][1])};
       }
+    }
+    const int inner = count;
+    for (int i = 1; i < 4; i++)
+      for (int j = 1; j < 4; j++) st[count++] = {float(i) / 4.0f, float(j) / 4.0f};
+    glm::vec3 p[21];
+    patches.evaluateAt(uint32_t(f), st, count, p);
+    for (int k = 0; k < 4; k++) {
+      if (edgeFirst[k] < 0) continue;
+      glm::dvec3 a(x[v[k]]), b(x[v[(k + 1) % 4]]);
+      double worst = 0.0;
+      for (int i = 0; i < 3; i++) worst = std::max(worst, pointSegmentDistance(glm::dvec3(p[edgeFirst[k] + i]), a, b));
       e.edge[k] = float(worst * kSlack);
     }
     std::vector<uint32_t> tris;
     triangulateFace(x.data(), v, 4, tris);
     double worst = 0.0;
-    for (int i = 1; i < 4; i++)
-      for (int j = 1; j < 4; j++) {
-        glm::dvec3 p(patches.evaluate(uint32_t(f), float(i) / 4.0f, float(j) / 4.0f));
-        double d = std::min(pointTriangleDistance(p, x[tris[0]], x[tris[1]], x[tris[2]]),
-                            pointTriangleDistance(p, x[tris[3]], x[tris[4]], x[tris[5]]));
-        worst = std::max(worst, d);
-      }
+    for (int i = inner; i < count; i++) {
+      glm::dvec3 q(p[i]);
+      double d = std::min(pointTriangleDistance(q, x[tris[0]], x[tris[1]], x[tris[2]]),
+                          pointTriangleDistance(q, x[tris[3]], x[tris[4]], x[tris[5]]));
+      worst = std::max(worst, d);
+    }
     e.face = float(worst * kSlack);
   });
   // One value an edge, the measuring face's (0 next to a flat face: the edge stays straight there); a

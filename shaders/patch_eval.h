@@ -31,12 +31,18 @@
 
 VGEO_NAMESPACE_BEGIN
 
+// Uniform cubic B-spline basis at t.
+VGEO_INLINE vec4 bsplineWeights(float t) {
+  float s = 1.0f - t;
+  return vec4(s * s * s, 3.0f * t * t * t - 6.0f * t * t + 4.0f, -3.0f * t * t * t + 3.0f * t * t + 3.0f * t + 1.0f,
+              t * t * t) /
+         6.0f;
+}
+
 // Uniform cubic B-spline basis at t, and its derivative.
 VGEO_INLINE void bsplineBasis(float t, VGEO_OUT(vec4) b, VGEO_OUT(vec4) d) {
   float s = 1.0f - t;
-  b = vec4(s * s * s, 3.0f * t * t * t - 6.0f * t * t + 4.0f, -3.0f * t * t * t + 3.0f * t * t + 3.0f * t + 1.0f,
-           t * t * t) /
-      6.0f;
+  b = bsplineWeights(t);
   d = vec4(-0.5f * s * s, 1.5f * t * t - 2.0f * t, -1.5f * t * t + t + 0.5f, 0.5f * t * t);
 }
 
@@ -56,6 +62,15 @@ VGEO_INLINE vec3 evaluateBspline(vec3 p[16], float u, float v, VGEO_OUT(vec3) du
     du += bv[r] * rowD;
     dv += sv[r] * row;
   }
+  return pos;
+}
+
+// evaluateBspline's position alone.
+VGEO_INLINE vec3 evaluateBsplinePosition(vec3 p[16], float u, float v) {
+  vec4 bu = bsplineWeights(u), bv = bsplineWeights(v);
+  vec3 pos = vec3(0.0f);
+  for (int r = 0; r < 4; r++)
+    pos += bv[r] * (bu[0] * p[4 * r] + bu[1] * p[4 * r + 1] + bu[2] * p[4 * r + 2] + bu[3] * p[4 * r + 3]);
   return pos;
 }
 
@@ -141,6 +156,15 @@ VGEO_INLINE void subdivideRing(vec3 ring[VGEO_MAX_RING], int n, VGEO_OUT_ARRAY(v
   next[2 * n + 7] = grid[15];
 }
 
+// For (a, b) with max(a, b) >= 1/2, from the chart `grid` of one subdivideRing round: the control points
+// of the B-spline sub-patch of the cell (a, b) lies in, and (a, b) in the sub-patch's parameters.
+VGEO_INLINE vec2 ringCell(vec3 grid[25], float a, float b, VGEO_OUT_ARRAY(vec3, sub, 16)) {
+  int cx = a >= 0.5f ? 1 : 0, cy = b >= 0.5f ? 1 : 0;
+  for (int r = 0; r < 4; r++)
+    for (int c = 0; c < 4; c++) sub[4 * r + c] = grid[5 * (cy + r) + cx + c];
+  return vec2(2.0f * a - float(cx), 2.0f * b - float(cy));
+}
+
 // The limit surface of a ring patch at (a, b) in [0, 1]^2, with its partial derivatives.
 VGEO_INLINE vec3 evaluateRing(vec3 ring[VGEO_MAX_RING], int n, float a, float b, VGEO_OUT(vec3) da, VGEO_OUT(vec3) db) {
   vec3 cur[VGEO_MAX_RING];
@@ -152,10 +176,8 @@ VGEO_INLINE vec3 evaluateRing(vec3 ring[VGEO_MAX_RING], int n, float a, float b,
   for (int level = 0; level < 24; level++) {
     subdivideRing(cur, n, next, grid);
     if (max(a, b) >= 0.5f) {
-      int cx = a >= 0.5f ? 1 : 0, cy = b >= 0.5f ? 1 : 0;
-      for (int r = 0; r < 4; r++)
-        for (int c = 0; c < 4; c++) sub[4 * r + c] = grid[5 * (cy + r) + cx + c];
-      vec3 p = evaluateBspline(sub, 2.0f * a - float(cx), 2.0f * b - float(cy), da, db);
+      vec2 uv = ringCell(grid, a, b, sub);
+      vec3 p = evaluateBspline(sub, uv.x, uv.y, da, db);
       da *= 2.0f * scale;
       db *= 2.0f * scale;
       return p;
@@ -266,6 +288,68 @@ vec3 evaluatePatchWords(uint info, const uint* words, Point point, Corner corner
   const bool flatFace = at == 0 && patchKind(info) == VGEO_PATCH_NONE;
   for (uint i = 0; i < patchWordCount(info); i++) points[i] = flatFace ? corner(i) : point(words[at + i]);
   return evaluatePatch(patchKind(info), patchCorner(info), int(patchValence(info)), points, st.x, st.y, normal);
+}
+
+// The patch's positions at `count` parameters, each the one evaluatePatchWords gives, in fewer steps:
+// the samples on one leaf gather its points once, and the samples of a ring leaf share its rounds of
+// subdivision (evaluateRing's loop run for all of them together), where one at a time repeats them.
+// At most 32 samples.
+template <class Point, class Corner>
+void evaluatePatchWordsAt(uint info, const uint* words, Point point, Corner corner, const vec2* st, int count,
+                          vec3* out) {
+  constexpr int kMost = 32;
+  uint leafAt[kMost], leafInfo[kMost];
+  vec2 leafSt[kMost];
+  bool done[kMost] = {};
+  for (int i = 0; i < count; i++) {
+    leafInfo[i] = info;
+    leafSt[i] = st[i];
+    leafAt[i] = patchLeaf(words, 0u, leafInfo[i], leafSt[i]);
+  }
+  vec3 points[VGEO_MAX_RING];
+  for (int i = 0; i < count; i++) {
+    if (done[i]) continue;
+    const uint at = leafAt[i], kind = patchKind(leafInfo[i]), corner0 = patchCorner(leafInfo[i]);
+    const int valence = int(patchValence(leafInfo[i]));
+    const bool flatFace = at == 0 && kind == VGEO_PATCH_NONE;
+    for (uint k = 0; k < patchWordCount(leafInfo[i]); k++) points[k] = flatFace ? corner(k) : point(words[at + k]);
+    int group[kMost], size = 0;  // the samples on this leaf
+    for (int j = i; j < count; j++)
+      if (!done[j] && leafAt[j] == at) group[size++] = j, done[j] = true;
+    vec3 normal, sub[16];
+    if (kind == VGEO_PATCH_REGULAR) {
+      for (int g = 0; g < size; g++)
+        out[group[g]] = evaluateBsplinePosition(points, leafSt[group[g]].x, leafSt[group[g]].y);
+      continue;
+    }
+    if (kind != VGEO_PATCH_RING) {
+      for (int g = 0; g < size; g++)
+        out[group[g]] = evaluatePatch(kind, corner0, valence, points, leafSt[group[g]].x, leafSt[group[g]].y, normal);
+      continue;
+    }
+    vec2 ab[kMost];
+    for (int g = 0; g < size; g++) ab[g] = ringParameters(corner0, leafSt[group[g]].x, leafSt[group[g]].y);
+    vec3 cur[VGEO_MAX_RING], next[VGEO_MAX_RING], grid[25];
+    for (int k = 0; k < 2 * valence + 8; k++) cur[k] = points[k];
+    int left = size;
+    for (int level = 0; level < 24 && left > 0; level++) {
+      subdivideRing(cur, valence, next, grid);
+      for (int g = 0; g < size; g++) {
+        if (group[g] < 0) continue;
+        if (max(ab[g].x, ab[g].y) >= 0.5f) {
+          const vec2 uv = ringCell(grid, ab[g].x, ab[g].y, sub);
+          out[group[g]] = evaluateBsplinePosition(sub, uv.x, uv.y);
+          group[g] = -1;
+          left--;
+        } else {
+          ab[g] *= 2.0f;
+        }
+      }
+      for (int k = 0; k < 2 * valence + 8; k++) cur[k] = next[k];
+    }
+    for (int g = 0; g < size; g++)
+      if (group[g] >= 0) out[group[g]] = ringLimit(points, valence, normal);
+  }
 }
 #endif
 
