@@ -139,7 +139,7 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
     std::vector<PatchErrors> patchErrors;  // with the chord errors of their faces
     for (int l = 0; l < options.subdivisionLevels; l++) {
       if (options.progress) options.progress(double(m) / double(scene.meshes.size()), "subdividing");
-      leaves = subdivideCatmullClark(leaves);
+      leaves = subdivideCatmullClark(leaves, options.threads);
     }
     subdividing.stop();
     // A subdivided cage's leaves sample the limit surface: limit positions and normals (limit.cpp).

@@ -191,7 +191,7 @@ uint64_t subdividedFaceCount(const PolygonMesh& mesh, int levels);
 // vertices, then one per edge, then one per face; every output face is a quad (corner, edge, face, edge).
 // Boundary edges use the cubic B-spline rules (edge point = midpoint, vertex = 3/4 V + 1/8 (A + B)); a
 // boundary vertex with one face is a corner and stays put.
-PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh);
+PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh, int threads = 1);
 
 // ---- quad_corners.cpp -------------------------------------------------------------------------------
 // The corners of a quad mesh (every face 4 corners; corner c is faceVertices[c]) grouped by vertex.
@@ -209,7 +209,7 @@ class QuadCorners {
 
  private:
   const FillLaterVector<uint32_t>& vertices_;
-  std::vector<uint32_t> offsets_, corners_;
+  std::vector<uint32_t> offsets_, corners_, nextOf_;  // nextOf_[i]: the next vertex of corners_[i]
 };
 
 // The faces of a quad mesh touching any of `vertices` (first `firstFace`, when given), as a mesh of their
@@ -244,18 +244,20 @@ struct FacePatch {
 };
 class Patcher {
  public:
-  explicit Patcher(const PolygonMesh& mesh);
+  // Each vertex's kind is found once, on up to `threads` threads (in a large mesh).
+  explicit Patcher(const PolygonMesh& mesh, int threads = 1);
   // The face's patch: regular (four corners of valence 4, interior or on a boundary) or a ring (one
   // interior extraordinary corner); VGEO_PATCH_NONE for anything else, or when some face is not a quad.
   FacePatch patch(uint32_t face) const;
   const QuadCorners& corners() const { return corners_; }
 
  private:
-  enum class VertexKind { Interior, Boundary, Corner, Irregular };
-  VertexKind vertexKind(uint32_t v) const;
+  enum class VertexKind : uint8_t { Interior, Boundary, Corner, Irregular };
+  VertexKind findKind(uint32_t v) const;
   bool ring(uint32_t face, uint32_t corner, FacePatch& out) const;
   const PolygonMesh& mesh_;
   QuadCorners corners_;
+  std::vector<VertexKind> kinds_;
   bool quads_ = false;
 };
 // The patch's control-point words (pointCount of them) into `words`: a mesh vertex v as vertexWord(v), a

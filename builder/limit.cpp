@@ -46,6 +46,36 @@ glm::dvec3 crossBoundaryTangent(const PolygonMesh& mesh, const QuadCorners& q, u
   return inner;  // relative to v, which sits at the origin
 }
 
+// The closed-form masks' weights for an interior vertex of valence n: a, and cos / sin (2 pi j / n) for
+// j = 0 .. n, made once per valence (most vertices share a few valences; the trigonometry was most of
+// a vertex's cost).
+struct RingWeights {
+  double a = 0.0;
+  std::vector<double> cos, sin;
+};
+RingWeights makeRingWeights(size_t n) {
+  const double pi = 3.14159265358979323846, nn = double(n);
+  RingWeights w;
+  w.a = 1.0 + std::cos(2.0 * pi / nn) + std::cos(pi / nn) * std::sqrt(2.0 * (9.0 + std::cos(2.0 * pi / nn)));
+  for (size_t j = 0; j <= n; j++) {
+    w.cos.push_back(std::cos(2.0 * pi * double(j) / nn));
+    w.sin.push_back(std::sin(2.0 * pi * double(j) / nn));
+  }
+  return w;
+}
+const RingWeights& ringWeights(size_t n) {
+  constexpr size_t kTabled = 32;
+  static const std::vector<RingWeights> tables = [] {
+    std::vector<RingWeights> t(kTabled + 1);
+    for (size_t n = 1; n <= kTabled; n++) t[n] = makeRingWeights(n);
+    return t;
+  }();
+  if (n <= kTabled) return tables[n];
+  thread_local RingWeights other;
+  other = makeRingWeights(n);
+  return other;
+}
+
 // Vertex v's limit position and normal (the masks above); `ring` is scratch.
 void moveVertex(const PolygonMesh& mesh, const QuadCorners& q, uint32_t v, std::vector<uint32_t>& ring,
                 glm::vec3& limitPoint, glm::vec3& limitNormal) {
@@ -79,15 +109,15 @@ void moveVertex(const PolygonMesh& mesh, const QuadCorners& q, uint32_t v, std::
   glm::dvec3 t1(0.0), t2(0.0);
   const size_t n = ring.size();
   if (closed) {
-    const double pi = 3.14159265358979323846, nn = double(n);
-    double a = 1.0 + std::cos(2.0 * pi / nn) + std::cos(pi / nn) * std::sqrt(2.0 * (9.0 + std::cos(2.0 * pi / nn)));
+    const double nn = double(n);
+    const RingWeights& w = ringWeights(n);
+    const double a = w.a;
     glm::dvec3 sumE(0.0), sumF(0.0);
     for (size_t j = 0; j < n; j++) {
       glm::dvec3 e(mesh.positions[q.at(ring[j], 1)]), f(mesh.positions[q.at(ring[j], 2)]);
       sumE += e;
       sumF += f;
-      double c0 = std::cos(2.0 * pi * double(j) / nn), c1 = std::cos(2.0 * pi * double(j + 1) / nn);
-      double s0 = std::sin(2.0 * pi * double(j) / nn), s1 = std::sin(2.0 * pi * double(j + 1) / nn);
+      double c0 = w.cos[j], c1 = w.cos[j + 1], s0 = w.sin[j], s1 = w.sin[j + 1];
       t1 += a * c0 * e + (c0 + c1) * f;
       t2 += a * s0 * e + (s0 + s1) * f;
     }

@@ -87,7 +87,7 @@ MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& 
   for (size_t f = 0; f < faceCount && quads; f++) quads = mesh.faceSize(f) == 4;
   if (!quads) return out;
   // Sizes first (words and extra points a face), trees built on the way; then every face writes its part.
-  const Patcher patcher(mesh);
+  const Patcher patcher(mesh, int(threads));
   std::vector<uint32_t> extraFirst(faceCount + 1, 0);
   std::vector<std::unique_ptr<PatchTree>> trees(faceCount);
   parallelFor(faceCount, int(threads), [&](size_t f) {
@@ -193,9 +193,10 @@ std::vector<PatchErrors> patchChordErrors(const PolygonMesh& limitMesh, const Me
     triangulateFace(x.data(), v, 4, tris);
     double worst = 0.0;
     for (int i = inner; i < count; i++) {
+      // The nearer triangle's distance; the second is needed only where the first is past the worst.
       glm::dvec3 q(p[i]);
-      double d = std::min(pointTriangleDistance(q, x[tris[0]], x[tris[1]], x[tris[2]]),
-                          pointTriangleDistance(q, x[tris[3]], x[tris[4]], x[tris[5]]));
+      double d = pointTriangleDistance(q, x[tris[0]], x[tris[1]], x[tris[2]]);
+      if (d > worst) d = std::min(d, pointTriangleDistance(q, x[tris[3]], x[tris[4]], x[tris[5]]));
       worst = std::max(worst, d);
     }
     e.face = float(worst * kSlack);

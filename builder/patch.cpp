@@ -11,18 +11,26 @@
 //   across it (phantom points 2 b - a, as in OpenSubdiv's regular boundary patches).
 // Anything else (two extraordinary corners, an extraordinary vertex on a boundary) is left to
 // mesh_patches.cpp, which subdivides such a face locally.
+#include "../common/parallel.h"
 #include "builder.h"
 
 namespace vgeo {
 
-Patcher::Patcher(const PolygonMesh& mesh) : mesh_(mesh), corners_(mesh) {
+Patcher::Patcher(const PolygonMesh& mesh, int threads) : mesh_(mesh), corners_(mesh) {
   quads_ = true;
   for (size_t f = 0; f < mesh.faceCount(); f++) quads_ = quads_ && mesh.faceSize(f) == 4;
+  // A local neighbourhood (mesh_patches.cpp's trees) asks for a few of its vertices: found as asked.
+  constexpr size_t kKindsKeptFrom = 4096;
+  if (!quads_ || mesh.faceCount() < kKindsKeptFrom) return;
+  kinds_.resize(mesh.positions.size());
+  parallelForRanges(kinds_.size(), threads, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; v++) kinds_[v] = findKind(uint32_t(v));
+  });
 }
 
 // How a vertex's neighbourhood looks to the B-spline rules: interior of valence 4, on a boundary with
 // two faces (the boundary is a cubic B-spline there) or with one (a corner, which stays put).
-Patcher::VertexKind Patcher::vertexKind(uint32_t v) const {
+Patcher::VertexKind Patcher::findKind(uint32_t v) const {
   const QuadCorners& q = corners_;
   const uint32_t faces = q.offsets()[v + 1] - q.offsets()[v];
   uint32_t open = 0;  // outgoing edges without a reverse
@@ -84,7 +92,7 @@ FacePatch Patcher::patch(uint32_t face) const {
   VertexKind kinds[4];
   int irregular = 0, irregularCorner = 0;
   for (int k = 0; k < 4; k++) {
-    kinds[k] = vertexKind(v[k]);
+    kinds[k] = kinds_.empty() ? findKind(v[k]) : kinds_[v[k]];
     // A corner's kind must match the face's edges at it: both open at a corner, one at a boundary vertex.
     const int openEdges = int(open[k]) + int(open[(k + 3) % 4]);
     const int expected = kinds[k] == VertexKind::Interior ? 0 : kinds[k] == VertexKind::Boundary ? 1 : 2;

@@ -15,11 +15,15 @@ QuadCorners::QuadCorners(const PolygonMesh& mesh) : vertices_(mesh.faceVertices)
   corners_.resize(vertices_.size());
   std::vector<uint32_t> fill(offsets_.begin(), offsets_.end() - 1);
   for (uint32_t c = 0; c < vertices_.size(); c++) corners_[fill[vertices_[c]]++] = c;
+  // The corners' next vertices beside them: a scan for withNext reads a few neighbouring words instead
+  // of one face elsewhere in memory a corner (the walks of patch.cpp and limit.cpp are mostly these).
+  nextOf_.resize(corners_.size());
+  for (size_t i = 0; i < corners_.size(); i++) nextOf_[i] = at(corners_[i], 1);
 }
 
 uint32_t QuadCorners::withNext(uint32_t a, uint32_t b) const {
   for (uint32_t i = offsets_[a]; i < offsets_[a + 1]; i++)
-    if (at(corners_[i], 1) == b) return corners_[i];
+    if (nextOf_[i] == b) return corners_[i];
   return UINT32_MAX;
 }
 

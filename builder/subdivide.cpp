@@ -6,6 +6,7 @@
 // tests compare the interior rules against OpenMesh on closed meshes.
 #include <algorithm>
 
+#include "../common/parallel.h"
 #include "builder.h"
 
 namespace vgeo {
@@ -20,50 +21,56 @@ uint64_t subdividedFaceCount(const PolygonMesh& mesh, int levels) {
   return count;
 }
 
-PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh) {
+PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh, int threads) {
   const size_t vertexCount = mesh.positions.size(), faceCount = mesh.faceCount();
   const size_t cornerCount = mesh.faceVertices.size();
 
-  // Edge id of every corner (the edge from it to the next corner of its face).
+  // Every corner's edge (to the next corner of its face) and face; the corners sorted by edge, so that
+  // an edge's corners are a run, in the order of their faces.
   std::vector<std::pair<uint64_t, uint32_t>> edgeOfCorner(cornerCount);
-  for (size_t f = 0; f < faceCount; f++) {
-    uint32_t n = mesh.faceSize(f);
+  std::vector<uint32_t> faceOf(cornerCount);
+  parallelFor(faceCount, threads, [&](size_t f) {
+    const uint32_t n = mesh.faceSize(f), first = mesh.faceStart[f];
     for (uint32_t i = 0; i < n; i++) {
-      uint32_t a = mesh.face(f)[i], b = mesh.face(f)[(i + 1) % n];
-      edgeOfCorner[mesh.faceStart[f] + i] = {undirectedEdge(a, b), mesh.faceStart[f] + i};
+      edgeOfCorner[first + i] = {undirectedEdge(mesh.face(f)[i], mesh.face(f)[(i + 1) % n]), first + i};
+      faceOf[first + i] = uint32_t(f);
     }
-  }
-  std::sort(edgeOfCorner.begin(), edgeOfCorner.end());
+  });
+  parallelSort(edgeOfCorner, threads);
   std::vector<uint32_t> cornerEdge(cornerCount);
-  std::vector<uint32_t> edgeFaces;  // faces on each edge: 1 (boundary) or 2
+  std::vector<uint32_t> edgeFirst;  // each edge's first entry in edgeOfCorner; one more, the end
   std::vector<uint64_t> edgeKey;
   for (size_t i = 0; i < cornerCount; i++) {
     if (i == 0 || edgeOfCorner[i].first != edgeOfCorner[i - 1].first) {
       edgeKey.push_back(edgeOfCorner[i].first);
-      edgeFaces.push_back(0);
+      edgeFirst.push_back(uint32_t(i));
     }
-    edgeFaces.back()++;
     cornerEdge[edgeOfCorner[i].second] = uint32_t(edgeKey.size() - 1);
   }
-  std::vector<std::pair<uint64_t, uint32_t>>().swap(edgeOfCorner);
+  edgeFirst.push_back(uint32_t(cornerCount));
   const size_t edgeCount = edgeKey.size();
+  auto edgeFaces = [&](size_t e) { return edgeFirst[e + 1] - edgeFirst[e]; };  // 1 (boundary) or 2
 
   // Face points.
   std::vector<glm::dvec3> facePoint(faceCount);
-  for (size_t f = 0; f < faceCount; f++) {
+  parallelFor(faceCount, threads, [&](size_t f) {
     glm::dvec3 sum(0.0);
     for (uint32_t i = 0; i < mesh.faceSize(f); i++) sum += glm::dvec3(mesh.positions[mesh.face(f)[i]]);
     facePoint[f] = sum / double(mesh.faceSize(f));
-  }
-  // Edge points: midpoint plus, inside, the two face points.
-  std::vector<glm::dvec3> edgePoint(edgeCount, glm::dvec3(0.0));
-  for (size_t e = 0; e < edgeCount; e++) {
-    glm::dvec3 a(mesh.positions[edgeKey[e] >> 32]), b(mesh.positions[edgeKey[e] & 0xffffffffu]);
-    edgePoint[e] = edgeFaces[e] == 1 ? (a + b) * 0.5 : (a + b) * 0.25;
-  }
-  for (size_t f = 0; f < faceCount; f++)
-    for (uint32_t c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; c++)
-      if (edgeFaces[cornerEdge[c]] == 2) edgePoint[cornerEdge[c]] += facePoint[f] * 0.25;
+  });
+  // Edge points: midpoint plus, inside, the two face points (added in the order of their faces).
+  std::vector<glm::dvec3> edgePoint(edgeCount);
+  parallelForRanges(edgeCount, threads, [&](size_t begin, size_t end) {
+    for (size_t e = begin; e < end; e++) {
+      glm::dvec3 a(mesh.positions[edgeKey[e] >> 32]), b(mesh.positions[edgeKey[e] & 0xffffffffu]);
+      edgePoint[e] = edgeFaces(e) == 1 ? (a + b) * 0.5 : (a + b) * 0.25;
+      if (edgeFaces(e) == 2)
+        for (uint32_t k = edgeFirst[e]; k < edgeFirst[e + 1]; k++)
+          edgePoint[e] += facePoint[faceOf[edgeOfCorner[k].second]] * 0.25;
+    }
+  });
+  std::vector<std::pair<uint64_t, uint32_t>>().swap(edgeOfCorner);
+  std::vector<uint32_t>().swap(faceOf);
 
   // Vertex points. Interior: (Q + 2R + (n-3) V) / n with Q the mean of the face points, R the mean of
   // the edge midpoints, n the valence. Boundary: 3/4 V + 1/8 (A + B) over the two boundary neighbours.
@@ -83,7 +90,7 @@ PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh) {
     sumMid[b] += mid;
     valence[a]++;
     valence[b]++;
-    if (edgeFaces[e] == 1) {
+    if (edgeFaces(e) == 1) {
       sumBoundary[a] += pb;
       sumBoundary[b] += pa;
       boundary[a]++;
@@ -93,30 +100,41 @@ PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh) {
 
   PolygonMesh out;
   out.positions.resize(vertexCount + edgeCount + faceCount);
-  for (size_t v = 0; v < vertexCount; v++) {
-    glm::dvec3 p(mesh.positions[v]);
-    if (boundary[v] == 0 && valence[v] > 0) {
-      double n = valence[v];
-      p = (sumFaces[v] / double(faces[v]) + 2.0 * sumMid[v] / n + (n - 3.0) * p) / n;
-    } else if (boundary[v] == 2 && faces[v] >= 2) {
-      p = 0.75 * p + 0.125 * sumBoundary[v];
-    }  // corners (one face) and unused vertices stay
-    out.positions[v] = glm::vec3(p);
-  }
-  for (size_t e = 0; e < edgeCount; e++) out.positions[vertexCount + e] = glm::vec3(edgePoint[e]);
-  for (size_t f = 0; f < faceCount; f++) out.positions[vertexCount + edgeCount + f] = glm::vec3(facePoint[f]);
-
-  out.faceVertices.reserve(cornerCount * 4);
-  out.faceStart.reserve(cornerCount + 1);
-  for (size_t f = 0; f < faceCount; f++) {
-    uint32_t n = mesh.faceSize(f), first = mesh.faceStart[f];
-    for (uint32_t i = 0; i < n; i++) {
-      uint32_t quad[4] = {mesh.face(f)[i], uint32_t(vertexCount + cornerEdge[first + i]),
-                          uint32_t(vertexCount + edgeCount + f),
-                          uint32_t(vertexCount + cornerEdge[first + (i + n - 1) % n])};
-      out.addFace(quad, 4);
+  parallelForRanges(vertexCount, threads, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; v++) {
+      glm::dvec3 p(mesh.positions[v]);
+      if (boundary[v] == 0 && valence[v] > 0) {
+        double n = valence[v];
+        p = (sumFaces[v] / double(faces[v]) + 2.0 * sumMid[v] / n + (n - 3.0) * p) / n;
+      } else if (boundary[v] == 2 && faces[v] >= 2) {
+        p = 0.75 * p + 0.125 * sumBoundary[v];
+      }  // corners (one face) and unused vertices stay
+      out.positions[v] = glm::vec3(p);
     }
-  }
+  });
+  parallelForRanges(edgeCount, threads, [&](size_t begin, size_t end) {
+    for (size_t e = begin; e < end; e++) out.positions[vertexCount + e] = glm::vec3(edgePoint[e]);
+  });
+  parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {
+    for (size_t f = begin; f < end; f++) out.positions[vertexCount + edgeCount + f] = glm::vec3(facePoint[f]);
+  });
+
+  // A quad a corner, in the order of the corners.
+  out.faceStart.resize(cornerCount + 1);
+  out.faceVertices.resize(cornerCount * 4);
+  parallelFor(faceCount, threads, [&](size_t f) {
+    const uint32_t n = mesh.faceSize(f), first = mesh.faceStart[f];
+    for (uint32_t i = 0; i < n; i++) {
+      const uint32_t c = first + i;
+      uint32_t* quad = &out.faceVertices[4 * size_t(c)];
+      quad[0] = mesh.face(f)[i];
+      quad[1] = uint32_t(vertexCount + cornerEdge[c]);
+      quad[2] = uint32_t(vertexCount + edgeCount + f);
+      quad[3] = uint32_t(vertexCount + cornerEdge[first + (i + n - 1) % n]);
+      out.faceStart[c + 1] = 4 * (c + 1);
+    }
+  });
+  out.faceStart[0] = 0;
   return out;
 }
 

@@ -299,5 +299,14 @@ TEST(Format, OutputIsTheSameForAnyThreadCount) {
   EXPECT_EQ(one, three);
 }
 
+TEST(Format, ASubdividedCageIsTheSameForAnyThreadCount) {
+  // Subdivision, patches, limit and chord errors on threads: a cage with holes (boundary rules,
+  // irregular boundary vertices) large enough that each of them splits its work (120 k quads).
+  const std::string cage = test::cgalMesh("mech-holes-shark.off");
+  std::vector<uint8_t> one = serializeVgeo(test::build(cage, 2, 1));
+  EXPECT_EQ(one, serializeVgeo(test::build(cage, 2, 2)));
+  EXPECT_EQ(one, serializeVgeo(test::build(cage, 2, 3)));
+}
+
 }  // namespace
 }  // namespace vgeo
