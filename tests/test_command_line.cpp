@@ -4,6 +4,8 @@
 #include <chrono>
 #include <filesystem>
 
+#include <unistd.h>
+
 #include "test_util.h"
 
 namespace vgeo {
@@ -11,12 +13,18 @@ namespace {
 
 class CommandLine : public ::testing::Test {
  protected:
+  // A folder of this process's own: ctest runs each test as a process, several at once, and one test's
+  // out.png must not be another's.
   static void SetUpTestSuite() {
-    dir = new std::string(std::filesystem::temp_directory_path() / "vgeo_command_line_tests");
+    dir = new std::string(std::filesystem::temp_directory_path() /
+                          ("vgeo_command_line_tests_" + std::to_string(::getpid())));
     std::filesystem::create_directories(*dir);
     writeVgeo(test::build(test::cgalMesh("cow.off"), 0), *dir + "/cow.vgeo");
   }
-  static void TearDownTestSuite() { delete dir; }
+  static void TearDownTestSuite() {
+    std::filesystem::remove_all(*dir);
+    delete dir;
+  }
 
   // Runs `args`, expects exit `code` with one line on the output containing `expected`, and no PNG.
   static void expectOneLine(const std::string& args, int code, const std::string& expected) {
