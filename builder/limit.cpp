@@ -63,17 +63,15 @@ RingWeights makeRingWeights(size_t n) {
   }
   return w;
 }
+// Every valence a ring walk can reach (moveVertex stops at 65 corners).
+constexpr size_t kMostRing = 65;
 const RingWeights& ringWeights(size_t n) {
-  constexpr size_t kTabled = 32;
   static const std::vector<RingWeights> tables = [] {
-    std::vector<RingWeights> t(kTabled + 1);
-    for (size_t n = 1; n <= kTabled; n++) t[n] = makeRingWeights(n);
+    std::vector<RingWeights> t(kMostRing + 1);
+    for (size_t k = 1; k <= kMostRing; k++) t[k] = makeRingWeights(k);
     return t;
   }();
-  if (n <= kTabled) return tables[n];
-  thread_local RingWeights other;
-  other = makeRingWeights(n);
-  return other;
+  return tables[n];
 }
 
 // Vertex v's limit position and normal (the masks above); `ring` is scratch.
@@ -92,7 +90,7 @@ void moveVertex(const PolygonMesh& mesh, const QuadCorners& q, uint32_t v, std::
   ring.clear();
   uint32_t c = firstCorner;
   bool closed = false;
-  while (ring.size() <= 64) {
+  while (ring.size() < kMostRing) {
     ring.push_back(c);
     c = q.withNext(v, q.at(c, 3));
     if (c == UINT32_MAX) break;
