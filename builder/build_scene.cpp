@@ -165,7 +165,7 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
 
     auto buildStart = std::chrono::steady_clock::now();
     // The patches' words and control points go to the file now: nothing before the layout reads them.
-    StageTimer patchLayout(&stats.stages, "layout");
+    StageTimer patchLayout(&stats.stages, "patch points");
     const PatchBases patchBases = appendPatchPoints(data, patches);
     patchLayout.stop();
     BuildOptions bo;

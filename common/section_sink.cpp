@@ -111,7 +111,8 @@ void VgeoDataSink::expected(Section s) {
 // Each write: the bytes added to their section's checksum (where it is taken as written), written at
 // their offset and sent on to the disk. Threaded, the buffers go to the writer thread in order and the
 // caller gets an empty one back (a recycled one, or a new one while fewer than kBuffersInFlight are
-// out; else it waits for one); otherwise each write is done at once.
+// out; else it waits for one); otherwise each write is done at once. A spool's copy into place is a
+// job of the same queue, so that the section's later writes reach its checksum after the copy's bytes.
 class VgeoFileSink::Writer {
  public:
   Writer(AtomicFile& out, bool threaded) : out_(out) {
@@ -141,6 +142,20 @@ class VgeoFileSink::Writer {
     if (next.capacity() < kSpoolBuffer) next.reserve(kSpoolBuffer);
     buffer = std::move(next);
   }
+  // Copies the first `bytes` of spool `fd` to `offset` (summed into `sum` where given) and closes it.
+  void copy(int fd, uint64_t bytes, uint64_t offset, VgeoChecksum* sum) {
+    if (!thread_.joinable()) {
+      performCopy(fd, bytes, offset, sum);
+      return;
+    }
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      jobs_.push_back({{}, offset, sum, fd, bytes});
+    }
+    changed_.notify_all();
+  }
+  // The errno of the first spool that could not be read back, or 0; read once every job is done.
+  int readError() const { return readError_; }
   // Waits for every write given so far.
   void finish() {
     if (!thread_.joinable()) return;
@@ -157,11 +172,25 @@ class VgeoFileSink::Writer {
     std::vector<uint8_t> bytes;
     uint64_t offset;
     VgeoChecksum* sum;
+    int spool = -1;  // a copy's spool, whose first spoolBytes are the bytes instead
+    uint64_t spoolBytes = 0;
   };
   void perform(const std::vector<uint8_t>& bytes, uint64_t offset, VgeoChecksum* sum) {
     if (sum) sum->add(bytes.data(), bytes.size());
     out_.writeAt(offset, bytes.data(), bytes.size());
     out_.startWriteback(offset, bytes.size());
+  }
+  void performCopy(int fd, uint64_t bytes, uint64_t offset, VgeoChecksum* sum) {
+    std::vector<uint8_t> chunk(size_t(std::min<uint64_t>(kCopyChunk, bytes)));
+    uint64_t at = offset;
+    const int error = readBack(fd, 0, bytes, chunk, [&](const uint8_t* p, size_t n) {
+      if (sum) sum->add(p, n);
+      out_.writeAt(at, p, n);
+      at += n;
+    });
+    if (error && !readError_) readError_ = error;
+    out_.startWriteback(offset, bytes);
+    ::close(fd);  // its disk space back
   }
   void run() {
     std::unique_lock<std::mutex> lock(mutex_);
@@ -171,6 +200,11 @@ class VgeoFileSink::Writer {
       Job job = std::move(jobs_.front());
       jobs_.pop_front();
       lock.unlock();
+      if (job.spool >= 0) {
+        performCopy(job.spool, job.spoolBytes, job.offset, job.sum);
+        lock.lock();
+        continue;
+      }
       perform(job.bytes, job.offset, job.sum);
       job.bytes.clear();
       lock.lock();
@@ -185,6 +219,7 @@ class VgeoFileSink::Writer {
   std::vector<std::vector<uint8_t>> free_;
   size_t buffers_ = 0;  // made for the thread so far
   bool stop_ = false;
+  int readError_ = 0;  // written by the thread, read after finish()
   std::thread thread_;
 };
 
@@ -241,8 +276,8 @@ void VgeoFileSink::expected(Section) { place(); }
 
 // Places the sections that follow the last placed one while the total of each section before them is
 // known, in file order, each 16-byte aligned after the header and table (placeVgeoSections); what a
-// section's spool holds is copied into place (and summed, where its total is known) and the spool
-// closed. The copies are written here, on the calling thread: the writer has no write of theirs yet.
+// section's spool holds is copied into place (and summed, where its total is known) by the writer,
+// which then closes the spool: the caller goes on meanwhile.
 void VgeoFileSink::place() {
   while (placed_ < kSections) {
     uint64_t end = vgeoTableEnd(kSections);  // of the last placed section
@@ -260,16 +295,7 @@ void VgeoFileSink::place() {
     static const uint8_t zeros[16] = {};
     out_->writeAt(end, zeros, size_t(spool.offset - end));
     if (totals_[placed_] != kUnknown) spool.sum.emplace(totals_[placed_] * sectionElementSize(Section(placed_ + 1)));
-    std::vector<uint8_t> chunk(size_t(std::min<uint64_t>(kCopyChunk, spool.sent)));
-    uint64_t at = spool.offset;
-    if (const int error = readBack(spool.fd, 0, spool.sent, chunk, [&](const uint8_t* p, size_t n) {
-          if (spool.sum) spool.sum->add(p, n);
-          out_->writeAt(at, p, n);
-          at += n;
-        }))
-      throw OutputError(path_, std::string("cannot read back a section: ") + std::strerror(error));
-    out_->startWriteback(spool.offset, spool.sent);
-    ::close(spool.fd);  // its disk space back
+    writer_->copy(spool.fd, spool.sent, spool.offset, spool.sum ? &*spool.sum : nullptr);
     spool.fd = -1;
     placed_++;
   }
@@ -287,6 +313,8 @@ void VgeoFileSink::commit() {
     entries[i] = {i + 1, sectionElementSize(Section(i + 1)), 0, counts_[i], 0};
   }
   writer_->finish();
+  if (const int error = writer_->readError())
+    throw OutputError(path_, std::string("cannot read back a section: ") + std::strerror(error));
   for (Spool& spool : spools_) std::vector<uint8_t>().swap(spool.buffer);
   const uint64_t fileSize = placeVgeoSections(entries);
   for (uint32_t i = 0; i < kSections; i++)
