@@ -194,22 +194,27 @@ uint64_t subdividedFaceCount(const PolygonMesh& mesh, int levels);
 PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh, int threads = 1);
 
 // ---- quad_corners.cpp -------------------------------------------------------------------------------
+// Each vertex's corners (of any polygon mesh) in corner order, corners[start[v] .. start[v + 1]): a
+// counting sort, on up to `threads` threads for a large mesh.
+void cornersByVertex(std::span<const uint32_t> faceVertices, size_t vertexCount, int threads,
+                     FillLaterVector<uint32_t>& start, FillLaterVector<uint32_t>& corners);
+
 // The corners of a quad mesh (every face 4 corners; corner c is faceVertices[c]) grouped by vertex.
 class QuadCorners {
  public:
-  explicit QuadCorners(const PolygonMesh& mesh);
+  explicit QuadCorners(const PolygonMesh& mesh, int threads = 1);
   // Vertex k places after corner c in its face (k = 1: next, 2: opposite, 3: previous).
   uint32_t at(uint32_t c, uint32_t k) const { return vertices_[c - c % 4 + (c % 4 + k) % 4]; }
   // The corner of vertex a whose next (withNext) or previous (withPrev) vertex is b; UINT32_MAX if none.
   uint32_t withNext(uint32_t a, uint32_t b) const;
   uint32_t withPrev(uint32_t a, uint32_t b) const;
   // The corners of vertex v: corners()[offsets()[v] .. offsets()[v + 1]).
-  const std::vector<uint32_t>& corners() const { return corners_; }
-  const std::vector<uint32_t>& offsets() const { return offsets_; }
+  const FillLaterVector<uint32_t>& corners() const { return corners_; }
+  const FillLaterVector<uint32_t>& offsets() const { return offsets_; }
 
  private:
   const FillLaterVector<uint32_t>& vertices_;
-  std::vector<uint32_t> offsets_, corners_, nextOf_;  // nextOf_[i]: the next vertex of corners_[i]
+  FillLaterVector<uint32_t> offsets_, corners_, nextOf_;  // nextOf_[i]: the next vertex of corners_[i]
 };
 
 // The faces of a quad mesh touching any of `vertices` (first `firstFace`, when given), as a mesh of their

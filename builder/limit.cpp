@@ -147,7 +147,7 @@ bool moveToLimit(PolygonMesh& mesh, std::vector<glm::vec3>& normals, int threads
   const size_t vertexCount = mesh.positions.size(), faceCount = mesh.faceCount();
   for (size_t f = 0; f < faceCount; f++)
     if (mesh.faceSize(f) != 4) return false;
-  const QuadCorners q(mesh);
+  const QuadCorners q(mesh, threads);
   std::vector<glm::vec3> limit(mesh.positions);
   normals.assign(vertexCount, glm::vec3(0.0f, 0.0f, 1.0f));
   parallelForRanges(vertexCount, threads, [&](size_t begin, size_t end) {

@@ -16,7 +16,7 @@
 
 namespace vgeo {
 
-Patcher::Patcher(const PolygonMesh& mesh, int threads) : mesh_(mesh), corners_(mesh) {
+Patcher::Patcher(const PolygonMesh& mesh, int threads) : mesh_(mesh), corners_(mesh, threads) {
   quads_ = true;
   for (size_t f = 0; f < mesh.faceCount(); f++) quads_ = quads_ && mesh.faceSize(f) == 4;
   // A local neighbourhood (mesh_patches.cpp's trees) asks for a few of its vertices: found as asked.

@@ -1,24 +1,50 @@
 // quad_corners.cpp: the corners of a quad mesh grouped by vertex (a counting sort, linear time and 4 bytes
 // a corner), so that walks around vertices and across edges (limit.cpp, patch.cpp) find "the corner of a
 // whose next vertex is b" by scanning a's few corners instead of sorting a table of every directed edge
-// (which cost a 5-million-face build a second and 160 MB).
+// (which cost a 5-million-face build a second and 160 MB). The sort runs on the build's threads for a
+// large mesh: one thread's pass over a 5-million-face cage was most of what the patches and limit
+// stages took on 16.
 #include <algorithm>
 
+#include "../common/bucket_sort.h"
+#include "../common/parallel.h"
 #include "builder.h"
 
 namespace vgeo {
 
-QuadCorners::QuadCorners(const PolygonMesh& mesh) : vertices_(mesh.faceVertices) {
-  offsets_.assign(mesh.positions.size() + 1, 0);
-  for (uint32_t v : vertices_) offsets_[v + 1]++;
-  for (size_t v = 0; v < mesh.positions.size(); v++) offsets_[v + 1] += offsets_[v];
-  corners_.resize(vertices_.size());
-  std::vector<uint32_t> fill(offsets_.begin(), offsets_.end() - 1);
-  for (uint32_t c = 0; c < vertices_.size(); c++) corners_[fill[vertices_[c]]++] = c;
+void cornersByVertex(std::span<const uint32_t> faceVertices, size_t vertexCount, int threads,
+                     FillLaterVector<uint32_t>& start, FillLaterVector<uint32_t>& corners) {
+  // A patch tree's local meshes (a few dozen faces, thousands of times) count on their thread, where
+  // the parallel sort's fixed costs would outweigh the work.
+  constexpr size_t kSmallMesh = 4096;  // corners
+  if (threads > 1 && faceVertices.size() > kSmallMesh) {
+    FillLaterVector<size_t> starts;
+    const int vertexBits = bitsFor(std::max<size_t>(vertexCount, 1));
+    corners = bucketSorted<uint32_t>(
+        faceVertices.size(), vertexBits, vertexBits, threads,
+        [&](size_t c, auto&& emit) { emit(faceVertices[c], uint32_t(c)); }, std::less<uint32_t>(), &starts);
+    start.resize(vertexCount + 1);
+    parallelForRanges(start.size(), threads, [&](size_t begin, size_t end) {
+      for (size_t v = begin; v < end; v++) start[v] = uint32_t(starts[v]);
+    });
+    return;
+  }
+  start.assign(vertexCount + 1, 0);
+  for (uint32_t v : faceVertices) start[v + 1]++;
+  for (size_t v = 0; v < vertexCount; v++) start[v + 1] += start[v];
+  corners.resize(faceVertices.size());
+  FillLaterVector<uint32_t> next(start.begin(), start.end() - 1);
+  for (size_t c = 0; c < faceVertices.size(); c++) corners[next[faceVertices[c]]++] = uint32_t(c);
+}
+
+QuadCorners::QuadCorners(const PolygonMesh& mesh, int threads) : vertices_(mesh.faceVertices) {
+  cornersByVertex(vertices_, mesh.positions.size(), threads, offsets_, corners_);
   // The corners' next vertices beside them: a scan for withNext reads a few neighbouring words instead
   // of one face elsewhere in memory a corner (the walks of patch.cpp and limit.cpp are mostly these).
   nextOf_.resize(corners_.size());
-  for (size_t i = 0; i < corners_.size(); i++) nextOf_[i] = at(corners_[i], 1);
+  parallelForRanges(corners_.size(), threads, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; i++) nextOf_[i] = at(corners_[i], 1);
+  });
 }
 
 uint32_t QuadCorners::withNext(uint32_t a, uint32_t b) const {

@@ -37,17 +37,25 @@ PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh, int threads) {
     }
   });
   parallelSort(edgeOfCorner, threads);
-  std::vector<uint32_t> cornerEdge(cornerCount);
-  std::vector<uint32_t> edgeFirst;  // each edge's first entry in edgeOfCorner; one more, the end
+  // Edges numbered in that order, from each run's first corner.
   std::vector<uint64_t> edgeKey;
-  for (size_t i = 0; i < cornerCount; i++) {
-    if (i == 0 || edgeOfCorner[i].first != edgeOfCorner[i - 1].first) {
-      edgeKey.push_back(edgeOfCorner[i].first);
-      edgeFirst.push_back(uint32_t(i));
-    }
-    cornerEdge[edgeOfCorner[i].second] = uint32_t(edgeKey.size() - 1);
-  }
-  edgeFirst.push_back(uint32_t(cornerCount));
+  std::vector<uint32_t> edgeFirst;  // each edge's first entry in edgeOfCorner; one more, the end
+  parallelNumber(
+      cornerCount, threads, [&](size_t i) { return i == 0 || edgeOfCorner[i].first != edgeOfCorner[i - 1].first; },
+      [&](size_t edges) {
+        edgeKey.resize(edges);
+        edgeFirst.resize(edges + 1);
+      },
+      [&](size_t i, size_t e) {
+        edgeKey[e] = edgeOfCorner[i].first;
+        edgeFirst[e] = uint32_t(i);
+      });
+  edgeFirst.back() = uint32_t(cornerCount);
+  std::vector<uint32_t> cornerEdge(cornerCount);
+  parallelForRanges(edgeKey.size(), threads, [&](size_t begin, size_t end) {
+    for (size_t e = begin; e < end; e++)
+      for (uint32_t k = edgeFirst[e]; k < edgeFirst[e + 1]; k++) cornerEdge[edgeOfCorner[k].second] = uint32_t(e);
+  });
   const size_t edgeCount = edgeKey.size();
   auto edgeFaces = [&](size_t e) { return edgeFirst[e + 1] - edgeFirst[e]; };  // 1 (boundary) or 2
 
@@ -70,48 +78,49 @@ PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh, int threads) {
     }
   });
   std::vector<std::pair<uint64_t, uint32_t>>().swap(edgeOfCorner);
-  std::vector<uint32_t>().swap(faceOf);
 
   // Vertex points. Interior: (Q + 2R + (n-3) V) / n with Q the mean of the face points, R the mean of
   // the edge midpoints, n the valence. Boundary: 3/4 V + 1/8 (A + B) over the two boundary neighbours.
-  std::vector<glm::dvec3> sumFaces(vertexCount, glm::dvec3(0.0)), sumMid(vertexCount, glm::dvec3(0.0)),
-      sumBoundary(vertexCount, glm::dvec3(0.0));
-  std::vector<uint32_t> valence(vertexCount, 0), faces(vertexCount, 0), boundary(vertexCount, 0);
-  for (size_t f = 0; f < faceCount; f++)
-    for (uint32_t i = 0; i < mesh.faceSize(f); i++) {
-      sumFaces[mesh.face(f)[i]] += facePoint[f];
-      faces[mesh.face(f)[i]]++;
-    }
-  for (size_t e = 0; e < edgeCount; e++) {
-    uint32_t a = uint32_t(edgeKey[e] >> 32), b = uint32_t(edgeKey[e] & 0xffffffffu);
-    glm::dvec3 pa(mesh.positions[a]), pb(mesh.positions[b]);
-    glm::dvec3 mid = (pa + pb) * 0.5;
-    sumMid[a] += mid;
-    sumMid[b] += mid;
-    valence[a]++;
-    valence[b]++;
-    if (edgeFaces(e) == 1) {
-      sumBoundary[a] += pb;
-      sumBoundary[b] += pa;
-      boundary[a]++;
-      boundary[b]++;
-    }
-  }
-
+  // Each vertex gathers from its own corners: its faces in face order, its edges (the two sides of each
+  // corner, once each) in edge order, the order one pass over the faces and one over the edges would
+  // add them in.
+  FillLaterVector<uint32_t> cornerStart, cornersAt;
+  cornersByVertex(mesh.faceVertices, vertexCount, threads, cornerStart, cornersAt);
   PolygonMesh out;
   out.positions.resize(vertexCount + edgeCount + faceCount);
   parallelForRanges(vertexCount, threads, [&](size_t begin, size_t end) {
+    std::vector<uint32_t> edges;
     for (size_t v = begin; v < end; v++) {
-      glm::dvec3 p(mesh.positions[v]);
-      if (boundary[v] == 0 && valence[v] > 0) {
-        double n = valence[v];
-        p = (sumFaces[v] / double(faces[v]) + 2.0 * sumMid[v] / n + (n - 3.0) * p) / n;
-      } else if (boundary[v] == 2 && faces[v] >= 2) {
-        p = 0.75 * p + 0.125 * sumBoundary[v];
+      glm::dvec3 p(mesh.positions[v]), sumFaces(0.0), sumMid(0.0), sumBoundary(0.0);
+      edges.clear();
+      for (size_t k = cornerStart[v]; k < cornerStart[v + 1]; k++) {
+        const uint32_t c = cornersAt[k], f = faceOf[c], first = mesh.faceStart[f];
+        sumFaces += facePoint[f];
+        edges.push_back(cornerEdge[c]);
+        edges.push_back(cornerEdge[c == first ? mesh.faceStart[f + 1] - 1 : c - 1]);
+      }
+      std::sort(edges.begin(), edges.end());
+      edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+      uint32_t boundary = 0;
+      for (uint32_t e : edges) {
+        const glm::dvec3 a(mesh.positions[edgeKey[e] >> 32]), b(mesh.positions[edgeKey[e] & 0xffffffffu]);
+        sumMid += (a + b) * 0.5;
+        if (edgeFaces(e) == 1) {
+          sumBoundary += (edgeKey[e] >> 32) == v ? b : a;
+          boundary++;
+        }
+      }
+      const size_t faces = cornerStart[v + 1] - cornerStart[v];
+      if (boundary == 0 && !edges.empty()) {
+        double n = double(edges.size());
+        p = (sumFaces / double(faces) + 2.0 * sumMid / n + (n - 3.0) * p) / n;
+      } else if (boundary == 2 && faces >= 2) {
+        p = 0.75 * p + 0.125 * sumBoundary;
       }  // corners (one face) and unused vertices stay
       out.positions[v] = glm::vec3(p);
     }
   });
+  std::vector<uint32_t>().swap(faceOf);
   parallelForRanges(edgeCount, threads, [&](size_t begin, size_t end) {
     for (size_t e = begin; e < end; e++) out.positions[vertexCount + e] = glm::vec3(edgePoint[e]);
   });
