@@ -282,13 +282,30 @@ void writePatchWords(const FacePatch& patch, const std::vector<glm::vec3>& posit
 // ---- mesh_patches.cpp -------------------------------------------------------------------------------
 // Every face's patch as the .vgeo stores it (shaderio.h, Patch): Patcher's where it has one, else a tree
 // of the face subdivided locally (VGEO_PATCH_TREE), so every face of a quad mesh gets the limit surface.
+// The words and the points they add are kept in blocks of kPatchBlockFaces consecutive faces, each block
+// made whole while only its own faces' trees exist: the trees of a triangle cage's first round (every
+// face one) would otherwise be held beside the whole result, twice its memory.
+constexpr size_t kPatchBlockFaces = 8192;
 struct MeshPatches {
   std::vector<uint32_t> info;                       // per face: kind | corner << 2 | valence << 8
   std::vector<uint32_t> first;                      // per face: its first word; faceCount + 1 entries
   std::vector<std::array<uint32_t, 4>> neighbours;  // per face: across edge k, face << 2 | its edge
-  std::vector<uint32_t> words;                      // control-point indices and tree nodes (shaderio.h)
-  std::vector<glm::vec3> points;                    // the mesh's control points, then phantom and tree points
+  std::vector<glm::vec3> points;                    // the mesh's control points
+  // Per block of faces: its faces' words (control-point indices and tree nodes, shaderio.h), from word
+  // first[its first face] on, and the phantom and tree points they add, numbered from pointsBefore
+  // (the control points and every earlier block's points).
+  struct Block {
+    std::vector<uint32_t> words;
+    std::vector<glm::vec3> points;
+    uint32_t pointsBefore = 0;
+  };
+  std::vector<Block> blocks;
   bool patched(size_t face) const { return shaderio::patchKind(info[face]) != VGEO_PATCH_NONE; }
+  // Face `face`'s words.
+  const uint32_t* wordsOf(uint32_t face) const {
+    return blocks[face / kPatchBlockFaces].words.data() +
+           (first[face] - first[face / kPatchBlockFaces * kPatchBlockFaces]);
+  }
   // Face `face`'s patch at (s, t), with its unit normal; not for VGEO_PATCH_NONE faces.
   glm::vec3 evaluate(uint32_t face, float s, float t, glm::vec3* normal = nullptr) const;
   // The same positions at `count` (<= 32) parameters of one face, sharing the work they have in common.

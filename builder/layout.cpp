@@ -3,6 +3,8 @@
 // group's members are one run; leaf clusters' cage faces in cluster order, so a leaf's faces are one run.
 // Each cluster lists its distinct vertices once (absolute indices) and its triangles as 8-bit local
 // indices: the meshlet layout, which lets a pass read any cluster without a second index buffer.
+#include <malloc.h>
+
 #include <algorithm>
 
 #include "../common/parallel.h"
@@ -36,45 +38,23 @@ glm::vec4 normalCone(const std::vector<uint32_t>& indices, const std::vector<glm
   return glm::vec4(glm::vec3(axis), float(std::min(1.0, sine * 1.0001 + 1e-6)));
 }
 
-// Elements of one section, handed to the sink a batch at a time; flush() hands over the rest.
-template <class T>
-class SectionWriter {
- public:
-  SectionWriter(SectionSink& sink, Section section) : sink_(sink), section_(section) { buffer_.reserve(kBatch); }
-  void push(const T& v) {
-    buffer_.push_back(v);
-    if (buffer_.size() == kBatch) flush();
-  }
-  void push(const std::vector<T>& values) {
-    for (size_t at = 0; at < values.size();) {
-      const size_t take = std::min(values.size() - at, kBatch - buffer_.size());
-      buffer_.insert(buffer_.end(), values.begin() + long(at), values.begin() + long(at + take));
-      at += take;
-      if (buffer_.size() == kBatch) flush();
-    }
-  }
-  // Elements of the section so far, the index of the next one.
-  uint32_t count() const { return uint32_t(sink_.count(section_) + buffer_.size()); }
-  void flush() {
-    sink_.append(section_, buffer_);
-    buffer_.clear();
-  }
-
- private:
-  static constexpr size_t kBatch = 16384;
-  SectionSink& sink_;
-  Section section_;
-  std::vector<T> buffer_;
-};
-
 }  // namespace
 
 PatchBases appendPatchPoints(SectionSink& file, MeshPatches& patches) {
   PatchBases bases{uint32_t(file.count(Section::ControlPoints)), uint32_t(file.count(Section::PatchPoints))};
   file.append(Section::ControlPoints, patches.points);
   std::vector<glm::vec3>().swap(patches.points);
-  file.append(Section::PatchPoints, patches.words);
-  std::vector<uint32_t>().swap(patches.words);
+  for (MeshPatches::Block& block : patches.blocks) {
+    file.append(Section::ControlPoints, block.points);
+    std::vector<glm::vec3>().swap(block.points);
+  }
+  for (MeshPatches::Block& block : patches.blocks) {
+    file.append(Section::PatchPoints, block.words);
+    std::vector<uint32_t>().swap(block.words);
+  }
+  // The blocks came from the heaps of the threads that made them, where freed memory stays with the
+  // process (unlike a large array's own mapping): handed back now, before the DAG needs its own.
+  malloc_trim(0);
   return bases;
 }
 
@@ -106,26 +86,40 @@ void appendGeometry(SectionSink& file, const Dag& dag, const PolygonMesh& leafMe
   auto expectMore = [&](Section s, uint64_t more) {
     if (last) file.expectTotal(s, file.count(s) + more);
   };
-  if (last) {
-    uint64_t triangles = 0, faces = 0, faceVertices = 0;
-    for (const BuildCluster& c : dag.clusters) {
-      triangles += c.indices.size() / 3;
-      if (!patched) continue;
-      faces += c.cageFaces.size();
-      for (uint32_t f : c.cageFaces) faceVertices += leafMesh.faceSize(f);
+  // Where each cluster's arrays start in their sections, in cluster order (one more: the ends): known
+  // from the counts, so that a batch of clusters is laid out straight into its place. The vertices'
+  // column is filled once the cones below have counted them.
+  struct Place {
+    uint64_t vertex, triangle, face, faceVertex;
+  };
+  std::vector<Place> places(clusterOrder.size() + 1);
+  places[0] = {file.count(Section::ClusterVertices), file.count(Section::ClusterTriangles),
+               file.count(Section::CageFaces), file.count(Section::CageFaceVertices)};
+  for (size_t i = 0; i < clusterOrder.size(); i++) {
+    const BuildCluster& c = dag.clusters[clusterOrder[i]];
+    Place next = places[i];
+    next.triangle += c.indices.size() / 3;
+    if (patched) {
+      next.face += c.cageFaces.size();
+      for (uint32_t f : c.cageFaces) next.faceVertex += leafMesh.faceSize(f);
     }
+    places[i + 1] = next;
+  }
+  if (last) {
+    const Place& from = places.front();
+    const Place& to = places.back();
     expectMore(Section::Geometries, 1);
     expectMore(Section::Positions, vertices);
     expectMore(Section::Normals, vertices);
     expectMore(Section::Clusters, dag.clusters.size());
-    expectMore(Section::ClusterTriangles, triangles);
+    expectMore(Section::ClusterTriangles, to.triangle - from.triangle);
     expectMore(Section::Groups, dag.groups.size());
     expectMore(Section::BvhNodes, bvh.nodes.size());
-    expectMore(Section::CageFaces, faces);
-    expectMore(Section::CageFaceVertices, faceVertices);
+    expectMore(Section::CageFaces, to.face - from.face);
+    expectMore(Section::CageFaceVertices, to.faceVertex - from.faceVertex);
     expectMore(Section::ClusterCones, dag.clusters.size());
     expectMore(Section::ControlPoints, 0);
-    expectMore(Section::Patches, faces);
+    expectMore(Section::Patches, to.face - from.face);
     expectMore(Section::PatchPoints, 0);
   }
 
@@ -167,9 +161,9 @@ void appendGeometry(SectionSink& file, const Dag& dag, const PolygonMesh& leafMe
     };
     withThreads(threads, [&] { parallelInvoke(threads > 1, appendVertices, findCones); });
   }
-  uint64_t clusterVertexTotal = 0;
-  for (const uint32_t n : clusterVertexCounts) clusterVertexTotal += n;
-  expectMore(Section::ClusterVertices, clusterVertexTotal);
+  for (size_t i = 0; i < clusterOrder.size(); i++)
+    places[i + 1].vertex = places[i].vertex + clusterVertexCounts[clusterOrder[i]];
+  expectMore(Section::ClusterVertices, places.back().vertex - places.front().vertex);
 
   // One patch per face of a subdivided cage (its words verbatim: control-point indices relative to the
   // geometry's first control point). Neighbours name faces by their index in the file, whose order
@@ -214,114 +208,110 @@ void appendGeometry(SectionSink& file, const Dag& dag, const PolygonMesh& leafMe
   };
 
   // Clusters in cluster order, each with its vertices, triangles, normal cone and (leaves of a
-  // subdivided cage) faces with their patches.
-  SectionWriter<shaderio::Cluster> clusters(file, Section::Clusters);
-  SectionWriter<uint32_t> clusterVertices(file, Section::ClusterVertices),
-      clusterTriangles(file, Section::ClusterTriangles);
-  SectionWriter<shaderio::CageFace> cageFaces(file, Section::CageFaces);
-  SectionWriter<uint32_t> cageFaceVertices(file, Section::CageFaceVertices);
-  SectionWriter<shaderio::ClusterCone> clusterCones(file, Section::ClusterCones);
-  SectionWriter<shaderio::Patch> filePatches(file, Section::Patches);
-  // A batch of clusters is laid out on the threads, each into arrays of its own (offsets within
-  // them), then appended in cluster order with its offsets in the file, on one thread while the next
-  // batch is laid out on the others.
-  struct ClusterLayout {
-    shaderio::Cluster cluster;
+  // subdivided cage) faces with their patches. A batch of clusters is laid out on the threads into the
+  // batch's arrays, each cluster at its place, then appended whole on one thread while the next batch
+  // is laid out on the others.
+  struct Batch {
+    std::vector<shaderio::Cluster> clusters;
+    std::vector<shaderio::ClusterCone> cones;
     std::vector<uint32_t> vertices, triangles, faceVertices;
     std::vector<shaderio::CageFace> faces;
     std::vector<shaderio::Patch> patches;
   };
   constexpr size_t kBatch = 1024;
-  auto layOut = [&](size_t first, std::vector<ClusterLayout>& batch) {
-    batch.assign(std::min(kBatch, clusterOrder.size() - first), ClusterLayout());
-    parallelFor(batch.size(), threads, [&](size_t i) {
+  auto layOut = [&](size_t first, Batch& batch) {
+    const size_t count = std::min(kBatch, clusterOrder.size() - first);
+    const Place& from = places[first];
+    const Place& to = places[first + count];
+    batch.clusters.resize(count);
+    batch.cones.resize(count);
+    batch.vertices.resize(to.vertex - from.vertex);
+    batch.triangles.resize(to.triangle - from.triangle);
+    batch.faces.resize(to.face - from.face);
+    batch.patches.resize(to.face - from.face);
+    batch.faceVertices.resize(to.faceVertex - from.faceVertex);
+    parallelFor(count, threads, [&](size_t i) {
       const uint32_t id = clusterOrder[first + i];
       const BuildCluster& c = dag.clusters[id];
       const BuildGroup& parent = dag.groups[c.group];
-      ClusterLayout& lay = batch[i];
-      shaderio::Cluster& out = lay.cluster;
+      const Place& at = places[first + i];
+      shaderio::Cluster& out = batch.clusters[i];
+      out = {};
       out.selfSphere = c.selfSphere;
       out.selfError = c.selfError;
       out.parentSphere = parent.sphere;
       out.parentError = parent.error;
       out.group = groupIndex[c.group];
       out.producer = c.producer == VGEO_NO_GROUP ? VGEO_NO_GROUP : groupIndex[c.producer];
+      out.vertexOffset = uint32_t(at.vertex);
+      out.triangleOffset = uint32_t(at.triangle);
+      out.cageFaceOffset = uint32_t(at.face);
+      batch.cones[i] = cones[id];
       // Its vertices in order of first use, its triangles as three local indices.
-      std::vector<uint32_t> local;
-      localIds(c.wedges.empty() ? c.indices : c.wedges, lay.vertices, local);
-      for (uint32_t& v : lay.vertices) v += vertexOffset;
-      for (size_t t = 0; t + 2 < local.size(); t += 3)
-        lay.triangles.push_back(local[t] | local[t + 1] << 8 | local[t + 2] << 16);
+      thread_local std::vector<uint32_t> own, local;
+      localIds(c.wedges.empty() ? c.indices : c.wedges, own, local);
+      if (own.size() != places[first + i + 1].vertex - at.vertex)
+        throw std::logic_error("appendGeometry: a cluster's vertices changed count");
+      uint32_t* vertices = batch.vertices.data() + (at.vertex - from.vertex);
+      for (size_t k = 0; k < own.size(); k++) vertices[k] = own[k] + vertexOffset;
+      uint32_t* triangles = batch.triangles.data() + (at.triangle - from.triangle);
+      for (size_t t = 0; t + 2 < local.size(); t += 3) *triangles++ = local[t] | local[t + 1] << 8 | local[t + 2] << 16;
       uint32_t firstTriangle = 0;
+      uint64_t faceVertex = at.faceVertex;
       const uint32_t faceCount = patched ? uint32_t(c.cageFaces.size()) : 0u;
       for (uint32_t k = 0; k < faceCount; k++) {
         const uint32_t f = c.cageFaces[k];
-        shaderio::CageFace face{};
-        face.firstVertex = uint32_t(lay.faceVertices.size());
+        shaderio::CageFace& face = batch.faces[at.face - from.face + k];
+        face = {};
+        face.firstVertex = uint32_t(faceVertex);
         face.vertexCount = leafMesh.faceSize(f);
         face.leafCluster = clusterIndex[id];
         face.firstTriangle = firstTriangle;
         firstTriangle += face.vertexCount - 2;
         for (uint32_t j = 0; j < face.vertexCount; j++)
-          lay.faceVertices.push_back(vertexOffset + shading.wedgeOfCorner(leafMesh, leafMesh.faceStart[f] + j));
-        lay.faces.push_back(face);
-        lay.patches.push_back(filePatch(f));
+          batch.faceVertices[faceVertex++ - from.faceVertex] =
+              vertexOffset + shading.wedgeOfCorner(leafMesh, leafMesh.faceStart[f] + j);
+        batch.patches[at.face - from.face + k] = filePatch(f);
       }
-      out.counts = shaderio::packClusterCounts(uint32_t(lay.vertices.size()), uint32_t(c.indices.size() / 3), c.level,
-                                               faceCount);
+      out.counts =
+          shaderio::packClusterCounts(uint32_t(own.size()), uint32_t(c.indices.size() / 3), c.level, faceCount);
     });
   };
-  auto append = [&](size_t first, std::vector<ClusterLayout>& batch) {
-    for (size_t i = 0; i < batch.size(); i++) {
-      ClusterLayout& lay = batch[i];
-      lay.cluster.vertexOffset = clusterVertices.count();
-      lay.cluster.triangleOffset = clusterTriangles.count();
-      lay.cluster.cageFaceOffset = cageFaces.count();
-      clusterVertices.push(lay.vertices);
-      clusterTriangles.push(lay.triangles);
-      const uint32_t faceVertexBase = cageFaceVertices.count();
-      for (shaderio::CageFace face : lay.faces) {
-        face.firstVertex += faceVertexBase;
-        cageFaces.push(face);
-      }
-      cageFaceVertices.push(lay.faceVertices);
-      filePatches.push(lay.patches);
-      clusterCones.push(cones[clusterOrder[first + i]]);
-      clusters.push(lay.cluster);
-    }
+  auto append = [&](const Batch& batch) {
+    file.append(Section::Clusters, batch.clusters);
+    file.append(Section::ClusterVertices, batch.vertices);
+    file.append(Section::ClusterTriangles, batch.triangles);
+    file.append(Section::CageFaces, batch.faces);
+    file.append(Section::CageFaceVertices, batch.faceVertices);
+    file.append(Section::ClusterCones, batch.cones);
+    file.append(Section::Patches, batch.patches);
   };
-  std::vector<ClusterLayout> batches[2];
+  Batch batches[2];
   if (!clusterOrder.empty()) layOut(0, batches[0]);
   withThreads(threads, [&] {
     for (size_t first = 0, k = 0; first < clusterOrder.size(); first += kBatch, k ^= 1)
       parallelInvoke(
-          threads > 1, [&] { append(first, batches[k]); },
+          threads > 1, [&] { append(batches[k]); },
           [&] {
             if (first + kBatch < clusterOrder.size()) layOut(first + kBatch, batches[k ^ 1]);
           });
   });
-  clusters.flush(), clusterVertices.flush(), clusterTriangles.flush(), cageFaces.flush();
-  cageFaceVertices.flush(), clusterCones.flush(), filePatches.flush();
 
-  {
-    SectionWriter<shaderio::Group> groups(file, Section::Groups);
-    for (uint32_t g : bvh.groupOrder) {
-      const BuildGroup& src = dag.groups[g];
-      shaderio::Group out{};
-      out.sphere = src.sphere;
-      out.error = src.error;
-      out.clusterOffset = clusterIndex[src.members.front()];
-      out.clusterCount = uint32_t(src.members.size());
-      out.level = src.level;
-      groups.push(out);
-    }
-    SectionWriter<shaderio::BvhNode> nodes(file, Section::BvhNodes);
-    for (shaderio::BvhNode node : bvh.nodes) {
-      node.childOffset += (node.childCountAndFlags & VGEO_NODE_LEAF_BIT) ? groupOffset : nodeOffset;
-      nodes.push(node);
-    }
-    groups.flush(), nodes.flush();
+  std::vector<shaderio::Group> groups(bvh.groupOrder.size());
+  for (size_t i = 0; i < groups.size(); i++) {
+    const BuildGroup& src = dag.groups[bvh.groupOrder[i]];
+    shaderio::Group& out = groups[i];
+    out = {};
+    out.sphere = src.sphere;
+    out.error = src.error;
+    out.clusterOffset = clusterIndex[src.members.front()];
+    out.clusterCount = uint32_t(src.members.size());
+    out.level = src.level;
   }
+  file.append(Section::Groups, groups);
+  for (shaderio::BvhNode& node : bvh.nodes)
+    node.childOffset += (node.childCountAndFlags & VGEO_NODE_LEAF_BIT) ? groupOffset : nodeOffset;
+  file.append(Section::BvhNodes, bvh.nodes);
 
   shaderio::Geometry geometry{};
   geometry.boundsSphere = bvh.nodes[0].sphere;

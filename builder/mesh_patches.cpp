@@ -86,67 +86,89 @@ MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& 
   bool quads = controlPoints.size() == mesh.positions.size();
   for (size_t f = 0; f < faceCount && quads; f++) quads = mesh.faceSize(f) == 4;
   if (!quads) return out;
-  // Sizes first (words and extra points a face), trees built on the way; then every face writes its part.
+  // A block at a time: sizes first (words and extra points a face), trees built on the way; then every
+  // face writes its part and frees its tree.
   const Patcher patcher(mesh, int(threads));
-  std::vector<uint32_t> extraFirst(faceCount + 1, 0);
-  std::vector<std::unique_ptr<PatchTree>> trees(faceCount);
-  parallelFor(faceCount, int(threads), [&](size_t f) {
-    const FacePatch patch = patcher.patch(uint32_t(f));
-    for (int k = 0; k < 4; k++) out.neighbours[f][size_t(k)] = patch.neighbours[k];
-    if (patch.kind != VGEO_PATCH_NONE) {
-      out.info[f] = patch.info();
-      out.first[f + 1] = patch.pointCount;
-      extraFirst[f + 1] = patch.phantomCount;
-      return;
+  std::vector<uint32_t> extraFirst(kPatchBlockFaces + 1);
+  std::vector<std::unique_ptr<PatchTree>> trees(kPatchBlockFaces);
+  uint32_t pointsBefore = uint32_t(controlPoints.size());
+  for (size_t blockFirst = 0; blockFirst < faceCount; blockFirst += kPatchBlockFaces) {
+    const size_t blockFaces = std::min(kPatchBlockFaces, faceCount - blockFirst);
+    extraFirst[0] = 0;
+    parallelFor(blockFaces, int(threads), [&](size_t i) {
+      const size_t f = blockFirst + i;
+      const FacePatch patch = patcher.patch(uint32_t(f));
+      for (int k = 0; k < 4; k++) out.neighbours[f][size_t(k)] = patch.neighbours[k];
+      if (patch.kind != VGEO_PATCH_NONE) {
+        out.info[f] = patch.info();
+        out.first[f + 1] = patch.pointCount;
+        extraFirst[i + 1] = patch.phantomCount;
+        return;
+      }
+      trees[i] = std::make_unique<PatchTree>();
+      trees[i]->words.resize(4);
+      trees[i]->split(facesAround(mesh, controlPoints, patcher.corners(), mesh.face(f), 4, uint32_t(f)), 0, 0);
+      out.info[f] = VGEO_PATCH_TREE;
+      out.first[f + 1] = uint32_t(trees[i]->words.size());
+      extraFirst[i + 1] = uint32_t(trees[i]->points.size());
+    });
+    for (size_t i = 0; i < blockFaces; i++) {
+      out.first[blockFirst + i + 1] += out.first[blockFirst + i];
+      extraFirst[i + 1] += extraFirst[i];
     }
-    trees[f] = std::make_unique<PatchTree>();
-    trees[f]->words.resize(4);
-    trees[f]->split(facesAround(mesh, controlPoints, patcher.corners(), mesh.face(f), 4, uint32_t(f)), 0, 0);
-    out.info[f] = VGEO_PATCH_TREE;
-    out.first[f + 1] = uint32_t(trees[f]->words.size());
-    extraFirst[f + 1] = uint32_t(trees[f]->points.size());
-  });
-  for (size_t f = 0; f < faceCount; f++) {
-    out.first[f + 1] += out.first[f];
-    extraFirst[f + 1] += extraFirst[f];
+    MeshPatches::Block& block = out.blocks.emplace_back();
+    block.words.resize(out.first[blockFirst + blockFaces] - out.first[blockFirst]);
+    block.points.resize(extraFirst[blockFaces]);
+    block.pointsBefore = pointsBefore;
+    parallelFor(blockFaces, int(threads), [&](size_t i) {
+      const size_t f = blockFirst + i;
+      uint32_t* words = block.words.data() + (out.first[f] - out.first[blockFirst]);
+      const uint32_t extra = pointsBefore + extraFirst[i];
+      if (trees[i]) {
+        const PatchTree& tree = *trees[i];
+        std::copy(tree.words.begin(), tree.words.end(), words);
+        std::copy(tree.points.begin(), tree.points.end(), block.points.begin() + extraFirst[i]);
+        shaderio::forEachPatchPoint(out.info[f], words, tree.words.size(), [&](size_t k) { words[k] += extra; });
+        trees[i].reset();
+        return;
+      }
+      uint32_t next = extraFirst[i];
+      writePatchWords(
+          patcher.patch(uint32_t(f)), controlPoints, words, [](uint32_t v) { return v; },
+          [&](glm::vec3 p) {
+            block.points[next] = p;
+            return pointsBefore + next++;
+          });
+    });
+    pointsBefore += extraFirst[blockFaces];
   }
-  out.words.resize(out.first[faceCount]);
-  out.points.resize(controlPoints.size() + extraFirst[faceCount]);
-  parallelFor(faceCount, int(threads), [&](size_t f) {
-    uint32_t* words = out.words.data() + out.first[f];
-    const uint32_t extra = uint32_t(controlPoints.size()) + extraFirst[f];
-    if (trees[f]) {
-      const PatchTree& tree = *trees[f];
-      std::copy(tree.words.begin(), tree.words.end(), words);
-      std::copy(tree.points.begin(), tree.points.end(), out.points.begin() + extra);
-      shaderio::forEachPatchPoint(out.info[f], words, tree.words.size(), [&](size_t i) { words[i] += extra; });
-      trees[f].reset();
-      return;
-    }
-    uint32_t next = extra;
-    writePatchWords(
-        patcher.patch(uint32_t(f)), controlPoints, words, [](uint32_t v) { return v; },
-        [&](glm::vec3 p) {
-          out.points[next] = p;
-          return next++;
-        });
-  });
   return out;
+}
+
+// A face's points are control points or its own block's; the lookup is made once for all its reads.
+template <class Evaluate>
+auto withFacePoints(const MeshPatches& patches, uint32_t face, Evaluate&& evaluate) {
+  const MeshPatches::Block& block = patches.blocks[face / kPatchBlockFaces];
+  const glm::vec3 *control = patches.points.data(), *added = block.points.data();
+  const uint32_t before = block.pointsBefore;
+  return evaluate([=](uint32_t i) { return i < before ? control[i] : added[i - before]; });
 }
 
 glm::vec3 MeshPatches::evaluate(uint32_t face, float s, float t, glm::vec3* normal) const {
   glm::vec3 n;
-  glm::vec3 p = shaderio::evaluatePatchWords(
-      info[face], words.data() + first[face], [&](uint32_t i) { return points[i]; },
-      [](uint32_t) { return glm::vec3(0.0f); }, s, t, n);
+  glm::vec3 p = withFacePoints(*this, face, [&](auto point) {
+    return shaderio::evaluatePatchWords(
+        info[face], wordsOf(face), point, [](uint32_t) { return glm::vec3(0.0f); }, s, t, n);
+  });
   if (normal) *normal = n;
   return p;
 }
 
 void MeshPatches::evaluateAt(uint32_t face, const glm::vec2* st, int count, glm::vec3* out) const {
-  shaderio::evaluatePatchWordsAt(
-      info[face], words.data() + first[face], [&](uint32_t i) { return points[i]; },
-      [](uint32_t) { return glm::vec3(0.0f); }, st, count, out);
+  withFacePoints(*this, face, [&](auto point) {
+    shaderio::evaluatePatchWordsAt(
+        info[face], wordsOf(face), point, [](uint32_t) { return glm::vec3(0.0f); }, st, count, out);
+  });
 }
 
 std::vector<PatchErrors> patchChordErrors(const PolygonMesh& limitMesh, const MeshPatches& patches, uint32_t threads) {
