@@ -53,8 +53,9 @@ PatchBases appendPatchPoints(SectionSink& file, MeshPatches& patches) {
     std::vector<uint32_t>().swap(block.words);
   }
   // The blocks came from the heaps of the threads that made them, where freed memory stays with the
-  // process (unlike a large array's own mapping): handed back now, before the DAG needs its own.
-  malloc_trim(0);
+  // process (unlike a large array's own mapping): handed back now, before the DAG needs its own. A mesh
+  // without patches freed nothing here, and a scene may have thousands of them.
+  if (!patches.blocks.empty()) malloc_trim(0);
   return bases;
 }
 
