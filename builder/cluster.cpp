@@ -11,14 +11,18 @@
 
 namespace vgeo {
 
+void triangulateQuad(const glm::vec3* positions, const uint32_t* v, uint32_t out[6]) {
+  // Along the shorter diagonal.
+  float d02 = glm::distance(positions[v[0]], positions[v[2]]), d13 = glm::distance(positions[v[1]], positions[v[3]]);
+  const uint32_t pick[2][6] = {{0, 1, 2, 0, 2, 3}, {0, 1, 3, 1, 2, 3}};
+  for (int i = 0; i < 6; i++) out[i] = v[pick[d13 < d02][i]];
+}
+
 void triangulateFace(const glm::vec3* positions, const uint32_t* v, uint32_t n, std::vector<uint32_t>& out) {
   if (n == 4) {
-    // Split a quad along its shorter diagonal.
-    float d02 = glm::distance(positions[v[0]], positions[v[2]]), d13 = glm::distance(positions[v[1]], positions[v[3]]);
-    if (d13 < d02)
-      out.insert(out.end(), {v[0], v[1], v[3], v[1], v[2], v[3]});
-    else
-      out.insert(out.end(), {v[0], v[1], v[2], v[0], v[2], v[3]});
+    uint32_t quad[6];
+    triangulateQuad(positions, v, quad);
+    out.insert(out.end(), quad, quad + 6);
     return;
   }
   for (uint32_t i = 1; i + 1 < n; i++) out.insert(out.end(), {v[0], v[i], v[i + 1]});

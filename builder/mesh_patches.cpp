@@ -91,13 +91,14 @@ MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& 
   const Patcher patcher(mesh, int(threads));
   std::vector<uint32_t> extraFirst(kPatchBlockFaces + 1);
   std::vector<std::unique_ptr<PatchTree>> trees(kPatchBlockFaces);
+  std::vector<FacePatch> facePatches(kPatchBlockFaces);  // found while sizing, written after
   uint32_t pointsBefore = uint32_t(controlPoints.size());
   for (size_t blockFirst = 0; blockFirst < faceCount; blockFirst += kPatchBlockFaces) {
     const size_t blockFaces = std::min(kPatchBlockFaces, faceCount - blockFirst);
     extraFirst[0] = 0;
     parallelFor(blockFaces, int(threads), [&](size_t i) {
       const size_t f = blockFirst + i;
-      const FacePatch patch = patcher.patch(uint32_t(f));
+      const FacePatch& patch = facePatches[i] = patcher.patch(uint32_t(f));
       for (int k = 0; k < 4; k++) out.neighbours[f][size_t(k)] = patch.neighbours[k];
       if (patch.kind != VGEO_PATCH_NONE) {
         out.info[f] = patch.info();
@@ -134,7 +135,7 @@ MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& 
       }
       uint32_t next = extraFirst[i];
       writePatchWords(
-          patcher.patch(uint32_t(f)), controlPoints, words, [](uint32_t v) { return v; },
+          facePatches[i], controlPoints, words, [](uint32_t v) { return v; },
           [&](glm::vec3 p) {
             block.points[next] = p;
             return pointsBefore + next++;
@@ -211,8 +212,8 @@ std::vector<PatchErrors> patchChordErrors(const PolygonMesh& limitMesh, const Me
       for (int i = 0; i < 3; i++) worst = std::max(worst, pointSegmentDistance(glm::dvec3(p[edgeFirst[k] + i]), a, b));
       e.edge[k] = float(worst * kSlack);
     }
-    std::vector<uint32_t> tris;
-    triangulateFace(x.data(), v, 4, tris);
+    uint32_t tris[6];
+    triangulateQuad(x.data(), v, tris);
     double worst = 0.0;
     for (int i = inner; i < count; i++) {
       // The nearer triangle's distance; the second is needed only where the first is past the worst.

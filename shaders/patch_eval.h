@@ -318,8 +318,26 @@ void evaluatePatchWordsAt(uint info, const uint* words, Point point, Corner corn
       if (!done[j] && leafAt[j] == at) group[size++] = j, done[j] = true;
     vec3 normal, sub[16];
     if (kind == VGEO_PATCH_REGULAR) {
-      for (int g = 0; g < size; g++)
-        out[group[g]] = evaluateBsplinePosition(points, leafSt[group[g]].x, leafSt[group[g]].y);
+      // evaluateBsplinePosition's arithmetic, its four row sums made once for each distinct u.
+      float rowU[kMost];
+      vec3 rows[kMost][4];
+      int rowCount = 0;
+      for (int g = 0; g < size; g++) {
+        const float u = leafSt[group[g]].x;
+        int k = 0;
+        while (k < rowCount && rowU[k] != u) k++;
+        if (k == rowCount) {
+          const vec4 bu = bsplineWeights(u);
+          for (int r = 0; r < 4; r++)
+            rows[k][r] = bu[0] * points[4 * r] + bu[1] * points[4 * r + 1] + bu[2] * points[4 * r + 2] +
+                         bu[3] * points[4 * r + 3];
+          rowU[rowCount++] = u;
+        }
+        const vec4 bv = bsplineWeights(leafSt[group[g]].y);
+        vec3 pos = vec3(0.0f);
+        for (int r = 0; r < 4; r++) pos += bv[r] * rows[k][r];
+        out[group[g]] = pos;
+      }
       continue;
     }
     if (kind != VGEO_PATCH_RING) {
