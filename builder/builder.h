@@ -190,8 +190,10 @@ uint64_t subdividedFaceCount(const PolygonMesh& mesh, int levels);
 // One round of Catmull-Clark on a manifold mesh (repairMesh's output). Output vertex order: the old
 // vertices, then one per edge, then one per face; every output face is a quad (corner, edge, face, edge).
 // Boundary edges use the cubic B-spline rules (edge point = midpoint, vertex = 3/4 V + 1/8 (A + B)); a
-// boundary vertex with one face is a corner and stays put.
-PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh, int threads = 1);
+// boundary vertex with one face is a corner and stays put. Vertices from `vertexPoints` on keep their
+// positions: a local neighbourhood (facesAround) holds the rings of its first vertices only, and only
+// their vertex points are read.
+PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh, int threads = 1, size_t vertexPoints = SIZE_MAX);
 
 // ---- quad_corners.cpp -------------------------------------------------------------------------------
 // Each vertex's corners (of any polygon mesh) in corner order, corners[start[v] .. start[v + 1]): a

@@ -27,7 +27,7 @@ struct PatchTree {
   // Fills the four child words at `payload` with the sub-faces of face 0 of `local` (the faces sharing a
   // vertex with it: facesAround), at depth + 1; its sub-face at corner k is face k after one round.
   void split(const PolygonMesh& local, int depth, size_t payload) {
-    const PolygonMesh sub = subdivideCatmullClark(local);
+    const PolygonMesh sub = subdivideCatmullClark(local, 1, 4);
     const Patcher patcher(sub);
     std::vector<uint32_t> pointOf(sub.positions.size(), UINT32_MAX);  // shared by the sub-faces' patches
     PolygonMesh limit;

@@ -59,26 +59,73 @@ uint32_t QuadCorners::withPrev(uint32_t a, uint32_t b) const {
   return UINT32_MAX;
 }
 
+namespace {
+
+// Numbers for the keys met, in the order first met: open addressing in a table kept under half full.
+class FirstSeen {
+ public:
+  // Key's number; a new key gets the next one and sets `added`.
+  uint32_t number(uint32_t key, bool& added) {
+    if (2 * (count_ + 1) > slots_.size()) grow();
+    const size_t mask = slots_.size() - 1;
+    for (size_t i = hash(key) & mask;; i = (i + 1) & mask) {
+      if (slots_[i] == kEmpty) {
+        slots_[i] = uint64_t(key) << 32 | count_;
+        added = true;
+        return count_++;
+      }
+      if (uint32_t(slots_[i] >> 32) == key) {
+        added = false;
+        return uint32_t(slots_[i]);
+      }
+    }
+  }
+  // Passes over a number.
+  void skip() { count_++; }
+
+ private:
+  static constexpr uint64_t kEmpty = UINT64_MAX;  // no key is UINT32_MAX with number UINT32_MAX
+  static size_t hash(uint32_t key) { return size_t(key * 0x9E3779B1u) >> 7; }
+  void grow() {
+    std::vector<uint64_t> old(std::max<size_t>(64, 2 * slots_.size()), kEmpty);
+    old.swap(slots_);
+    const size_t mask = slots_.size() - 1;
+    for (uint64_t slot : old)
+      if (slot != kEmpty) {
+        size_t i = hash(uint32_t(slot >> 32)) & mask;
+        while (slots_[i] != kEmpty) i = (i + 1) & mask;
+        slots_[i] = slot;
+      }
+  }
+  std::vector<uint64_t> slots_;
+  uint32_t count_ = 0;
+};
+
+}  // namespace
+
 PolygonMesh facesAround(const PolygonMesh& mesh, const std::vector<glm::vec3>& positions, const QuadCorners& q,
                         const uint32_t* vertices, uint32_t count, uint32_t firstFace) {
   std::vector<uint32_t> faces;
-  if (firstFace != UINT32_MAX) faces.push_back(firstFace);
+  FirstSeen faceSeen, vertexSeen;
+  bool added = false;
+  if (firstFace != UINT32_MAX) faces.push_back(firstFace), faceSeen.number(firstFace, added);
   for (uint32_t k = 0; k < count; k++)
     for (uint32_t i = q.offsets()[vertices[k]]; i < q.offsets()[vertices[k] + 1]; i++)
-      if (std::find(faces.begin(), faces.end(), q.corners()[i] / 4) == faces.end()) faces.push_back(q.corners()[i] / 4);
+      if (faceSeen.number(q.corners()[i] / 4, added), added) faces.push_back(q.corners()[i] / 4);
   PolygonMesh out;
-  std::vector<uint32_t> vertexOf(vertices, vertices + count);  // local vertex -> mesh vertex
-  for (uint32_t v : vertexOf) out.positions.push_back(positions[v]);
+  out.faceStart.reserve(faces.size() + 1);
+  out.faceVertices.reserve(4 * faces.size());
+  out.positions.reserve(4 * faces.size());
+  for (uint32_t k = 0; k < count; k++) {  // local vertex k is vertices[k], even where one repeats
+    if (vertexSeen.number(vertices[k], added), !added) vertexSeen.skip();
+    out.positions.push_back(positions[vertices[k]]);
+  }
   for (uint32_t f : faces) {
     uint32_t local[4];
     for (uint32_t k = 0; k < 4; k++) {
       const uint32_t v = mesh.face(f)[k];
-      auto it = std::find(vertexOf.begin(), vertexOf.end(), v);
-      local[k] = uint32_t(it - vertexOf.begin());
-      if (it == vertexOf.end()) {
-        vertexOf.push_back(v);
-        out.positions.push_back(positions[v]);
-      }
+      local[k] = vertexSeen.number(v, added);
+      if (added) out.positions.push_back(positions[v]);
     }
     out.addFace(local, 4);
   }

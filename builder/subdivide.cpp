@@ -21,43 +21,32 @@ uint64_t subdividedFaceCount(const PolygonMesh& mesh, int levels) {
   return count;
 }
 
-PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh, int threads) {
+PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh, int threads, size_t vertexPoints) {
   const size_t vertexCount = mesh.positions.size(), faceCount = mesh.faceCount();
   const size_t cornerCount = mesh.faceVertices.size();
+  vertexPoints = std::min(vertexPoints, vertexCount);
 
-  // Every corner's edge (to the next corner of its face) and face; the corners sorted by edge, so that
-  // an edge's corners are a run, in the order of their faces.
-  std::vector<std::pair<uint64_t, uint32_t>> edgeOfCorner(cornerCount);
+  // Each vertex's corners (in corner order) and each corner's face.
+  FillLaterVector<uint32_t> cornerStart, cornersAt;
+  cornersByVertex(mesh.faceVertices, vertexCount, threads, cornerStart, cornersAt);
   std::vector<uint32_t> faceOf(cornerCount);
   parallelFor(faceCount, threads, [&](size_t f) {
-    const uint32_t n = mesh.faceSize(f), first = mesh.faceStart[f];
-    for (uint32_t i = 0; i < n; i++) {
-      edgeOfCorner[first + i] = {undirectedEdge(mesh.face(f)[i], mesh.face(f)[(i + 1) % n]), first + i};
-      faceOf[first + i] = uint32_t(f);
+    for (uint32_t c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; c++) faceOf[c] = uint32_t(f);
+  });
+  // Vertex v's edges: its neighbours ascending (the order of the edges' numbers, which follow their
+  // keys min << 32 | max), each beside every corner on the edge in corner order. A corner is on the
+  // edge to the next corner of its face.
+  auto edgesAt = [&](size_t v, std::vector<std::pair<uint32_t, uint32_t>>& edges) {
+    edges.clear();
+    for (uint32_t k = cornerStart[v]; k < cornerStart[v + 1]; k++) {
+      const uint32_t c = cornersAt[k], f = faceOf[c], first = mesh.faceStart[f], end = mesh.faceStart[f + 1];
+      const uint32_t before = c == first ? end - 1 : c - 1;
+      edges.push_back({mesh.faceVertices[c + 1 == end ? first : c + 1], c});
+      edges.push_back({mesh.faceVertices[before], before});
     }
-  });
-  parallelSort(edgeOfCorner, threads);
-  // Edges numbered in that order, from each run's first corner.
-  std::vector<uint64_t> edgeKey;
-  std::vector<uint32_t> edgeFirst;  // each edge's first entry in edgeOfCorner; one more, the end
-  parallelNumber(
-      cornerCount, threads, [&](size_t i) { return i == 0 || edgeOfCorner[i].first != edgeOfCorner[i - 1].first; },
-      [&](size_t edges) {
-        edgeKey.resize(edges);
-        edgeFirst.resize(edges + 1);
-      },
-      [&](size_t i, size_t e) {
-        edgeKey[e] = edgeOfCorner[i].first;
-        edgeFirst[e] = uint32_t(i);
-      });
-  edgeFirst.back() = uint32_t(cornerCount);
-  std::vector<uint32_t> cornerEdge(cornerCount);
-  parallelForRanges(edgeKey.size(), threads, [&](size_t begin, size_t end) {
-    for (size_t e = begin; e < end; e++)
-      for (uint32_t k = edgeFirst[e]; k < edgeFirst[e + 1]; k++) cornerEdge[edgeOfCorner[k].second] = uint32_t(e);
-  });
-  const size_t edgeCount = edgeKey.size();
-  auto edgeFaces = [&](size_t e) { return edgeFirst[e + 1] - edgeFirst[e]; };  // 1 (boundary) or 2
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());  // a corner twice: a repeated vertex
+  };
 
   // Face points.
   std::vector<glm::dvec3> facePoint(faceCount);
@@ -66,60 +55,74 @@ PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh, int threads) {
     for (uint32_t i = 0; i < mesh.faceSize(f); i++) sum += glm::dvec3(mesh.positions[mesh.face(f)[i]]);
     facePoint[f] = sum / double(mesh.faceSize(f));
   });
-  // Edge points: midpoint plus, inside, the two face points (added in the order of their faces).
-  std::vector<glm::dvec3> edgePoint(edgeCount);
-  parallelForRanges(edgeCount, threads, [&](size_t begin, size_t end) {
-    for (size_t e = begin; e < end; e++) {
-      glm::dvec3 a(mesh.positions[edgeKey[e] >> 32]), b(mesh.positions[edgeKey[e] & 0xffffffffu]);
-      edgePoint[e] = edgeFaces(e) == 1 ? (a + b) * 0.5 : (a + b) * 0.25;
-      if (edgeFaces(e) == 2)
-        for (uint32_t k = edgeFirst[e]; k < edgeFirst[e + 1]; k++)
-          edgePoint[e] += facePoint[faceOf[edgeOfCorner[k].second]] * 0.25;
-    }
-  });
-  std::vector<std::pair<uint64_t, uint32_t>>().swap(edgeOfCorner);
 
-  // Vertex points. Interior: (Q + 2R + (n-3) V) / n with Q the mean of the face points, R the mean of
-  // the edge midpoints, n the valence. Boundary: 3/4 V + 1/8 (A + B) over the two boundary neighbours.
-  // Each vertex gathers from its own corners: its faces in face order, its edges (the two sides of each
-  // corner, once each) in edge order, the order one pass over the faces and one over the edges would
-  // add them in.
-  FillLaterVector<uint32_t> cornerStart, cornersAt;
-  cornersByVertex(mesh.faceVertices, vertexCount, threads, cornerStart, cornersAt);
-  PolygonMesh out;
-  out.positions.resize(vertexCount + edgeCount + faceCount);
+  // Edges are numbered by their lower vertex, in its neighbours' order; then each vertex numbers its
+  // edges and makes their edge points (midpoint plus, inside, the two face points in corner order) and
+  // its own vertex point. Interior: (Q + 2R + (n-3) V) / n with Q the mean of the face points, R the
+  // mean of the edge midpoints, n the valence. Boundary: 3/4 V + 1/8 (A + B) over the two boundary
+  // neighbours. Its faces are added in face order, its edges in edge order.
+  std::vector<uint32_t> edgesOwned(vertexCount);
   parallelForRanges(vertexCount, threads, [&](size_t begin, size_t end) {
-    std::vector<uint32_t> edges;
+    std::vector<std::pair<uint32_t, uint32_t>> edges;
     for (size_t v = begin; v < end; v++) {
-      glm::dvec3 p(mesh.positions[v]), sumFaces(0.0), sumMid(0.0), sumBoundary(0.0);
-      edges.clear();
-      for (size_t k = cornerStart[v]; k < cornerStart[v + 1]; k++) {
-        const uint32_t c = cornersAt[k], f = faceOf[c], first = mesh.faceStart[f];
-        sumFaces += facePoint[f];
-        edges.push_back(cornerEdge[c]);
-        edges.push_back(cornerEdge[c == first ? mesh.faceStart[f + 1] - 1 : c - 1]);
-      }
-      std::sort(edges.begin(), edges.end());
-      edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-      uint32_t boundary = 0;
-      for (uint32_t e : edges) {
-        const glm::dvec3 a(mesh.positions[edgeKey[e] >> 32]), b(mesh.positions[edgeKey[e] & 0xffffffffu]);
-        sumMid += (a + b) * 0.5;
-        if (edgeFaces(e) == 1) {
-          sumBoundary += (edgeKey[e] >> 32) == v ? b : a;
-          boundary++;
-        }
-      }
-      const size_t faces = cornerStart[v + 1] - cornerStart[v];
-      if (boundary == 0 && !edges.empty()) {
-        double n = double(edges.size());
-        p = (sumFaces / double(faces) + 2.0 * sumMid / n + (n - 3.0) * p) / n;
-      } else if (boundary == 2 && faces >= 2) {
-        p = 0.75 * p + 0.125 * sumBoundary;
-      }  // corners (one face) and unused vertices stay
-      out.positions[v] = glm::vec3(p);
+      edgesAt(v, edges);
+      uint32_t owned = 0;
+      for (size_t i = 0; i < edges.size(); i++)
+        owned += edges[i].first >= v && (i == 0 || edges[i - 1].first != edges[i].first);
+      edgesOwned[v] = owned;
     }
   });
+  PolygonMesh out;
+  std::vector<uint32_t> cornerEdge(cornerCount);
+  std::vector<glm::dvec3> edgePoint;
+  const size_t edgeCount = parallelPrefix(
+      vertexCount, threads, [&](size_t v) { return edgesOwned[v]; },
+      [&](size_t total) {
+        edgePoint.resize(total);
+        out.positions.resize(vertexCount + total + faceCount);
+      },
+      [&](size_t v, size_t firstEdge, size_t) {
+        // Per thread: visit makes no parallel call, so no other visit runs on this thread meanwhile.
+        static thread_local std::vector<std::pair<uint32_t, uint32_t>> edges;
+        edgesAt(v, edges);
+        const glm::dvec3 p(mesh.positions[v]);
+        glm::dvec3 sumFaces(0.0), sumMid(0.0), sumBoundary(0.0);
+        uint32_t boundary = 0, valence = 0;
+        size_t e = firstEdge;
+        for (size_t i = 0, next; i < edges.size(); i = next) {
+          const uint32_t b = edges[i].first;
+          for (next = i + 1; next < edges.size() && edges[next].first == b; next++) {
+          }
+          const glm::dvec3 low(mesh.positions[std::min<size_t>(v, b)]), high(mesh.positions[std::max<size_t>(v, b)]);
+          const bool open = next - i == 1;
+          valence++;
+          sumMid += (low + high) * 0.5;
+          if (open) {
+            sumBoundary += glm::dvec3(mesh.positions[b]);
+            boundary++;
+          }
+          if (b < v) continue;  // numbered by b
+          for (size_t k = i; k < next; k++) cornerEdge[edges[k].second] = uint32_t(e);
+          glm::dvec3 point = open ? (low + high) * 0.5 : (low + high) * 0.25;
+          if (next - i == 2)
+            for (size_t k = i; k < next; k++) point += facePoint[faceOf[edges[k].second]] * 0.25;
+          edgePoint[e++] = point;
+        }
+        if (v >= vertexPoints) {
+          out.positions[v] = mesh.positions[v];
+          return;
+        }
+        for (uint32_t k = cornerStart[v]; k < cornerStart[v + 1]; k++) sumFaces += facePoint[faceOf[cornersAt[k]]];
+        const size_t faces = cornerStart[v + 1] - cornerStart[v];
+        glm::dvec3 q = p;
+        if (boundary == 0 && valence > 0) {
+          double n = double(valence);
+          q = (sumFaces / double(faces) + 2.0 * sumMid / n + (n - 3.0) * p) / n;
+        } else if (boundary == 2 && faces >= 2) {
+          q = 0.75 * p + 0.125 * sumBoundary;
+        }  // corners (one face) and unused vertices stay
+        out.positions[v] = glm::vec3(q);
+      });
   std::vector<uint32_t>().swap(faceOf);
   parallelForRanges(edgeCount, threads, [&](size_t begin, size_t end) {
     for (size_t e = begin; e < end; e++) out.positions[vertexCount + e] = glm::vec3(edgePoint[e]);
