@@ -146,10 +146,11 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
     if (options.subdivisionLevels >= 1) {
       const uint32_t threads = uint32_t(std::max(options.threads, 1));
       StageTimer patching(&stats.stages, "patches");
-      patches = buildPatches(leaves, leaves.positions, threads);
+      const Patcher patcher(leaves, options.threads);  // its corners serve the limit too
+      patches = buildPatches(leaves, leaves.positions, patcher, threads);
       patching.stop();
       StageTimer limiting(&stats.stages, "limit");
-      moveToLimit(leaves, leafNormals, options.threads);
+      moveToLimit(leaves, leafNormals, options.threads, &patcher.corners());
       limiting.stop();
       StageTimer chords(&stats.stages, "patch chord errors");
       patchErrors = patchChordErrors(leaves, patches, threads);

@@ -229,7 +229,9 @@ PolygonMesh facesAround(const PolygonMesh& mesh, const std::vector<glm::vec3>& p
 // Moves every vertex of a quad mesh (a Catmull-Clark cage after >= 1 round) to its limit position and
 // sets `normals` to the limit normals (oriented like the faces). Returns false, changing nothing, when
 // some face is not a quad. Vertices are independent: on up to `threads` threads.
-bool moveToLimit(PolygonMesh& mesh, std::vector<glm::vec3>& normals, int threads = 1);
+// `corners`, when given, are the mesh's (a Patcher's, made for the patches first).
+bool moveToLimit(PolygonMesh& mesh, std::vector<glm::vec3>& normals, int threads = 1,
+                 const QuadCorners* corners = nullptr);
 
 // Distance from p to the triangle abc (Ericson, Real-Time Collision Detection, 5.1.5).
 inline double pointTriangleDistance(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
@@ -333,6 +335,9 @@ struct MeshPatches {
   void evaluateAt(uint32_t face, const glm::vec2* st, int count, glm::vec3* out) const;
 };
 MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints, uint32_t threads);
+// The same with the caller's Patcher of `mesh` (whose corners moveToLimit can take after).
+MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints, const Patcher& patcher,
+                         uint32_t threads);
 
 // Chord errors of a face's leaf geometry against its patch, object space: edge[k] the largest distance of
 // the limit curve of edge k from its segment, the same value on both faces of an edge (measured once, by

@@ -14,6 +14,7 @@
 // - corner (one face): stays, normal of its face's corner.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "../common/parallel.h"
 #include "builder.h"
@@ -143,18 +144,25 @@ void moveVertex(const PolygonMesh& mesh, const QuadCorners& q, uint32_t v, std::
 
 }  // namespace
 
-bool moveToLimit(PolygonMesh& mesh, std::vector<glm::vec3>& normals, int threads) {
+bool moveToLimit(PolygonMesh& mesh, std::vector<glm::vec3>& normals, int threads, const QuadCorners* corners) {
   const size_t vertexCount = mesh.positions.size(), faceCount = mesh.faceCount();
   for (size_t f = 0; f < faceCount; f++)
     if (mesh.faceSize(f) != 4) return false;
-  const QuadCorners q(mesh, threads);
-  std::vector<glm::vec3> limit(mesh.positions);
-  normals.assign(vertexCount, glm::vec3(0.0f, 0.0f, 1.0f));
+  std::optional<QuadCorners> own;
+  const QuadCorners& q = corners ? *corners : own.emplace(mesh, threads);
+  FillLaterVector<glm::vec3> limit(vertexCount);
+  normals.resize(vertexCount);
   parallelForRanges(vertexCount, threads, [&](size_t begin, size_t end) {
     std::vector<uint32_t> ring;
-    for (uint32_t v = uint32_t(begin); v < end; v++) moveVertex(mesh, q, v, ring, limit[v], normals[v]);
+    for (uint32_t v = uint32_t(begin); v < end; v++) {
+      limit[v] = mesh.positions[v];
+      normals[v] = glm::vec3(0.0f, 0.0f, 1.0f);
+      moveVertex(mesh, q, v, ring, limit[v], normals[v]);
+    }
   });
-  mesh.positions = std::move(limit);
+  parallelForRanges(vertexCount, threads, [&](size_t begin, size_t end) {
+    std::copy(limit.begin() + long(begin), limit.begin() + long(end), mesh.positions.begin() + long(begin));
+  });
   return true;
 }
 

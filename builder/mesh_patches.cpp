@@ -74,21 +74,37 @@ double pointSegmentDistance(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b) {
   return glm::length(p - (a + t * ab));
 }
 
+// Every face a quad and the control points the mesh's: what the Patcher and the trees need.
+bool patchable(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints) {
+  bool quads = controlPoints.size() == mesh.positions.size();
+  for (size_t f = 0; f < mesh.faceCount() && quads; f++) quads = mesh.faceSize(f) == 4;
+  return quads;
+}
+
+// No face patched yet.
+MeshPatches unpatched(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints) {
+  MeshPatches out;
+  out.info.assign(mesh.faceCount(), VGEO_PATCH_NONE);
+  out.first.assign(mesh.faceCount() + 1, 0);
+  out.neighbours.assign(mesh.faceCount(), {UINT32_MAX, UINT32_MAX, UINT32_MAX, UINT32_MAX});
+  out.points = controlPoints;
+  return out;
+}
+
 }  // namespace
 
 MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints, uint32_t threads) {
+  if (!patchable(mesh, controlPoints)) return unpatched(mesh, controlPoints);
+  return buildPatches(mesh, controlPoints, Patcher(mesh, int(threads)), threads);
+}
+
+MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints, const Patcher& patcher,
+                         uint32_t threads) {
   const size_t faceCount = mesh.faceCount();
-  MeshPatches out;
-  out.info.assign(faceCount, VGEO_PATCH_NONE);
-  out.first.assign(faceCount + 1, 0);
-  out.neighbours.assign(faceCount, {UINT32_MAX, UINT32_MAX, UINT32_MAX, UINT32_MAX});
-  out.points = controlPoints;
-  bool quads = controlPoints.size() == mesh.positions.size();
-  for (size_t f = 0; f < faceCount && quads; f++) quads = mesh.faceSize(f) == 4;
-  if (!quads) return out;
+  MeshPatches out = unpatched(mesh, controlPoints);
+  if (!patchable(mesh, controlPoints)) return out;
   // A block at a time: sizes first (words and extra points a face), trees built on the way; then every
   // face writes its part and frees its tree.
-  const Patcher patcher(mesh, int(threads));
   std::vector<uint32_t> extraFirst(kPatchBlockFaces + 1);
   std::vector<std::unique_ptr<PatchTree>> trees(kPatchBlockFaces);
   std::vector<FacePatch> facePatches(kPatchBlockFaces);  // found while sizing, written after

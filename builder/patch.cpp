@@ -30,12 +30,18 @@ Patcher::Patcher(const PolygonMesh& mesh, int threads) : mesh_(mesh), corners_(m
 
 // How a vertex's neighbourhood looks to the B-spline rules: interior of valence 4, on a boundary with
 // two faces (the boundary is a cubic B-spline there) or with one (a corner, which stays put).
+// An edge v -> n has a reverse where some face has n before v: where one of v's own corners has n
+// before it, so v's corners alone tell (a scan of each neighbour's corners was a cache miss each).
 Patcher::VertexKind Patcher::findKind(uint32_t v) const {
   const QuadCorners& q = corners_;
-  const uint32_t faces = q.offsets()[v + 1] - q.offsets()[v];
+  const uint32_t first = q.offsets()[v], faces = q.offsets()[v + 1] - first;
   uint32_t open = 0;  // outgoing edges without a reverse
-  for (uint32_t i = q.offsets()[v]; i < q.offsets()[v + 1]; i++)
-    if (q.withNext(q.at(q.corners()[i], 1), v) == UINT32_MAX) open++;
+  for (uint32_t i = first; i < first + faces; i++) {
+    const uint32_t n = q.at(q.corners()[i], 1);
+    bool reversed = false;
+    for (uint32_t j = first; j < first + faces && !reversed; j++) reversed = q.at(q.corners()[j], 3) == n;
+    open += !reversed;
+  }
   if (open == 0) return faces == 4 ? VertexKind::Interior : VertexKind::Irregular;
   if (open == 1 && faces == 2) return VertexKind::Boundary;
   if (open == 1 && faces == 1) return VertexKind::Corner;
