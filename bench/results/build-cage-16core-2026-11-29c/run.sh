@@ -1,0 +1,20 @@
+#!/bin/bash
+# The cage path (armadillo --subdiv 1/2/3) and Loop x2 (pre-subdivided): vgeo_head against vgeo_new,
+# alternating, output bytes compared. Run from the repository root with the binaries, their libraries,
+# the peers' prep/bin2obj and armadillo.off under .dev/; results under $OUT.
+set -u
+D=$(pwd)/.dev; W=/tmp/w; mkdir -p $W; export LD_LIBRARY_PATH=$D/lib
+{ nproc; lscpu | grep -E "Model name|Thread|Core|Socket|L2|L3"; uname -r; date -u; } > $OUT/host.txt 2>&1
+run() { # bin input subdiv threads round tag
+  rm -f $W/o.vgeo $W/s.json; sync
+  $D/$1 build $2 -o $W/o.vgeo --subdiv $3 --threads $4 --stats $W/s.json > /dev/null 2>$W/err || { echo "FAIL $*"; cat $W/err; }
+  echo "{\"bin\":\"$1\",\"mesh\":\"$6\",\"subdiv\":$3,\"threads\":$4,\"round\":$5,\"stats\":$(tr -d '\n' < $W/s.json)}" >> $OUT/runs.jsonl
+  cmp -s $W/o.vgeo $W/ref_$6_$3.vgeo 2>/dev/null || { [ -f $W/ref_$6_$3.vgeo ] && echo "DIFF $*" >> $OUT/host.txt || cp $W/o.vgeo $W/ref_$6_$3.vgeo; }
+}
+A=$D/data/armadillo.off
+for r in 1 2 3; do for s in 1 2 3; do for b in vgeo_head vgeo_new; do run $b $A $s 16 $r cage; done; done; done
+for r in 1 2; do for s in 1 2; do for b in vgeo_head vgeo_new; do run $b $A $s 1 $r cage; done; done; done
+echo "cage done $(date -u)" >> $OUT/host.txt
+$D/peers/prep $A $W/a2.bin 2 loop >/dev/null && $D/peers/bin2obj $W/a2.bin $W/a2.obj >/dev/null
+for r in 1 2 3; do for b in vgeo_head vgeo_new; do run $b $W/a2.obj 0 16 $r a2; run $b $W/a2.obj 0 1 $r a2; done; done
+grep -c . $OUT/runs.jsonl; date -u >> $OUT/host.txt
