@@ -134,9 +134,9 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
     auto subdivideStart = std::chrono::steady_clock::now();
     StageTimer subdividing(&stats.stages, "subdivide");
     PolygonMesh leaves = std::move(scene.meshes[m]);
-    std::vector<glm::vec3> leafNormals;    // limit normals of a subdivided cage
-    MeshPatches patches;                   // and its limit-surface patches
-    std::vector<PatchErrors> patchErrors;  // with the chord errors of their faces
+    std::vector<glm::vec3> leafNormals;  // limit normals of a subdivided cage
+    MeshPatches patches;                 // and its limit-surface patches
+    PatchErrorList patchErrors;          // with the chord errors of their faces
     for (int l = 0; l < options.subdivisionLevels; l++) {
       if (options.progress) options.progress(double(m) / double(scene.meshes.size()), "subdividing");
       leaves = subdivideCatmullClark(leaves, options.threads);
@@ -151,11 +151,11 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
       patching.stop();
       StageTimer limiting(&stats.stages, "limit");
       moveToLimit(leaves, leafNormals, options.threads, &patcher.corners());
+      closed[m] = closed[m] && positionsDistinct(leaves.positions, options.threads);
       limiting.stop();
       StageTimer chords(&stats.stages, "patch chord errors");
       patchErrors = patchChordErrors(leaves, patches, threads);
       chords.stop();
-      closed[m] = closed[m] && positionsDistinct(leaves.positions, options.threads);
     }
     const bool trianglesOnly = leaves.faceVertices.size() == 3 * leaves.faceCount();  // before any fan
     StageTimer fanning(&stats.stages, "fans");

@@ -310,10 +310,10 @@ void writePatchWords(const FacePatch& patch, const std::vector<glm::vec3>& posit
 // face one) would otherwise be held beside the whole result, twice its memory.
 constexpr size_t kPatchBlockFaces = 8192;
 struct MeshPatches {
-  std::vector<uint32_t> info;                       // per face: kind | corner << 2 | valence << 8
-  std::vector<uint32_t> first;                      // per face: its first word; faceCount + 1 entries
-  std::vector<std::array<uint32_t, 4>> neighbours;  // per face: across edge k, face << 2 | its edge
-  std::vector<glm::vec3> points;                    // the mesh's control points
+  FillLaterVector<uint32_t> info;                       // per face: kind | corner << 2 | valence << 8
+  FillLaterVector<uint32_t> first;                      // per face: its first word; faceCount + 1 entries
+  FillLaterVector<std::array<uint32_t, 4>> neighbours;  // per face: across edge k, face << 2 | its edge
+  FillLaterVector<glm::vec3> points;                    // the mesh's control points
   // Per block of faces: its faces' words (control-point indices and tree nodes, shaderio.h), from word
   // first[its first face] on, and the phantom and tree points they add, numbered from pointsBefore
   // (the control points and every earlier block's points).
@@ -342,15 +342,17 @@ MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& 
 // Chord errors of a face's leaf geometry against its patch, object space: edge[k] the largest distance of
 // the limit curve of edge k from its segment, the same value on both faces of an edge (measured once, by
 // the face of the lower index); face the largest distance of the surface from the face's two triangles, and
-// at least every edge's. Zero for VGEO_PATCH_NONE faces.
+// at least every edge's. Zero for VGEO_PATCH_NONE faces. Plain data (PatchErrors{} is all zero), so that a
+// face's entry of the list is written once, on the threads.
 struct PatchErrors {
-  float edge[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-  float face = 0.0f;
-  bool patched = false;  // the face has a patch (not VGEO_PATCH_NONE)
+  float edge[4];
+  float face;
+  bool patched;  // the face has a patch (not VGEO_PATCH_NONE)
 };
+using PatchErrorList = FillLaterVector<PatchErrors>;
 // Every face's chord errors (sampled at quarters of the parameters and scaled up 12% for what falls between).
 // `limitMesh` holds the leaf vertices (limit positions).
-std::vector<PatchErrors> patchChordErrors(const PolygonMesh& limitMesh, const MeshPatches& patches, uint32_t threads);
+PatchErrorList patchChordErrors(const PolygonMesh& limitMesh, const MeshPatches& patches, uint32_t threads);
 
 // ---- partition.cpp ----------------------------------------------------------------------------------
 // A graph in compressed rows: node i's neighbours are adjacency[offsets[i] .. offsets[i+1]).
@@ -485,7 +487,7 @@ struct BuildOptions {
   uint32_t groupSize = 16;
   // Chord error of each face against the limit surface (patchChordErrors); a leaf cluster's self error
   // is the largest of its faces'. Empty: leaves have error 0 (the input is the surface).
-  const std::vector<PatchErrors>* leafFaceErrors = nullptr;
+  const PatchErrorList* leafFaceErrors = nullptr;
   // The leaf mesh's wedges; clusters list them only where some vertex has two (a hard edge).
   const ShadingNormals* shading = nullptr;
   // vertexFaces of the leaf mesh when shadingNormals made it (empty otherwise): taken over by the leaf

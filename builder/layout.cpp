@@ -43,7 +43,7 @@ glm::vec4 normalCone(const std::vector<uint32_t>& indices, const std::vector<glm
 PatchBases appendPatchPoints(SectionSink& file, MeshPatches& patches) {
   PatchBases bases{uint32_t(file.count(Section::ControlPoints)), uint32_t(file.count(Section::PatchPoints))};
   file.append(Section::ControlPoints, patches.points);
-  std::vector<glm::vec3>().swap(patches.points);
+  FillLaterVector<glm::vec3>().swap(patches.points);
   for (MeshPatches::Block& block : patches.blocks) {
     file.append(Section::ControlPoints, block.points);
     std::vector<glm::vec3>().swap(block.points);
@@ -60,8 +60,8 @@ PatchBases appendPatchPoints(SectionSink& file, MeshPatches& patches) {
 }
 
 void appendGeometry(SectionSink& file, const Dag& dag, const PolygonMesh& leafMesh, const ShadingNormals& shading,
-                    const MeshPatches& patches, PatchBases bases, const std::vector<PatchErrors>& patchErrors,
-                    bool closed, bool last, int threads) {
+                    const MeshPatches& patches, PatchBases bases, const PatchErrorList& patchErrors, bool closed,
+                    bool last, int threads) {
   Bvh bvh = buildBvh(dag.groups);
   const uint32_t vertexOffset = uint32_t(file.count(Section::Positions)),
                  clusterOffset = uint32_t(file.count(Section::Clusters)),

@@ -26,7 +26,7 @@ PatchBases appendPatchPoints(SectionSink& file, MeshPatches& patches);
 // expectTotal; the caller expects the instances' total first). The clusters' normal cones and spheres
 // are made on up to `threads` threads.
 void appendGeometry(SectionSink& file, const Dag& dag, const PolygonMesh& leafMesh, const ShadingNormals& shading,
-                    const MeshPatches& patches, PatchBases bases, const std::vector<PatchErrors>& patchErrors,
-                    bool closed, bool last, int threads = 1);
+                    const MeshPatches& patches, PatchBases bases, const PatchErrorList& patchErrors, bool closed,
+                    bool last, int threads = 1);
 
 }  // namespace vgeo

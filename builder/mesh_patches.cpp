@@ -82,26 +82,30 @@ bool patchable(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoi
 }
 
 // No face patched yet.
-MeshPatches unpatched(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints) {
+MeshPatches unpatched(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints, uint32_t threads) {
   MeshPatches out;
-  out.info.assign(mesh.faceCount(), VGEO_PATCH_NONE);
-  out.first.assign(mesh.faceCount() + 1, 0);
-  out.neighbours.assign(mesh.faceCount(), {UINT32_MAX, UINT32_MAX, UINT32_MAX, UINT32_MAX});
-  out.points = controlPoints;
+  out.info = parallelFilled(mesh.faceCount(), uint32_t(VGEO_PATCH_NONE), int(threads));
+  out.first = parallelFilled(mesh.faceCount() + 1, 0u, int(threads));
+  out.neighbours = parallelFilled(
+      mesh.faceCount(), std::array<uint32_t, 4>{UINT32_MAX, UINT32_MAX, UINT32_MAX, UINT32_MAX}, int(threads));
+  out.points.resize(controlPoints.size());
+  parallelForRanges(controlPoints.size(), int(threads), [&](size_t begin, size_t end) {
+    std::copy(controlPoints.begin() + long(begin), controlPoints.begin() + long(end), out.points.begin() + long(begin));
+  });
   return out;
 }
 
 }  // namespace
 
 MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints, uint32_t threads) {
-  if (!patchable(mesh, controlPoints)) return unpatched(mesh, controlPoints);
+  if (!patchable(mesh, controlPoints)) return unpatched(mesh, controlPoints, threads);
   return buildPatches(mesh, controlPoints, Patcher(mesh, int(threads)), threads);
 }
 
 MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints, const Patcher& patcher,
                          uint32_t threads) {
   const size_t faceCount = mesh.faceCount();
-  MeshPatches out = unpatched(mesh, controlPoints);
+  MeshPatches out = unpatched(mesh, controlPoints, threads);
   if (!patchable(mesh, controlPoints)) return out;
   // A block at a time: sizes first (words and extra points a face), trees built on the way; then every
   // face writes its part and frees its tree.
@@ -188,10 +192,10 @@ void MeshPatches::evaluateAt(uint32_t face, const glm::vec2* st, int count, glm:
   });
 }
 
-std::vector<PatchErrors> patchChordErrors(const PolygonMesh& limitMesh, const MeshPatches& patches, uint32_t threads) {
+PatchErrorList patchChordErrors(const PolygonMesh& limitMesh, const MeshPatches& patches, uint32_t threads) {
   const size_t faceCount = limitMesh.faceCount();
-  std::vector<PatchErrors> own(faceCount), merged(faceCount);
-  if (patches.info.size() != faceCount) return merged;
+  if (patches.info.size() != faceCount) return parallelFilled(faceCount, PatchErrors{}, int(threads));
+  PatchErrorList own(faceCount), merged(faceCount);  // every face's entry written below
   const std::vector<glm::vec3>& x = limitMesh.positions;
   // Quarter parameters: the bulge of a bicubic between its corners peaks near the middle; 12% more
   // covers what falls between the samples (tests/test_patch.cpp checks against 16ths). An edge is
@@ -199,10 +203,10 @@ std::vector<PatchErrors> patchChordErrors(const PolygonMesh& limitMesh, const Me
   constexpr float kSlack = 1.12f;
   static const float kCorner[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   parallelFor(faceCount, int(threads), [&](size_t f) {
+    PatchErrors& e = own[f] = PatchErrors{};
     if (!patches.patched(f)) return;
-    own[f].patched = true;
+    e.patched = true;
     const uint32_t* v = limitMesh.face(f);
-    PatchErrors& e = own[f];
     // The samples: quarters along each edge this face measures, then the 3 x 3 inner quarters.
     glm::vec2 st[21];
     int count = 0, edgeFirst[4];
@@ -243,8 +247,8 @@ std::vector<PatchErrors> patchChordErrors(const PolygonMesh& limitMesh, const Me
   // One value an edge, the measuring face's (0 next to a flat face: the edge stays straight there); a
   // face's error covers its edges'.
   parallelFor(faceCount, int(threads), [&](size_t f) {
+    PatchErrors& out = merged[f] = PatchErrors{};
     if (!own[f].patched) return;
-    PatchErrors& out = merged[f];
     out.patched = true;
     out.face = own[f].face;
     for (int k = 0; k < 4; k++) {

@@ -29,7 +29,7 @@ PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh, int threads, size_t v
   // Each vertex's corners (in corner order) and each corner's face.
   FillLaterVector<uint32_t> cornerStart, cornersAt;
   cornersByVertex(mesh.faceVertices, vertexCount, threads, cornerStart, cornersAt);
-  std::vector<uint32_t> faceOf(cornerCount);
+  FillLaterVector<uint32_t> faceOf(cornerCount);
   parallelFor(faceCount, threads, [&](size_t f) {
     for (uint32_t c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; c++) faceOf[c] = uint32_t(f);
   });
@@ -49,7 +49,7 @@ PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh, int threads, size_t v
   };
 
   // Face points.
-  std::vector<glm::dvec3> facePoint(faceCount);
+  FillLaterVector<glm::dvec3> facePoint(faceCount);
   parallelFor(faceCount, threads, [&](size_t f) {
     glm::dvec3 sum(0.0);
     for (uint32_t i = 0; i < mesh.faceSize(f); i++) sum += glm::dvec3(mesh.positions[mesh.face(f)[i]]);
@@ -61,7 +61,7 @@ PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh, int threads, size_t v
   // its own vertex point. Interior: (Q + 2R + (n-3) V) / n with Q the mean of the face points, R the
   // mean of the edge midpoints, n the valence. Boundary: 3/4 V + 1/8 (A + B) over the two boundary
   // neighbours. Its faces are added in face order, its edges in edge order.
-  std::vector<uint32_t> edgesOwned(vertexCount);
+  FillLaterVector<uint32_t> edgesOwned(vertexCount);
   parallelForRanges(vertexCount, threads, [&](size_t begin, size_t end) {
     std::vector<std::pair<uint32_t, uint32_t>> edges;
     for (size_t v = begin; v < end; v++) {
@@ -73,8 +73,8 @@ PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh, int threads, size_t v
     }
   });
   PolygonMesh out;
-  std::vector<uint32_t> cornerEdge(cornerCount);
-  std::vector<glm::dvec3> edgePoint;
+  FillLaterVector<uint32_t> cornerEdge(cornerCount);
+  FillLaterVector<glm::dvec3> edgePoint;
   const size_t edgeCount = parallelPrefix(
       vertexCount, threads, [&](size_t v) { return edgesOwned[v]; },
       [&](size_t total) {
@@ -123,7 +123,7 @@ PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh, int threads, size_t v
         }  // corners (one face) and unused vertices stay
         out.positions[v] = glm::vec3(q);
       });
-  std::vector<uint32_t>().swap(faceOf);
+  FillLaterVector<uint32_t>().swap(faceOf);
   parallelForRanges(edgeCount, threads, [&](size_t begin, size_t end) {
     for (size_t e = begin; e < end; e++) out.positions[vertexCount + e] = glm::vec3(edgePoint[e]);
   });

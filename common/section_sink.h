@@ -32,8 +32,8 @@ class SectionSink {
     n += count;
   }
   // Appends a whole array; its bytes are a whole number of the section's elements.
-  template <class T>
-  void append(Section s, const std::vector<T>& v) {
+  template <class T, class Allocator>
+  void append(Section s, const std::vector<T, Allocator>& v) {
     append(s, v.data(), v.size() * sizeof(T) / sectionElementSize(s));
   }
   // Elements appended to section s so far (the index the next one gets).

@@ -273,7 +273,7 @@ TEST(Patch, ChordErrorsBoundTheLeafTriangles) {
     std::vector<glm::vec3> normals;
     ASSERT_TRUE(moveToLimit(limit, normals));
     const MeshPatches patches = buildPatches(coarse, coarse.positions, 2);
-    std::vector<PatchErrors> errors = patchChordErrors(limit, patches, 2);
+    PatchErrorList errors = patchChordErrors(limit, patches, 2);
     ASSERT_EQ(errors.size(), limit.faceCount());
     size_t positive = 0;
     double worstRatio = 0.0;
