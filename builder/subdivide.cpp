@@ -74,13 +74,9 @@ PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh, int threads, size_t v
   });
   PolygonMesh out;
   FillLaterVector<uint32_t> cornerEdge(cornerCount);
-  FillLaterVector<glm::dvec3> edgePoint;
   const size_t edgeCount = parallelPrefix(
       vertexCount, threads, [&](size_t v) { return edgesOwned[v]; },
-      [&](size_t total) {
-        edgePoint.resize(total);
-        out.positions.resize(vertexCount + total + faceCount);
-      },
+      [&](size_t total) { out.positions.resize(vertexCount + total + faceCount); },
       [&](size_t v, size_t firstEdge, size_t) {
         // Per thread: visit makes no parallel call, so no other visit runs on this thread meanwhile.
         static thread_local std::vector<std::pair<uint32_t, uint32_t>> edges;
@@ -106,7 +102,7 @@ PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh, int threads, size_t v
           glm::dvec3 point = open ? (low + high) * 0.5 : (low + high) * 0.25;
           if (next - i == 2)
             for (size_t k = i; k < next; k++) point += facePoint[faceOf[edges[k].second]] * 0.25;
-          edgePoint[e++] = point;
+          out.positions[vertexCount + e++] = glm::vec3(point);
         }
         if (v >= vertexPoints) {
           out.positions[v] = mesh.positions[v];
@@ -124,9 +120,6 @@ PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh, int threads, size_t v
         out.positions[v] = glm::vec3(q);
       });
   FillLaterVector<uint32_t>().swap(faceOf);
-  parallelForRanges(edgeCount, threads, [&](size_t begin, size_t end) {
-    for (size_t e = begin; e < end; e++) out.positions[vertexCount + e] = glm::vec3(edgePoint[e]);
-  });
   parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {
     for (size_t f = begin; f < end; f++) out.positions[vertexCount + edgeCount + f] = glm::vec3(facePoint[f]);
   });
