@@ -1,14 +1,7 @@
 #!/bin/bash
 # The cage path (armadillo --subdiv 1/2/3) and Loop x2/x3 (pre-subdivided): vgeo_head against vgeo_new.
 set -u
-D=$(pwd)/.dev; W=/tmp/w; mkdir -p $W; export LD_LIBRARY_PATH=$D/lib
-{ nproc; lscpu | grep -E "Model name|Thread|Core|Socket|L2|L3"; uname -r; date -u; } > $OUT/host.txt 2>&1
-run() { # bin input subdiv threads round tag
-  rm -f $W/o.vgeo $W/s.json; sync
-  $D/$1 build $2 -o $W/o.vgeo --subdiv $3 --threads $4 --stats $W/s.json > /dev/null 2>$W/err || { echo "FAIL $*"; cat $W/err; }
-  echo "{\"bin\":\"$1\",\"mesh\":\"$6\",\"subdiv\":$3,\"threads\":$4,\"round\":$5,\"stats\":$(tr -d '\n' < $W/s.json)}" >> $OUT/runs.jsonl
-  cmp -s $W/o.vgeo $W/ref_$6_$3.vgeo 2>/dev/null || { [ -f $W/ref_$6_$3.vgeo ] && echo "DIFF $*" >> $OUT/host.txt || cp $W/o.vgeo $W/ref_$6_$3.vgeo; }
-}
+. bench/device_build_runs.sh  # D, W, host.txt and run()
 peer() { sync; echo "{\"bin\":\"$1\",\"mesh\":\"$2\",\"threads\":$3,\"round\":$4,\"peer\":$($D/peers/$1 $W/$2.bin $3 1 | tail -1)}" >> $OUT/runs.jsonl; }
 A=$D/data/armadillo.off
 for r in 1 2 3; do for s in 1 2 3; do for b in vgeo_head vgeo_new; do run $b $A $s 16 $r cage; done; done; done
