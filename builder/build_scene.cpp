@@ -134,9 +134,9 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
     auto subdivideStart = std::chrono::steady_clock::now();
     StageTimer subdividing(&stats.stages, "subdivide");
     PolygonMesh leaves = std::move(scene.meshes[m]);
-    std::vector<glm::vec3> leafNormals;  // limit normals of a subdivided cage
-    MeshPatches patches;                 // and its limit-surface patches
-    PatchErrorList patchErrors;          // with the chord errors of their faces
+    FillLaterVector<glm::vec3> leafNormals;  // limit normals of a subdivided cage
+    MeshPatches patches;                     // and its limit-surface patches
+    PatchErrorList patchErrors;              // with the chord errors of their faces
     for (int l = 0; l < options.subdivisionLevels; l++) {
       if (options.progress) options.progress(double(m) / double(scene.meshes.size()), "subdividing");
       leaves = subdivideCatmullClark(leaves, options.threads);
@@ -183,7 +183,7 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
     const ShadingNormals shading =
         shadingNormals(leaves, leafNormals, options.creaseAngleDegrees, options.threads, &leafFaces);
     normals.stop();
-    std::vector<glm::vec3>().swap(leafNormals);
+    FillLaterVector<glm::vec3>().swap(leafNormals);
     bo.shading = &shading;
     bo.leafFaces = &leafFaces;
     const std::string where = scene.meshes.size() > 1 ? path + " (mesh '" + scene.meshNames[m] + "')" : path;

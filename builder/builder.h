@@ -180,7 +180,7 @@ struct ShadingNormals {
 // wherever two faces meet at more than creaseAngleDegrees (180: smooth everywhere). The same on any
 // number of threads. Where the sums of faces' normals at each vertex run on threads, they read
 // vertexFaces(mesh), made into `leafFaces` (when given) for the caller to pass on to buildDag.
-ShadingNormals shadingNormals(const PolygonMesh& mesh, const std::vector<glm::vec3>& vertexNormals,
+ShadingNormals shadingNormals(const PolygonMesh& mesh, std::span<const glm::vec3> vertexNormals,
                               float creaseAngleDegrees, int threads, VertexFaces* leafFaces = nullptr);
 
 // ---- subdivide.cpp ----------------------------------------------------------------------------------
@@ -196,6 +196,8 @@ uint64_t subdividedFaceCount(const PolygonMesh& mesh, int levels);
 PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh, int threads = 1, size_t vertexPoints = SIZE_MAX);
 
 // ---- quad_corners.cpp -------------------------------------------------------------------------------
+// Whether every face has four corners, on up to `threads` threads for a large mesh.
+bool allQuads(const PolygonMesh& mesh, int threads = 1);
 // Each vertex's corners (of any polygon mesh) in corner order, corners[start[v] .. start[v + 1]): a
 // counting sort, on up to `threads` threads for a large mesh.
 void cornersByVertex(std::span<const uint32_t> faceVertices, size_t vertexCount, int threads,
@@ -230,11 +232,12 @@ PolygonMesh facesAround(const PolygonMesh& mesh, const std::vector<glm::vec3>& p
 // sets `normals` to the limit normals (oriented like the faces). Returns false, changing nothing, when
 // some face is not a quad. Vertices are independent: on up to `threads` threads.
 // `corners`, when given, are the mesh's (a Patcher's, made for the patches first).
-bool moveToLimit(PolygonMesh& mesh, std::vector<glm::vec3>& normals, int threads = 1,
+bool moveToLimit(PolygonMesh& mesh, FillLaterVector<glm::vec3>& normals, int threads = 1,
                  const QuadCorners* corners = nullptr);
 
-// Distance from p to the triangle abc (Ericson, Real-Time Collision Detection, 5.1.5).
-inline double pointTriangleDistance(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
+// Distance from p to the triangle abc (Ericson, Real-Time Collision Detection, 5.1.5). Always inlined:
+// the chord errors call it for every sample of every face, in their innermost loop.
+[[gnu::always_inline]] inline double pointTriangleDistance(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
   glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
   double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
   if (d1 <= 0 && d2 <= 0) return glm::length(ap);
@@ -318,8 +321,8 @@ struct MeshPatches {
   // first[its first face] on, and the phantom and tree points they add, numbered from pointsBefore
   // (the control points and every earlier block's points).
   struct Block {
-    std::vector<uint32_t> words;
-    std::vector<glm::vec3> points;
+    FillLaterVector<uint32_t> words;
+    FillLaterVector<glm::vec3> points;
     uint32_t pointsBefore = 0;
   };
   std::vector<Block> blocks;

@@ -46,11 +46,11 @@ PatchBases appendPatchPoints(SectionSink& file, MeshPatches& patches) {
   FillLaterVector<glm::vec3>().swap(patches.points);
   for (MeshPatches::Block& block : patches.blocks) {
     file.append(Section::ControlPoints, block.points);
-    std::vector<glm::vec3>().swap(block.points);
+    FillLaterVector<glm::vec3>().swap(block.points);
   }
   for (MeshPatches::Block& block : patches.blocks) {
     file.append(Section::PatchPoints, block.words);
-    std::vector<uint32_t>().swap(block.words);
+    FillLaterVector<uint32_t>().swap(block.words);
   }
   // The blocks came from the heaps of the threads that made them, where freed memory stays with the
   // process (unlike a large array's own mapping): handed back now, before the DAG needs its own. A mesh

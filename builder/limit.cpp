@@ -80,25 +80,30 @@ void moveVertex(const PolygonMesh& mesh, const QuadCorners& q, uint32_t v, std::
                 glm::vec3& limitPoint, glm::vec3& limitNormal) {
   // Around a vertex, a corner's successor is the corner whose next vertex is this corner's previous;
   // walks start at a corner without predecessor where there is one (a boundary vertex), so they see
-  // every face.
-  uint32_t firstCorner = UINT32_MAX;
-  for (uint32_t i = q.offsets()[v]; i < q.offsets()[v + 1]; i++) {
-    uint32_t c = q.corners()[i];
-    if (firstCorner == UINT32_MAX || q.withPrev(v, q.at(c, 1)) == UINT32_MAX) firstCorner = c;
-  }
-  if (firstCorner == UINT32_MAX) return;  // unused vertex
-  // The corners around v in rotation order; closed when the walk returns to the start.
-  ring.clear();
-  uint32_t c = firstCorner;
-  bool closed = false;
-  while (ring.size() < kMostRing) {
-    ring.push_back(c);
-    c = q.withNext(v, q.at(c, 3));
-    if (c == UINT32_MAX) break;
-    if (c == ring.front()) {
-      closed = true;
-      break;
+  // every face, else at v's first corner.
+  const uint32_t cornerCount = q.offsets()[v + 1] - q.offsets()[v];
+  if (cornerCount == 0) return;  // unused vertex
+  // The corners around v in rotation order from `first`; true when the walk returns to it.
+  auto walk = [&](uint32_t first) {
+    ring.clear();
+    for (uint32_t c = first; ring.size() < kMostRing;) {
+      ring.push_back(c);
+      c = q.withNext(v, q.at(c, 3));
+      if (c == UINT32_MAX) return false;
+      if (c == ring.front()) return true;
     }
+    return false;
+  };
+  // A closed walk through all of v's corners gives each a predecessor: then none is without one, and
+  // the walk from the first corner is the one wanted.
+  bool closed = walk(q.corners()[q.offsets()[v]]);
+  if (!closed || ring.size() != cornerCount) {
+    uint32_t firstCorner = UINT32_MAX;
+    for (uint32_t i = q.offsets()[v]; i < q.offsets()[v + 1]; i++) {
+      const uint32_t c = q.corners()[i];
+      if (firstCorner == UINT32_MAX || q.withPrev(v, q.at(c, 1)) == UINT32_MAX) firstCorner = c;
+    }
+    closed = walk(firstCorner);
   }
   glm::dvec3 p(mesh.positions[v]), faceNormal(0.0);
   for (uint32_t r : ring) {
@@ -144,22 +149,24 @@ void moveVertex(const PolygonMesh& mesh, const QuadCorners& q, uint32_t v, std::
 
 }  // namespace
 
-bool moveToLimit(PolygonMesh& mesh, std::vector<glm::vec3>& normals, int threads, const QuadCorners* corners) {
-  const size_t vertexCount = mesh.positions.size(), faceCount = mesh.faceCount();
-  for (size_t f = 0; f < faceCount; f++)
-    if (mesh.faceSize(f) != 4) return false;
+bool moveToLimit(PolygonMesh& mesh, FillLaterVector<glm::vec3>& normals, int threads, const QuadCorners* corners) {
+  const size_t vertexCount = mesh.positions.size();
+  if (!allQuads(mesh, threads)) return false;
   std::optional<QuadCorners> own;
   const QuadCorners& q = corners ? *corners : own.emplace(mesh, threads);
   FillLaterVector<glm::vec3> limit(vertexCount);
   normals.resize(vertexCount);
-  parallelForRanges(vertexCount, threads, [&](size_t begin, size_t end) {
-    std::vector<uint32_t> ring;
-    for (uint32_t v = uint32_t(begin); v < end; v++) {
-      limit[v] = mesh.positions[v];
-      normals[v] = glm::vec3(0.0f, 0.0f, 1.0f);
-      moveVertex(mesh, q, v, ring, limit[v], normals[v]);
-    }
-  });
+  parallelForRanges(
+      vertexCount, threads,
+      [&](size_t begin, size_t end) {
+        std::vector<uint32_t> ring;
+        for (uint32_t v = uint32_t(begin); v < end; v++) {
+          limit[v] = mesh.positions[v];
+          normals[v] = glm::vec3(0.0f, 0.0f, 1.0f);
+          moveVertex(mesh, q, v, ring, limit[v], normals[v]);
+        }
+      },
+      kHeavyRange);
   parallelForRanges(vertexCount, threads, [&](size_t begin, size_t end) {
     std::copy(limit.begin() + long(begin), limit.begin() + long(end), mesh.positions.begin() + long(begin));
   });

@@ -11,7 +11,11 @@
 //   corners' limit points. Two extraordinary corners (--subdiv 1 of a triangle mesh) take one level, an
 //   extraordinary vertex on a boundary all six.
 #include <algorithm>
+#include <cstddef>
 #include <memory>
+#include <new>
+#include <type_traits>
+#include <utility>
 
 #include "../common/parallel.h"
 #include "builder.h"
@@ -53,7 +57,7 @@ struct PatchTree {
         split(facesAround(sub, sub.positions, patcher.corners(), sub.face(child), 4, child), depth + 1, at);
       } else {
         if (limit.faceCount() == 0) {
-          std::vector<glm::vec3> normals;
+          FillLaterVector<glm::vec3> normals;
           limit = sub;
           moveToLimit(limit, normals);
         }
@@ -75,19 +79,17 @@ double pointSegmentDistance(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b) {
 }
 
 // Every face a quad and the control points the mesh's: what the Patcher and the trees need.
-bool patchable(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints) {
-  bool quads = controlPoints.size() == mesh.positions.size();
-  for (size_t f = 0; f < mesh.faceCount() && quads; f++) quads = mesh.faceSize(f) == 4;
-  return quads;
+bool patchable(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints, uint32_t threads) {
+  return controlPoints.size() == mesh.positions.size() && allQuads(mesh, int(threads));
 }
 
-// No face patched yet.
-MeshPatches unpatched(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints, uint32_t threads) {
+// The control points copied; the per-face arrays sized, not filled.
+MeshPatches sized(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints, uint32_t threads) {
   MeshPatches out;
-  out.info = parallelFilled(mesh.faceCount(), uint32_t(VGEO_PATCH_NONE), int(threads));
-  out.first = parallelFilled(mesh.faceCount() + 1, 0u, int(threads));
-  out.neighbours = parallelFilled(
-      mesh.faceCount(), std::array<uint32_t, 4>{UINT32_MAX, UINT32_MAX, UINT32_MAX, UINT32_MAX}, int(threads));
+  out.info.resize(mesh.faceCount());
+  out.first.resize(mesh.faceCount() + 1);
+  out.first[0] = 0;
+  out.neighbours.resize(mesh.faceCount());
   out.points.resize(controlPoints.size());
   parallelForRanges(controlPoints.size(), int(threads), [&](size_t begin, size_t end) {
     std::copy(controlPoints.begin() + long(begin), controlPoints.begin() + long(end), out.points.begin() + long(begin));
@@ -95,35 +97,56 @@ MeshPatches unpatched(const PolygonMesh& mesh, const std::vector<glm::vec3>& con
   return out;
 }
 
+// No face patched.
+MeshPatches unpatched(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints, uint32_t threads) {
+  MeshPatches out = sized(mesh, controlPoints, threads);
+  parallelForRanges(mesh.faceCount(), int(threads), [&](size_t begin, size_t end) {
+    for (size_t f = begin; f < end; f++) {
+      out.info[f] = VGEO_PATCH_NONE;
+      out.first[f + 1] = 0;
+      out.neighbours[f] = {UINT32_MAX, UINT32_MAX, UINT32_MAX, UINT32_MAX};
+    }
+  });
+  return out;
+}
+
 }  // namespace
 
 MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints, uint32_t threads) {
-  if (!patchable(mesh, controlPoints)) return unpatched(mesh, controlPoints, threads);
+  if (!patchable(mesh, controlPoints, threads)) return unpatched(mesh, controlPoints, threads);
   return buildPatches(mesh, controlPoints, Patcher(mesh, int(threads)), threads);
 }
 
 MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints, const Patcher& patcher,
                          uint32_t threads) {
+  if (!patchable(mesh, controlPoints, threads)) return unpatched(mesh, controlPoints, threads);
   const size_t faceCount = mesh.faceCount();
-  MeshPatches out = unpatched(mesh, controlPoints, threads);
-  if (!patchable(mesh, controlPoints)) return out;
-  // A block at a time: sizes first (words and extra points a face), trees built on the way; then every
-  // face writes its part and frees its tree.
-  std::vector<uint32_t> extraFirst(kPatchBlockFaces + 1);
-  std::vector<std::unique_ptr<PatchTree>> trees(kPatchBlockFaces);
-  std::vector<FacePatch> facePatches(kPatchBlockFaces);  // found while sizing, written after
+  MeshPatches out = sized(mesh, controlPoints, threads);  // every face's entries written below
+  // A batch of blocks at a time: sizes first (words and extra points a face), trees built on the way;
+  // then each block is sized and every face writes its part and frees its tree. A batch is one block
+  // after a batch that made trees (their memory is held until written), else a block for every two
+  // threads: one block's two loops are too short for 16 threads, whose start and finish then cost as
+  // much as the work.
+  const size_t mostBlocks = std::clamp<size_t>(threads / 2, 1, 8);
+  std::vector<uint32_t> extraBefore(mostBlocks * kPatchBlockFaces);  // in the face's block
+  std::vector<std::unique_ptr<PatchTree>> trees(mostBlocks * kPatchBlockFaces);
+  // The batch's patches, found while sizing and written after: room that each face's own thread fills
+  // (a vector would zero its 2 MB a block on this thread first).
+  static_assert(std::is_trivially_destructible_v<FacePatch>);
+  const std::unique_ptr<std::byte[]> patchRoom(new std::byte[mostBlocks * kPatchBlockFaces * sizeof(FacePatch)]);
+  FacePatch* const facePatches = reinterpret_cast<FacePatch*>(patchRoom.get());
   uint32_t pointsBefore = uint32_t(controlPoints.size());
-  for (size_t blockFirst = 0; blockFirst < faceCount; blockFirst += kPatchBlockFaces) {
-    const size_t blockFaces = std::min(kPatchBlockFaces, faceCount - blockFirst);
-    extraFirst[0] = 0;
-    parallelFor(blockFaces, int(threads), [&](size_t i) {
-      const size_t f = blockFirst + i;
-      const FacePatch& patch = facePatches[i] = patcher.patch(uint32_t(f));
+  size_t batchBlocks = 1;
+  for (size_t batchFirst = 0; batchFirst < faceCount;) {
+    const size_t batchFaces = std::min(batchBlocks * kPatchBlockFaces, faceCount - batchFirst);
+    parallelFor(batchFaces, int(threads), [&](size_t i) {
+      const size_t f = batchFirst + i;
+      const FacePatch& patch = *new (&facePatches[i]) FacePatch(patcher.patch(uint32_t(f)));
       for (int k = 0; k < 4; k++) out.neighbours[f][size_t(k)] = patch.neighbours[k];
       if (patch.kind != VGEO_PATCH_NONE) {
         out.info[f] = patch.info();
         out.first[f + 1] = patch.pointCount;
-        extraFirst[i + 1] = patch.phantomCount;
+        extraBefore[i] = patch.phantomCount;
         return;
       }
       trees[i] = std::make_unique<PatchTree>();
@@ -131,37 +154,57 @@ MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& 
       trees[i]->split(facesAround(mesh, controlPoints, patcher.corners(), mesh.face(f), 4, uint32_t(f)), 0, 0);
       out.info[f] = VGEO_PATCH_TREE;
       out.first[f + 1] = uint32_t(trees[i]->words.size());
-      extraFirst[i + 1] = uint32_t(trees[i]->points.size());
+      extraBefore[i] = uint32_t(trees[i]->points.size());
     });
-    for (size_t i = 0; i < blockFaces; i++) {
-      out.first[blockFirst + i + 1] += out.first[blockFirst + i];
-      extraFirst[i + 1] += extraFirst[i];
+    bool madeTrees = false;
+    const size_t blocksBefore = out.blocks.size();
+    std::vector<uint32_t> extraCount;
+    for (size_t blockFirst = 0; blockFirst < batchFaces; blockFirst += kPatchBlockFaces) {
+      const size_t blockFaces = std::min(kPatchBlockFaces, batchFaces - blockFirst);
+      uint32_t extra = 0;
+      for (size_t i = blockFirst; i < blockFirst + blockFaces; i++) {
+        out.first[batchFirst + i + 1] += out.first[batchFirst + i];
+        madeTrees = madeTrees || trees[i];
+        extra += std::exchange(extraBefore[i], extra);
+      }
+      out.blocks.emplace_back().pointsBefore = pointsBefore;
+      extraCount.push_back(extra);
+      pointsBefore += extra;
     }
-    MeshPatches::Block& block = out.blocks.emplace_back();
-    block.words.resize(out.first[blockFirst + blockFaces] - out.first[blockFirst]);
-    block.points.resize(extraFirst[blockFaces]);
-    block.pointsBefore = pointsBefore;
-    parallelFor(blockFaces, int(threads), [&](size_t i) {
-      const size_t f = blockFirst + i;
-      uint32_t* words = block.words.data() + (out.first[f] - out.first[blockFirst]);
-      const uint32_t extra = pointsBefore + extraFirst[i];
+    // The blocks' arrays allocated on the threads: on huge pages, the first touch of an allocation (the
+    // allocator's own header) zeroes its 2 MB, which on one thread held the other fifteen waiting.
+    parallelFor(extraCount.size(), int(threads), [&](size_t b) {
+      const size_t f0 = batchFirst + b * kPatchBlockFaces,
+                   f1 = std::min(f0 + kPatchBlockFaces, batchFirst + batchFaces);
+      MeshPatches::Block& block = out.blocks[blocksBefore + b];
+      block.words.resize(out.first[f1] - out.first[f0]);
+      block.points.resize(extraCount[b]);
+    });
+    parallelFor(batchFaces, int(threads), [&](size_t i) {
+      const size_t f = batchFirst + i;
+      MeshPatches::Block& block = out.blocks[f / kPatchBlockFaces];
+      const size_t blockFirstFace = f / kPatchBlockFaces * kPatchBlockFaces;
+      uint32_t* words = block.words.data() + (out.first[f] - out.first[blockFirstFace]);
+      const uint32_t extraFirst = extraBefore[i];
       if (trees[i]) {
         const PatchTree& tree = *trees[i];
         std::copy(tree.words.begin(), tree.words.end(), words);
-        std::copy(tree.points.begin(), tree.points.end(), block.points.begin() + extraFirst[i]);
+        std::copy(tree.points.begin(), tree.points.end(), block.points.begin() + extraFirst);
+        const uint32_t extra = block.pointsBefore + extraFirst;
         shaderio::forEachPatchPoint(out.info[f], words, tree.words.size(), [&](size_t k) { words[k] += extra; });
         trees[i].reset();
         return;
       }
-      uint32_t next = extraFirst[i];
+      uint32_t next = extraFirst;
       writePatchWords(
           facePatches[i], controlPoints, words, [](uint32_t v) { return v; },
           [&](glm::vec3 p) {
             block.points[next] = p;
-            return pointsBefore + next++;
+            return block.pointsBefore + next++;
           });
     });
-    pointsBefore += extraFirst[blockFaces];
+    batchFirst += batchFaces;
+    batchBlocks = madeTrees ? 1 : mostBlocks;
   }
   return out;
 }

@@ -17,15 +17,17 @@
 namespace vgeo {
 
 Patcher::Patcher(const PolygonMesh& mesh, int threads) : mesh_(mesh), corners_(mesh, threads) {
-  quads_ = true;
-  for (size_t f = 0; f < mesh.faceCount(); f++) quads_ = quads_ && mesh.faceSize(f) == 4;
+  quads_ = allQuads(mesh, threads);
   // A local neighbourhood (mesh_patches.cpp's trees) asks for a few of its vertices: found as asked.
   constexpr size_t kKindsKeptFrom = 4096;
   if (!quads_ || mesh.faceCount() < kKindsKeptFrom) return;
   kinds_.resize(mesh.positions.size());
-  parallelForRanges(kinds_.size(), threads, [&](size_t begin, size_t end) {
-    for (size_t v = begin; v < end; v++) kinds_[v] = findKind(uint32_t(v));
-  });
+  parallelForRanges(
+      kinds_.size(), threads,
+      [&](size_t begin, size_t end) {
+        for (size_t v = begin; v < end; v++) kinds_[v] = findKind(uint32_t(v));
+      },
+      kHeavyRange);
 }
 
 // How a vertex's neighbourhood looks to the B-spline rules: interior of valence 4, on a boundary with
@@ -89,9 +91,10 @@ FacePatch Patcher::patch(uint32_t face) const {
   if (!quads_) return patch;
   const QuadCorners& q = corners_;
   const uint32_t* v = mesh_.face(face);
-  bool open[4];  // edge k (v[k] -> v[k+1]) on a boundary
+  bool open[4];        // edge k (v[k] -> v[k+1]) on a boundary
+  uint32_t across[4];  // else the corner of v[k+1] across it, in the face beyond
   for (uint32_t k = 0; k < 4; k++) {
-    uint32_t c = q.withNext(v[(k + 1) % 4], v[k]);
+    const uint32_t c = across[k] = q.withNext(v[(k + 1) % 4], v[k]);
     if (c != UINT32_MAX) patch.neighbours[k] = (c / 4) << 2 | (c % 4);
     open[k] = c == UINT32_MAX;
   }
@@ -133,9 +136,8 @@ FacePatch Patcher::patch(uint32_t face) const {
       mirror(farSlot, slot(kFaceCells[(k + 1) % 4]), slot(kFaceCells[(k + 2) % 4]));
       continue;
     }
-    uint32_t c = q.withNext(v[(k + 1) % 4], v[k]);
-    nearV[k] = q.at(c, 2);
-    farV[k] = q.at(c, 3);
+    nearV[k] = q.at(across[k], 2);
+    farV[k] = q.at(across[k], 3);
     patch.points[nearSlot] = nearV[k];
     patch.points[farSlot] = farV[k];
   }

@@ -37,6 +37,19 @@ void cornersByVertex(std::span<const uint32_t> faceVertices, size_t vertexCount,
   for (size_t c = 0; c < faceVertices.size(); c++) corners[next[faceVertices[c]]++] = uint32_t(c);
 }
 
+bool allQuads(const PolygonMesh& mesh, int threads) {
+  // Every face a quad exactly when face f starts at corner 4 f, for every f and the end.
+  std::vector<uint8_t> rangeQuads(parallelRangeCount(mesh.faceStart.size()), 1);
+  parallelForRanges(mesh.faceStart.size(), threads, [&](size_t begin, size_t end) {
+    for (size_t f = begin; f < end; f++)
+      if (mesh.faceStart[f] != 4 * f) {
+        rangeQuads[begin / kParallelRange] = 0;
+        return;
+      }
+  });
+  return std::find(rangeQuads.begin(), rangeQuads.end(), 0) == rangeQuads.end();
+}
+
 QuadCorners::QuadCorners(const PolygonMesh& mesh, int threads) : vertices_(mesh.faceVertices) {
   cornersByVertex(vertices_, mesh.positions.size(), threads, offsets_, corners_);
   // The corners' next vertices beside them: a scan for withNext reads a few neighbouring words instead

@@ -78,7 +78,7 @@ void normalizeAll(FillLaterVector<glm::vec3>& normals, int threads) {
 
 }  // namespace
 
-ShadingNormals shadingNormals(const PolygonMesh& mesh, const std::vector<glm::vec3>& vertexNormals,
+ShadingNormals shadingNormals(const PolygonMesh& mesh, std::span<const glm::vec3> vertexNormals,
                               float creaseAngleDegrees, int threads, VertexFaces* leafFaces) {
   ShadingNormals out;
   const size_t cornerCount = mesh.faceVertices.size(), vertexCount = mesh.positions.size();

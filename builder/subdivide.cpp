@@ -62,16 +62,19 @@ PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh, int threads, size_t v
   // mean of the edge midpoints, n the valence. Boundary: 3/4 V + 1/8 (A + B) over the two boundary
   // neighbours. Its faces are added in face order, its edges in edge order.
   FillLaterVector<uint32_t> edgesOwned(vertexCount);
-  parallelForRanges(vertexCount, threads, [&](size_t begin, size_t end) {
-    std::vector<std::pair<uint32_t, uint32_t>> edges;
-    for (size_t v = begin; v < end; v++) {
-      edgesAt(v, edges);
-      uint32_t owned = 0;
-      for (size_t i = 0; i < edges.size(); i++)
-        owned += edges[i].first >= v && (i == 0 || edges[i - 1].first != edges[i].first);
-      edgesOwned[v] = owned;
-    }
-  });
+  parallelForRanges(
+      vertexCount, threads,
+      [&](size_t begin, size_t end) {
+        std::vector<std::pair<uint32_t, uint32_t>> edges;
+        for (size_t v = begin; v < end; v++) {
+          edgesAt(v, edges);
+          uint32_t owned = 0;
+          for (size_t i = 0; i < edges.size(); i++)
+            owned += edges[i].first >= v && (i == 0 || edges[i - 1].first != edges[i].first);
+          edgesOwned[v] = owned;
+        }
+      },
+      kHeavyRange);
   PolygonMesh out;
   FillLaterVector<uint32_t> cornerEdge(cornerCount);
   const size_t edgeCount = parallelPrefix(
@@ -118,7 +121,8 @@ PolygonMesh subdivideCatmullClark(const PolygonMesh& mesh, int threads, size_t v
           q = 0.75 * p + 0.125 * sumBoundary;
         }  // corners (one face) and unused vertices stay
         out.positions[v] = glm::vec3(q);
-      });
+      },
+      kHeavyRange);
   FillLaterVector<uint32_t>().swap(faceOf);
   parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {
     for (size_t f = begin; f < end; f++) out.positions[vertexCount + edgeCount + f] = glm::vec3(facePoint[f]);

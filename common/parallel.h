@@ -82,14 +82,17 @@ void atomicMin(T& target, T value) {
   }
 }
 
-// fn(begin, end) over [0, count) in ranges of kParallelRange on up to `threads` threads: for loops whose
-// body is too small to be a task of its own.
+// fn(begin, end) over [0, count) in ranges of kParallelRange (or `range`) on up to `threads` threads:
+// for loops whose body is too small to be a task of its own.
 constexpr size_t kParallelRange = 16384;
-inline size_t parallelRangeCount(size_t count) { return (count + kParallelRange - 1) / kParallelRange; }
+// The range for bodies of a microsecond or more an element (a vertex's ring walked and sorted): in
+// ranges of kParallelRange a mesh of 100,000 vertices would give 16 threads six ranges.
+constexpr size_t kHeavyRange = 1024;
+inline size_t parallelRangeCount(size_t count, size_t range = kParallelRange) { return (count + range - 1) / range; }
 template <class Fn>
-void parallelForRanges(size_t count, int threads, Fn&& fn) {
-  parallelFor(parallelRangeCount(count), threads,
-              [&](size_t r) { fn(r * kParallelRange, std::min(count, (r + 1) * kParallelRange)); });
+void parallelForRanges(size_t count, int threads, Fn&& fn, size_t range = kParallelRange) {
+  parallelFor(parallelRangeCount(count, range), threads,
+              [&](size_t r) { fn(r * range, std::min(count, (r + 1) * range)); });
 }
 
 // fn(begin, end) for each run [begin, end) of [0, count) whose neighbours are alike (same(i - 1, i)),
@@ -118,22 +121,29 @@ void parallelForRuns(size_t count, int threads, Same&& same, Fn&& fn) {
 // sum of the weights before it (weight(i) is read before visit(i, ...), which may change what it
 // read). Returns the total.
 template <class Weight, class Sized, class Visit>
-size_t parallelPrefix(size_t count, int threads, Weight&& weight, Sized&& sized, Visit&& visit) {
-  const size_t blocks = parallelRangeCount(count);
+size_t parallelPrefix(size_t count, int threads, Weight&& weight, Sized&& sized, Visit&& visit,
+                      size_t range = kParallelRange) {
+  const size_t blocks = parallelRangeCount(count, range);
   std::vector<size_t> base(blocks + 1, 0);
-  parallelForRanges(count, threads, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; i++) base[begin / kParallelRange + 1] += size_t(weight(i));
-  });
+  parallelForRanges(
+      count, threads,
+      [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; i++) base[begin / range + 1] += size_t(weight(i));
+      },
+      range);
   for (size_t k = 0; k < blocks; k++) base[k + 1] += base[k];
   sized(base[blocks]);
-  parallelForRanges(count, threads, [&](size_t begin, size_t end) {
-    size_t n = base[begin / kParallelRange];
-    for (size_t i = begin; i < end; i++) {
-      const size_t w = size_t(weight(i));
-      visit(i, n, w);
-      n += w;
-    }
-  });
+  parallelForRanges(
+      count, threads,
+      [&](size_t begin, size_t end) {
+        size_t n = base[begin / range];
+        for (size_t i = begin; i < end; i++) {
+          const size_t w = size_t(weight(i));
+          visit(i, n, w);
+          n += w;
+        }
+      },
+      range);
   return base[blocks];
 }
 

@@ -42,7 +42,7 @@ PolygonMesh cage(bool open) {
 TEST(Limit, PositionsAndNormalsDoNotChangeUnderSubdivision) {
   for (bool open : {false, true}) {
     PolygonMesh coarse = cage(open), fine = subdivided(coarse, 3);
-    std::vector<glm::vec3> coarseNormals, fineNormals;
+    FillLaterVector<glm::vec3> coarseNormals, fineNormals;
     PolygonMesh coarseLimit = coarse, fineLimit = fine;
     ASSERT_TRUE(moveToLimit(coarseLimit, coarseNormals));
     ASSERT_TRUE(moveToLimit(fineLimit, fineNormals));
@@ -72,7 +72,7 @@ TEST(Limit, ControlPointsConvergeToTheLimit) {
   // level-1 distance, and the finest faces around a vertex turn to the limit normal.
   PolygonMesh coarse = cage(false);
   PolygonMesh limit = coarse;
-  std::vector<glm::vec3> normals;
+  FillLaterVector<glm::vec3> normals;
   ASSERT_TRUE(moveToLimit(limit, normals));
   PolygonMesh fine = subdivided(coarse, 6);
   std::vector<glm::vec3> faceNormalSum(coarse.positions.size(), glm::vec3(0.0f));
@@ -104,7 +104,7 @@ TEST(Limit, OnlyQuadMeshesMove) {
   const uint32_t faces[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
   for (auto& f : faces) tetrahedron.addFace(f, 3);
   PolygonMesh before = tetrahedron;
-  std::vector<glm::vec3> normals;
+  FillLaterVector<glm::vec3> normals;
   EXPECT_FALSE(moveToLimit(tetrahedron, normals));
   EXPECT_EQ(tetrahedron.positions, before.positions);
   PolygonMesh quads = subdivideCatmullClark(before);  // after one round: every face a quad

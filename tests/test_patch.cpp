@@ -92,8 +92,8 @@ bool onBoundary(const MeshPatches& patches, uint32_t face) {
 // (distances relative to the diagonal) and that vertex's normal. At a tree's corners the patch is bilinear
 // over its last 1/64 (the renderer shades corners with the leaf normals instead), so there the normal 1/64
 // inside stands for it, against a looser bound (treeCornerNormalWorst).
-Accuracy compare(const PolygonMesh& coarse, const std::vector<glm::vec3>& fine,
-                 const std::vector<glm::vec3>& fineNormals, int steps) {
+Accuracy compare(const PolygonMesh& coarse, const std::vector<glm::vec3>& fine, std::span<const glm::vec3> fineNormals,
+                 int steps) {
   const MeshPatches patches = buildPatches(coarse, coarse.positions, 2);
   const float d = diagonal(coarse.positions);
   PointGrid grid(fine, d * 2e-3f);
@@ -133,7 +133,7 @@ Accuracy compare(const PolygonMesh& coarse, const std::vector<glm::vec3>& fine,
 // (`limit`), or its vertices as they are (the bar), with limit normals either way.
 Accuracy compareDeeper(const std::string& path, int levels, int more, int steps, bool limit) {
   PolygonMesh coarse = cage(path, levels), fine = cage(path, levels + more), fineLimit = fine;
-  std::vector<glm::vec3> fineNormals;
+  FillLaterVector<glm::vec3> fineNormals;
   EXPECT_TRUE(moveToLimit(fineLimit, fineNormals));
   return compare(coarse, limit ? fineLimit.positions : fine.positions, fineNormals, steps);
 }
@@ -270,7 +270,7 @@ TEST(Patch, ChordErrorsBoundTheLeafTriangles) {
   for (const auto& [path, levels] : {std::pair{test::asset("horned_cube.obj"), 2}, std::pair{test::lSheet(dir), 2},
                                      std::pair{test::triangleFan(dir), 1}}) {
     PolygonMesh coarse = cage(path, levels), limit = coarse;
-    std::vector<glm::vec3> normals;
+    FillLaterVector<glm::vec3> normals;
     ASSERT_TRUE(moveToLimit(limit, normals));
     const MeshPatches patches = buildPatches(coarse, coarse.positions, 2);
     PatchErrorList errors = patchChordErrors(limit, patches, 2);
