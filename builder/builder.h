@@ -281,6 +281,7 @@ class Patcher {
   // interior extraordinary corner); VGEO_PATCH_NONE for anything else, or when some face is not a quad.
   FacePatch patch(uint32_t face) const;
   const QuadCorners& corners() const { return corners_; }
+  bool quads() const { return quads_; }  // every face of the mesh a quad
 
  private:
   enum class VertexKind : uint8_t { Interior, Boundary, Corner, Irregular };

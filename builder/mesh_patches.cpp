@@ -78,11 +78,6 @@ double pointSegmentDistance(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b) {
   return glm::length(p - (a + t * ab));
 }
 
-// Every face a quad and the control points the mesh's: what the Patcher and the trees need.
-bool patchable(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints, uint32_t threads) {
-  return controlPoints.size() == mesh.positions.size() && allQuads(mesh, int(threads));
-}
-
 // The control points copied; the per-face arrays sized, not filled.
 MeshPatches sized(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints, uint32_t threads) {
   MeshPatches out;
@@ -113,13 +108,15 @@ MeshPatches unpatched(const PolygonMesh& mesh, const std::vector<glm::vec3>& con
 }  // namespace
 
 MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints, uint32_t threads) {
-  if (!patchable(mesh, controlPoints, threads)) return unpatched(mesh, controlPoints, threads);
+  if (controlPoints.size() != mesh.positions.size()) return unpatched(mesh, controlPoints, threads);
   return buildPatches(mesh, controlPoints, Patcher(mesh, int(threads)), threads);
 }
 
 MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints, const Patcher& patcher,
                          uint32_t threads) {
-  if (!patchable(mesh, controlPoints, threads)) return unpatched(mesh, controlPoints, threads);
+  // Every face a quad (the Patcher knows) and the control points the mesh's: what the Patcher and the
+  // trees need.
+  if (!patcher.quads() || controlPoints.size() != mesh.positions.size()) return unpatched(mesh, controlPoints, threads);
   const size_t faceCount = mesh.faceCount();
   MeshPatches out = sized(mesh, controlPoints, threads);  // every face's entries written below
   // A batch of blocks at a time: sizes first (words and extra points a face), trees built on the way;
