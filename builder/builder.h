@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <span>
@@ -235,27 +236,37 @@ PolygonMesh facesAround(const PolygonMesh& mesh, const std::vector<glm::vec3>& p
 bool moveToLimit(PolygonMesh& mesh, FillLaterVector<glm::vec3>& normals, int threads = 1,
                  const QuadCorners* corners = nullptr);
 
-// Distance from p to the triangle abc (Ericson, Real-Time Collision Detection, 5.1.5). Always inlined:
-// the chord errors call it for every sample of every face, in their innermost loop.
-[[gnu::always_inline]] inline double pointTriangleDistance(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
+// The dot product of v with itself: glm::length(v) squared, to the bit.
+[[gnu::always_inline]] inline double squaredLength(glm::dvec3 v) { return glm::dot(v, v); }
+
+// Squared distance from p to the triangle abc (Ericson, Real-Time Collision Detection, 5.1.5). Always
+// inlined: the chord errors call it for every sample of every face, in their innermost loop, and take one
+// square root of the largest (glm::length is the root of the dot product, so the result is the same).
+[[gnu::always_inline]] inline double pointTriangleDistanceSquared(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b,
+                                                                  glm::dvec3 c) {
   glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
   double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
-  if (d1 <= 0 && d2 <= 0) return glm::length(ap);
+  if (d1 <= 0 && d2 <= 0) return squaredLength(ap);
   glm::dvec3 bp = p - b;
   double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
-  if (d3 >= 0 && d4 <= d3) return glm::length(bp);
+  if (d3 >= 0 && d4 <= d3) return squaredLength(bp);
   double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return glm::length(p - (a + ab * (d1 / (d1 - d3))));
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return squaredLength(p - (a + ab * (d1 / (d1 - d3))));
   glm::dvec3 cp = p - c;
   double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
-  if (d6 >= 0 && d5 <= d6) return glm::length(cp);
+  if (d6 >= 0 && d5 <= d6) return squaredLength(cp);
   double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return glm::length(p - (a + ac * (d2 / (d2 - d6))));
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return squaredLength(p - (a + ac * (d2 / (d2 - d6))));
   double va = d3 * d6 - d5 * d4;
   if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-    return glm::length(p - (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)))));
+    return squaredLength(p - (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)))));
   double denom = 1.0 / (va + vb + vc);
-  return glm::length(p - (a + ab * (vb * denom) + ac * (vc * denom)));
+  return squaredLength(p - (a + ab * (vb * denom) + ac * (vc * denom)));
+}
+
+// Distance from p to the triangle abc.
+[[gnu::always_inline]] inline double pointTriangleDistance(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
+  return std::sqrt(pointTriangleDistanceSquared(p, a, b, c));
 }
 
 // ---- patch.cpp --------------------------------------------------------------------------------------

@@ -71,11 +71,12 @@ struct PatchTree {
   }
 };
 
-double pointSegmentDistance(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b) {
+// Squared, as pointTriangleDistanceSquared: the chord errors take one square root of the largest.
+double pointSegmentDistanceSquared(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b) {
   glm::dvec3 ab = b - a;
   double len2 = glm::dot(ab, ab);
   double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
-  return glm::length(p - (a + t * ab));
+  return squaredLength(p - (a + t * ab));
 }
 
 // The control points copied; the per-face arrays sized, not filled.
@@ -241,12 +242,17 @@ PatchErrorList patchChordErrors(const PolygonMesh& limitMesh, const MeshPatches&
   // covers what falls between the samples (tests/test_patch.cpp checks against 16ths). An edge is
   // measured once, by the face of the lower index (or the only one, on a boundary).
   constexpr float kSlack = 1.12f;
+  constexpr size_t kAheadFaces = 4;
   static const float kCorner[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   parallelFor(faceCount, int(threads), [&](size_t f) {
     PatchErrors& e = own[f] = PatchErrors{};
     if (!patches.patched(f)) return;
     e.patched = true;
     const uint32_t* v = limitMesh.face(f);
+    // A face's corners are points of three rounds' arrays (vertex, edge and face points), a miss each;
+    // asked for a few faces ahead, they arrive while this face's patch is evaluated.
+    if (f + kAheadFaces < faceCount)
+      for (int k = 0; k < 4; k++) __builtin_prefetch(&x[limitMesh.face(f + kAheadFaces)[k]]);
     // The samples: quarters along each edge this face measures, then the 3 x 3 inner quarters.
     glm::vec2 st[21];
     int count = 0, edgeFirst[4];
@@ -268,21 +274,22 @@ PatchErrorList patchChordErrors(const PolygonMesh& limitMesh, const MeshPatches&
     for (int k = 0; k < 4; k++) {
       if (edgeFirst[k] < 0) continue;
       glm::dvec3 a(x[v[k]]), b(x[v[(k + 1) % 4]]);
-      double worst = 0.0;
-      for (int i = 0; i < 3; i++) worst = std::max(worst, pointSegmentDistance(glm::dvec3(p[edgeFirst[k] + i]), a, b));
-      e.edge[k] = float(worst * kSlack);
+      double worst = 0.0;  // squared
+      for (int i = 0; i < 3; i++)
+        worst = std::max(worst, pointSegmentDistanceSquared(glm::dvec3(p[edgeFirst[k] + i]), a, b));
+      e.edge[k] = float(std::sqrt(worst) * kSlack);
     }
     uint32_t tris[6];
     triangulateQuad(x.data(), v, tris);
-    double worst = 0.0;
+    double worst = 0.0;  // squared: the root of the largest is the largest root, to the bit
     for (int i = inner; i < count; i++) {
       // The nearer triangle's distance; the second is needed only where the first is past the worst.
       glm::dvec3 q(p[i]);
-      double d = pointTriangleDistance(q, x[tris[0]], x[tris[1]], x[tris[2]]);
-      if (d > worst) d = std::min(d, pointTriangleDistance(q, x[tris[3]], x[tris[4]], x[tris[5]]));
+      double d = pointTriangleDistanceSquared(q, x[tris[0]], x[tris[1]], x[tris[2]]);
+      if (d > worst) d = std::min(d, pointTriangleDistanceSquared(q, x[tris[3]], x[tris[4]], x[tris[5]]));
       worst = std::max(worst, d);
     }
-    e.face = float(worst * kSlack);
+    e.face = float(std::sqrt(worst) * kSlack);
   });
   // One value an edge, the measuring face's (0 next to a flat face: the edge stays straight there); a
   // face's error covers its edges'.

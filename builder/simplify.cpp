@@ -222,6 +222,8 @@ class Simplifier {
   // One-sided Hausdorff error: for every removed vertex, the distance from its position to the nearest
   // final triangle around the vertex it ended up in (an upper bound of its distance to the simplified
   // surface). The quadric's mean distance alone let coarse levels deviate by more than their error.
+  // Distances are compared squared, with one square root of the result: the root of the largest is the
+  // largest root, to the bit.
   double removedVertexError() {
     double worst = 0.0;
     for (uint32_t u = 0; u < p_.size(); u++) {
@@ -233,12 +235,12 @@ class Simplifier {
       for (uint32_t i = 0; i < size_[w] && best > worst; i++) {
         uint32_t t = trianglesOf(w)[i];
         if (alive_[t])
-          best =
-              std::min(best, pointTriangleDistance(p_[u], p_[tri_[3 * t]], p_[tri_[3 * t + 1]], p_[tri_[3 * t + 2]]));
+          best = std::min(
+              best, pointTriangleDistanceSquared(p_[u], p_[tri_[3 * t]], p_[tri_[3 * t + 1]], p_[tri_[3 * t + 2]]));
       }
       if (std::isfinite(best)) worst = std::max(worst, best);
     }
-    return worst;
+    return std::sqrt(worst);
   }
   std::vector<uint32_t> triangles() const {
     std::vector<uint32_t> out;
