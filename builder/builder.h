@@ -319,7 +319,9 @@ void writePatchWords(const FacePatch& patch, const std::vector<glm::vec3>& posit
 
 // ---- mesh_patches.cpp -------------------------------------------------------------------------------
 // Every face's patch as the .vgeo stores it (shaderio.h, Patch): Patcher's where it has one, else a tree
-// of the face subdivided locally (VGEO_PATCH_TREE), so every face of a quad mesh gets the limit surface.
+// of the face subdivided locally (VGEO_PATCH_TREE), so every face of a quad mesh gets the limit surface;
+// where an eighth of the faces or more need a tree (a sample of them says), the trees' first level comes
+// from one round of the whole mesh, whose points follow the control points in `points`.
 // The words and the points they add are kept in blocks of kPatchBlockFaces consecutive faces, each block
 // made whole while only its own faces' trees exist: the trees of a triangle cage's first round (every
 // face one) would otherwise be held beside the whole result, twice its memory.
@@ -328,7 +330,7 @@ struct MeshPatches {
   FillLaterVector<uint32_t> info;                       // per face: kind | corner << 2 | valence << 8
   FillLaterVector<uint32_t> first;                      // per face: its first word; faceCount + 1 entries
   FillLaterVector<std::array<uint32_t, 4>> neighbours;  // per face: across edge k, face << 2 | its edge
-  FillLaterVector<glm::vec3> points;                    // the mesh's control points
+  FillLaterVector<glm::vec3> points;                    // the mesh's control points, then any shared round's
   // Per block of faces: its faces' words (control-point indices and tree nodes, shaderio.h), from word
   // first[its first face] on, and the phantom and tree points they add, numbered from pointsBefore
   // (the control points and every earlier block's points).
@@ -349,10 +351,14 @@ struct MeshPatches {
   // The same positions at `count` (<= 32) parameters of one face, sharing the work they have in common.
   void evaluateAt(uint32_t face, const glm::vec2* st, int count, glm::vec3* out) const;
 };
-MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints, uint32_t threads);
+// Where the trees' first level comes from: the whole mesh's round where enough faces need a tree (Auto),
+// or always each tree's own round, or always the whole mesh's (the same surface: the tests compare them).
+enum class TreeRounds { Auto, Own, Shared };
+MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints, uint32_t threads,
+                         TreeRounds rounds = TreeRounds::Auto);
 // The same with the caller's Patcher of `mesh` (whose corners moveToLimit can take after).
 MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints, const Patcher& patcher,
-                         uint32_t threads);
+                         uint32_t threads, TreeRounds rounds = TreeRounds::Auto);
 
 // Chord errors of a face's leaf geometry against its patch, object space: edge[k] the largest distance of
 // the limit curve of edge k from its segment, the same value on both faces of an edge (measured once, by

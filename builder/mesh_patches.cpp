@@ -10,6 +10,9 @@
 //   the remaining quadrant (1/64 of the face, inside the finest tessellation step) is bilinear between its
 //   corners' limit points. Two extraordinary corners (--subdiv 1 of a triangle mesh) take one level, an
 //   extraordinary vertex on a boundary all six.
+// - Where many faces need a tree, their first level is one round of the whole mesh instead, made once:
+//   its points follow the control points and serve every tree that reads them (a round is local, so the
+//   whole mesh's gives each sub-face the neighbourhood a face's own round would).
 #include <algorithm>
 #include <cstddef>
 #include <memory>
@@ -23,10 +26,17 @@
 namespace vgeo {
 namespace {
 
-// A face's quadtree: words relative to the patch's first word, point words indexing `points`.
+// A face's quadtree: words relative to the patch's first word, point words indexing `points`, or, with
+// kShared set, the mesh's shared points (MeshPatches::points) by their own index.
 struct PatchTree {
+  static constexpr uint32_t kShared = 0x80000000u;
   std::vector<uint32_t> words;
   std::vector<glm::vec3> points;
+
+  uint32_t append(glm::vec3 p) {
+    points.push_back(p);
+    return uint32_t(points.size() - 1);
+  }
 
   // Fills the four child words at `payload` with the sub-faces of face 0 of `local` (the faces sharing a
   // vertex with it: facesAround), at depth + 1; its sub-face at corner k is face k after one round.
@@ -34,27 +44,37 @@ struct PatchTree {
     const PolygonMesh sub = subdivideCatmullClark(local, 1, 4);
     const Patcher patcher(sub);
     std::vector<uint32_t> pointOf(sub.positions.size(), UINT32_MAX);  // shared by the sub-faces' patches
+    addChildren(sub, patcher, 0, depth, payload, [&](uint32_t v) {
+      return pointOf[v] != UINT32_MAX ? pointOf[v] : (pointOf[v] = append(sub.positions[v]));
+    });
+  }
+
+  // The same from a round of the whole mesh made once (`fine`, with its Patcher), whose vertices are
+  // shared points from `fineBase` on: the face's sub-face at corner k is fine face firstFace + k.
+  void splitFine(const PolygonMesh& fine, const Patcher& finePatcher, uint32_t firstFace, uint32_t fineBase) {
+    addChildren(fine, finePatcher, firstFace, 0, 0, [&](uint32_t v) { return kShared | (fineBase + v); });
+  }
+
+  // The child words at `payload`: child k is face firstFace + k of `sub`, a round below depth `depth`;
+  // pointOf(v) is the point word of sub's vertex v, shared by the children.
+  template <class PointOf>
+  void addChildren(const PolygonMesh& sub, const Patcher& patcher, uint32_t firstFace, int depth, size_t payload,
+                   PointOf&& pointOf) {
     PolygonMesh limit;
     for (uint32_t child = 0; child < 4; child++) {
+      const uint32_t face = firstFace + child;
       words[payload + child] = uint32_t(words.size());
-      const FacePatch patch = patcher.patch(child);
+      const FacePatch patch = patcher.patch(face);
       if (patch.kind != VGEO_PATCH_NONE) {
         words.push_back(patch.info());
         const size_t at = words.size();
         words.resize(at + patch.pointCount);
-        auto append = [&](glm::vec3 p) {
-          points.push_back(p);
-          return uint32_t(points.size() - 1);
-        };
-        auto vertexWord = [&](uint32_t v) {
-          return pointOf[v] != UINT32_MAX ? pointOf[v] : (pointOf[v] = append(sub.positions[v]));
-        };
-        writePatchWords(patch, sub.positions, words.data() + at, vertexWord, append);
+        writePatchWords(patch, sub.positions, words.data() + at, pointOf, [&](glm::vec3 p) { return append(p); });
       } else if (depth + 1 < VGEO_MAX_PATCH_DEPTH) {
         words.push_back(VGEO_PATCH_TREE);
         const size_t at = words.size();
         words.resize(at + 4);
-        split(facesAround(sub, sub.positions, patcher.corners(), sub.face(child), 4, child), depth + 1, at);
+        split(facesAround(sub, sub.positions, patcher.corners(), sub.face(face), 4, face), depth + 1, at);
       } else {
         if (limit.faceCount() == 0) {
           FillLaterVector<glm::vec3> normals;
@@ -64,7 +84,7 @@ struct PatchTree {
         words.push_back(VGEO_PATCH_NONE);
         for (uint32_t k = 0; k < 4; k++) {
           words.push_back(uint32_t(points.size()));
-          points.push_back(limit.positions[limit.face(child)[k]]);
+          points.push_back(limit.positions[limit.face(face)[k]]);
         }
       }
     }
@@ -77,6 +97,21 @@ double pointSegmentDistanceSquared(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b) {
   double len2 = glm::dot(ab, ab);
   double t = len2 > 0.0 ? std::clamp(glm::dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
   return squaredLength(p - (a + t * ab));
+}
+
+// The share of faces that need a tree, from up to kTreeSamples faces spread evenly (the same on any thread
+// count).
+constexpr size_t kTreeSamples = 1024;
+// One round of the whole mesh with its Patcher costs about 1 us a face on one thread, a tree's own round
+// about 9 (armadillo --subdiv 1): from one face in eight needing a tree on, the shared round costs less.
+constexpr double kFineRoundTreeShare = 0.125;
+constexpr size_t kSharedTreeBatchBlocks = 2;  // blocks a batch after shared-round trees (words alone held)
+double treeShare(const Patcher& patcher, size_t faceCount) {
+  if (faceCount == 0) return 0.0;
+  const size_t stride = std::max<size_t>(1, faceCount / kTreeSamples);
+  size_t sampled = 0, trees = 0;
+  for (size_t f = 0; f < faceCount; f += stride, sampled++) trees += patcher.patch(uint32_t(f)).kind == VGEO_PATCH_NONE;
+  return double(trees) / double(sampled);
 }
 
 // The control points copied; the per-face arrays sized, not filled.
@@ -108,23 +143,54 @@ MeshPatches unpatched(const PolygonMesh& mesh, const std::vector<glm::vec3>& con
 
 }  // namespace
 
-MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints, uint32_t threads) {
+MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints, uint32_t threads,
+                         TreeRounds rounds) {
   if (controlPoints.size() != mesh.positions.size()) return unpatched(mesh, controlPoints, threads);
-  return buildPatches(mesh, controlPoints, Patcher(mesh, int(threads)), threads);
+  return buildPatches(mesh, controlPoints, Patcher(mesh, int(threads)), threads, rounds);
 }
 
 MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& controlPoints, const Patcher& patcher,
-                         uint32_t threads) {
+                         uint32_t threads, TreeRounds rounds) {
   // Every face a quad (the Patcher knows) and the control points the mesh's: what the Patcher and the
   // trees need.
   if (!patcher.quads() || controlPoints.size() != mesh.positions.size()) return unpatched(mesh, controlPoints, threads);
   const size_t faceCount = mesh.faceCount();
   MeshPatches out = sized(mesh, controlPoints, threads);  // every face's entries written below
+  // Where many faces need trees (a triangle cage after its first round: two extraordinary corners a
+  // face), their first level comes from one more round of the whole mesh, made once and shared, instead
+  // of a round of each face's own neighbourhood (each vertex was subdivided about nine times over).
+  // Elsewhere the trees are few and the whole round would cost far more than theirs.
+  // The round's points follow the control points and serve every tree: a point of that round is
+  // stored once, where each tree held its own copy of about 40.
+  std::unique_ptr<const PolygonMesh> fine;
+  std::unique_ptr<const Patcher> finePatcher;
+  const uint32_t fineBase = uint32_t(controlPoints.size());
+  if (rounds == TreeRounds::Shared ||
+      (rounds == TreeRounds::Auto && treeShare(patcher, faceCount) >= kFineRoundTreeShare)) {
+    if (&controlPoints == &mesh.positions) {
+      fine = std::make_unique<const PolygonMesh>(subdivideCatmullClark(mesh, int(threads)));
+    } else {
+      PolygonMesh withPoints = mesh;
+      withPoints.positions = controlPoints;
+      fine = std::make_unique<const PolygonMesh>(subdivideCatmullClark(withPoints, int(threads)));
+    }
+    if (uint64_t(fineBase) + fine->positions.size() < PatchTree::kShared) {
+      finePatcher = std::make_unique<const Patcher>(*fine, int(threads));
+      out.points.resize(fineBase + fine->positions.size());
+      parallelForRanges(fine->positions.size(), int(threads), [&](size_t begin, size_t end) {
+        std::copy(fine->positions.begin() + long(begin), fine->positions.begin() + long(end),
+                  out.points.begin() + long(fineBase + begin));
+      });
+    } else {
+      fine.reset();  // past the words' reach: each tree makes its own round
+    }
+  }
   // A batch of blocks at a time: sizes first (words and extra points a face), trees built on the way;
   // then each block is sized and every face writes its part and frees its tree. A batch is one block
-  // after a batch that made trees (their memory is held until written), else a block for every two
-  // threads: one block's two loops are too short for 16 threads, whose start and finish then cost as
-  // much as the work.
+  // after a batch that made trees of their own rounds (their points are held until written), two after
+  // one whose trees read the shared round (words alone: eight raised a 16-thread build's peak by a fifth
+  // for no time), else a block for every two threads: one block's two loops are too short for 16
+  // threads, whose start and finish then cost as much as the work.
   const size_t mostBlocks = std::clamp<size_t>(threads / 2, 1, 8);
   std::vector<uint32_t> extraBefore(mostBlocks * kPatchBlockFaces);  // in the face's block
   std::vector<std::unique_ptr<PatchTree>> trees(mostBlocks * kPatchBlockFaces);
@@ -133,7 +199,7 @@ MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& 
   static_assert(std::is_trivially_destructible_v<FacePatch>);
   const std::unique_ptr<std::byte[]> patchRoom(new std::byte[mostBlocks * kPatchBlockFaces * sizeof(FacePatch)]);
   FacePatch* const facePatches = reinterpret_cast<FacePatch*>(patchRoom.get());
-  uint32_t pointsBefore = uint32_t(controlPoints.size());
+  uint32_t pointsBefore = uint32_t(out.points.size());
   size_t batchBlocks = 1;
   for (size_t batchFirst = 0; batchFirst < faceCount;) {
     const size_t batchFaces = std::min(batchBlocks * kPatchBlockFaces, faceCount - batchFirst);
@@ -149,7 +215,10 @@ MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& 
       }
       trees[i] = std::make_unique<PatchTree>();
       trees[i]->words.resize(4);
-      trees[i]->split(facesAround(mesh, controlPoints, patcher.corners(), mesh.face(f), 4, uint32_t(f)), 0, 0);
+      if (fine)  // a quad a corner, in corner order: face f's sub-face at corner k is fine face 4f + k
+        trees[i]->splitFine(*fine, *finePatcher, uint32_t(4 * f), fineBase);
+      else
+        trees[i]->split(facesAround(mesh, controlPoints, patcher.corners(), mesh.face(f), 4, uint32_t(f)), 0, 0);
       out.info[f] = VGEO_PATCH_TREE;
       out.first[f + 1] = uint32_t(trees[i]->words.size());
       extraBefore[i] = uint32_t(trees[i]->points.size());
@@ -189,7 +258,9 @@ MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& 
         std::copy(tree.words.begin(), tree.words.end(), words);
         std::copy(tree.points.begin(), tree.points.end(), block.points.begin() + extraFirst);
         const uint32_t extra = block.pointsBefore + extraFirst;
-        shaderio::forEachPatchPoint(out.info[f], words, tree.words.size(), [&](size_t k) { words[k] += extra; });
+        shaderio::forEachPatchPoint(out.info[f], words, tree.words.size(), [&](size_t k) {
+          words[k] = words[k] & PatchTree::kShared ? words[k] & ~PatchTree::kShared : words[k] + extra;
+        });
         trees[i].reset();
         return;
       }
@@ -202,7 +273,7 @@ MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& 
           });
     });
     batchFirst += batchFaces;
-    batchBlocks = madeTrees ? 1 : mostBlocks;
+    batchBlocks = !madeTrees ? mostBlocks : fine ? std::min(kSharedTreeBatchBlocks, mostBlocks) : 1;
   }
   return out;
 }

@@ -179,6 +179,46 @@ TEST(Patch, BoundaryAndTreePatchesAreTheLimitSurfaceAtDyadicParameters) {
   }
 }
 
+TEST(Patch, TreesFromTheWholeMeshRoundAreTheirOwnRounds) {
+  // A tree's first level from one round of the whole mesh (its points shared by every tree) against a
+  // round of the face's own neighbourhood: the same surface, in far fewer points. The L-sheet after one
+  // round has trees down to the last level at its extraordinary boundary vertex.
+  const std::string dir = test::tempDir();
+  for (const std::string& path : {test::triangleFan(dir), test::tetrahedron(dir), test::lSheet(dir)}) {
+    const PolygonMesh coarse = cage(path, 1);
+    const MeshPatches own = buildPatches(coarse, coarse.positions, 2, TreeRounds::Own),
+                      shared = buildPatches(coarse, coarse.positions, 2, TreeRounds::Shared),
+                      chosen = buildPatches(coarse, coarse.positions, 2);
+    auto pointCount = [](const MeshPatches& p) {
+      size_t n = p.points.size();
+      for (const MeshPatches::Block& b : p.blocks) n += b.points.size();
+      return n;
+    };
+    size_t trees = 0;
+    float worst = 0.0f, worstNormal = 0.0f;
+    for (uint32_t f = 0; f < coarse.faceCount(); f++) {
+      ASSERT_EQ(own.info[f], shared.info[f]) << path;
+      ASSERT_EQ(chosen.info[f], shared.info[f]) << path;
+      trees += shaderio::patchKind(own.info[f]) == VGEO_PATCH_TREE;
+      for (int i = 0; i <= 8; i++)
+        for (int j = 0; j <= 8; j++) {
+          glm::vec3 na, nb, nc;
+          const glm::vec3 a = own.evaluate(f, float(i) / 8.0f, float(j) / 8.0f, &na),
+                          b = shared.evaluate(f, float(i) / 8.0f, float(j) / 8.0f, &nb),
+                          c = chosen.evaluate(f, float(i) / 8.0f, float(j) / 8.0f, &nc);
+          worst = std::max({worst, glm::distance(a, b), glm::distance(b, c)});
+          worstNormal = std::max(worstNormal, degrees(na, nb));
+        }
+    }
+    EXPECT_GT(trees, 2u) << path;
+    EXPECT_LT(worst, 1e-6f * diagonal(coarse.positions)) << path;
+    EXPECT_LT(worstNormal, 0.1f) << path;  // float's acos near 1 alone gives a few hundredths
+    if (trees == coarse.faceCount()) {
+      EXPECT_LT(pointCount(shared), pointCount(own)) << path << ": every face a tree, each point stored once";
+    }
+  }
+}
+
 TEST(Patch, PatchesMatchTheCageSubdividedSixLevelsDeeper) {
   // The accuracy bar: within 1e-4 of the diagonal (regular), 1e-3 near extraordinary vertices
   // (valence 3 and 6 here), normals within 1 degree, of the cage subdivided 6 more levels.
