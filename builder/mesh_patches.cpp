@@ -165,8 +165,9 @@ MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& 
   std::unique_ptr<const PolygonMesh> fine;
   std::unique_ptr<const Patcher> finePatcher;
   const uint32_t fineBase = uint32_t(controlPoints.size());
-  if (rounds == TreeRounds::Shared ||
-      (rounds == TreeRounds::Auto && treeShare(patcher, faceCount) >= kFineRoundTreeShare)) {
+  const bool roundFits = 4 * uint64_t(faceCount) < PatchTree::kShared;  // its faces and points in the words' reach
+  if (roundFits && (rounds == TreeRounds::Shared ||
+                    (rounds == TreeRounds::Auto && treeShare(patcher, faceCount) >= kFineRoundTreeShare))) {
     if (&controlPoints == &mesh.positions) {
       fine = std::make_unique<const PolygonMesh>(subdivideCatmullClark(mesh, int(threads)));
     } else {
