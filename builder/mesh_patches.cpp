@@ -165,26 +165,24 @@ MeshPatches buildPatches(const PolygonMesh& mesh, const std::vector<glm::vec3>& 
   std::unique_ptr<const PolygonMesh> fine;
   std::unique_ptr<const Patcher> finePatcher;
   const uint32_t fineBase = uint32_t(controlPoints.size());
-  const bool roundFits = 4 * uint64_t(faceCount) < PatchTree::kShared;  // its faces and points in the words' reach
+  // The round has a vertex, an edge and a face point for each vertex, edge (at most 4 a quad) and face:
+  // the control points and all of those must fit the 31 bits a shared point word gives them.
+  const bool roundFits = 2 * uint64_t(fineBase) + 5 * uint64_t(faceCount) < PatchTree::kShared;
   if (roundFits && (rounds == TreeRounds::Shared ||
                     (rounds == TreeRounds::Auto && treeShare(patcher, faceCount) >= kFineRoundTreeShare))) {
-    if (&controlPoints == &mesh.positions) {
-      fine = std::make_unique<const PolygonMesh>(subdivideCatmullClark(mesh, int(threads)));
-    } else {
-      PolygonMesh withPoints = mesh;
+    const bool ownPositions = &controlPoints == &mesh.positions;
+    PolygonMesh withPoints;  // the mesh with `controlPoints`, where they are not its own positions
+    if (!ownPositions) {
+      withPoints = mesh;
       withPoints.positions = controlPoints;
-      fine = std::make_unique<const PolygonMesh>(subdivideCatmullClark(withPoints, int(threads)));
     }
-    if (uint64_t(fineBase) + fine->positions.size() < PatchTree::kShared) {
-      finePatcher = std::make_unique<const Patcher>(*fine, int(threads));
-      out.points.resize(fineBase + fine->positions.size());
-      parallelForRanges(fine->positions.size(), int(threads), [&](size_t begin, size_t end) {
-        std::copy(fine->positions.begin() + long(begin), fine->positions.begin() + long(end),
-                  out.points.begin() + long(fineBase + begin));
-      });
-    } else {
-      fine.reset();  // past the words' reach: each tree makes its own round
-    }
+    fine = std::make_unique<const PolygonMesh>(subdivideCatmullClark(ownPositions ? mesh : withPoints, int(threads)));
+    finePatcher = std::make_unique<const Patcher>(*fine, int(threads));
+    out.points.resize(fineBase + fine->positions.size());
+    parallelForRanges(fine->positions.size(), int(threads), [&](size_t begin, size_t end) {
+      std::copy(fine->positions.begin() + long(begin), fine->positions.begin() + long(end),
+                out.points.begin() + long(fineBase + begin));
+    });
   }
   // A batch of blocks at a time: sizes first (words and extra points a face), trees built on the way;
   // then each block is sized and every face writes its part and frees its tree. A batch is one block
