@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "../common/free_pages.h"
 #include "../common/parallel.h"
 #include "layout.h"
 
@@ -127,6 +128,7 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
                                   std::to_string(uint64_t(triangles)) + " triangles over " +
                                   std::to_string(uint64_t(vertices)) + " vertices (limit about 1 billion triangles)");
   }
+  returnFreePages(options.threads, &stats.stages);  // the file's text, repair's copies and sorts: freed
   // One mesh at a time, from subdivision to layout, each array freed once used: the build's peak memory
   // is one mesh's.
   std::vector<shaderio::Instance> instances;
@@ -178,6 +180,8 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
       bo.progress = [&, m](double f, const char* stage) {
         options.progress((double(m) + f) / double(scene.meshes.size()), stage);
       };
+    // The rounds' meshes and the patch trees' scratch, freed in the workers' arenas.
+    if (options.subdivisionLevels >= 1) returnFreePages(options.threads, &stats.stages);
     StageTimer normals(&stats.stages, "shading normals");
     VertexFaces leafFaces;  // made by the normals' sums on threads, then the leaf clusters' dual graph
     const ShadingNormals shading =
@@ -193,6 +197,8 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
     } catch (const SurfaceError& e) {
       throw InputError(where, e.what());
     }
+    // The rounds' scratch, in the workers' arenas: the layout's arrays are allocated on this thread.
+    returnFreePages(options.threads, &stats.stages);
     StageTimer layout(&stats.stages, "layout");
     const bool last = m + 1 == scene.meshes.size();
     if (last) {  // every mesh's closedness is known: the instances' total too
