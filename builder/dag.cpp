@@ -8,7 +8,6 @@
 #include <cmath>
 
 #include "../common/bucket_sort.h"
-#include "../common/free_pages.h"
 #include "../common/parallel.h"
 #include "builder.h"
 #include "chord_rule.h"
@@ -217,7 +216,6 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
   StageTimer leaves(options.times, "leaf clusters");
   dag.clusters = makeLeafClusters(mesh, options);
   leaves.stop();
-  returnFreePages(options.threads, options.times);  // the leaf partition's graphs, larger than any round's
   StageTimer chordSetUp(options.times, "chord rule");
   ChordRule chords(mesh.positions.size(), options.threads);
   chordSetUp.stop();

@@ -2,13 +2,14 @@
 //
 // glibc's malloc keeps freed memory in the arena of the thread that freed it, and after the first large
 // free it raises its trim threshold to twice that block, so an arena may hold tens of megabytes that
-// other threads' allocations never reuse: the file's text and repair's copies stay resident through the
-// DAG, the leaf partition's scratch through the rounds, the rounds' scratch in the workers' arenas while
-// the main thread lays out the file. malloc_trim(0) gives back every whole free page of every arena
-// (madvise, not only each heap's top). Called where a large step's temporaries have just died, it costs
-// a walk of the arenas' free lists and the page faults of the pages used again; on one thread the main
-// arena reuses all of it, so nothing is given back. Lower fixed malloc thresholds instead made every
-// large array a fresh mapping and cost up to a fifth of the DAG on 16 threads (bench/build.md).
+// other threads' allocations never reuse: the file's text and repair's copies stay resident in the main
+// arena through the DAG while the workers take new pages in theirs, and the rounds' scratch stays in
+// the workers' arenas while the main thread lays out the file. malloc_trim(0) gives back every whole
+// free page of every arena (madvise, not only each heap's top). It costs the page faults of the pages
+// used again: nothing measurable on two threads, where it takes a sixth off a 0.8 M-triangle build's
+// peak, but 4-5% of the DAG on 16, where faults on many threads contend, for 8-20 MB; on one thread
+// the main arena reuses everything (bench/build-memory.md). The memory is a fixed 20-40 MB: from a
+// few million triangles up it is no share of the peak worth the faults.
 #pragma once
 
 #if defined(__GLIBC__)
@@ -19,9 +20,11 @@
 
 namespace vgeo {
 
+constexpr int kFreePagesMostThreads = 4;  // above it the faults of reusing the pages cost more than they save
+
 inline void returnFreePages(int threads, StageTimes* times) {
 #if defined(__GLIBC__)
-  if (threads <= 1) return;
+  if (threads <= 1 || threads > kFreePagesMostThreads) return;
   StageTimer timer(times, "free pages");
   malloc_trim(0);
 #endif
