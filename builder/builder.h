@@ -68,10 +68,10 @@ struct SourceScene {
 // ---- load_*.cpp -------------------------------------------------------------------------------------
 // Reads .obj, .off, .ply, .gltf or .glb (by extension, case-insensitive). Polygons are kept as they are.
 // Checks the syntax, counts, index ranges, buffer bounds and finiteness of positions; throws InputError.
-// `threads`: OBJ files are read on up to that many threads (the other formats on one).
+// `threads`: OBJ and OFF files are read on up to that many threads (the other formats on one).
 SourceScene loadMeshFile(const std::string& path, int threads = 1);
 SourceScene loadObj(const std::string& path, int threads = 1);
-SourceScene loadOff(const std::string& path);
+SourceScene loadOff(const std::string& path, int threads = 1);
 SourceScene loadPly(const std::string& path);
 SourceScene loadGltf(const std::string& path);
 // The scene of a single-mesh format: the mesh, shown once with the identity transform.

@@ -62,11 +62,24 @@ SourceScene singleMeshScene(PolygonMesh mesh) {
   return scene;
 }
 
+std::vector<std::string_view> linePieces(std::string_view text, size_t count) {
+  std::vector<size_t> bounds{0};
+  for (size_t k = 1; k < count; k++) {
+    const size_t at = text.find('\n', std::max(bounds.back(), text.size() * k / count));
+    if (at == std::string_view::npos) break;
+    if (at + 1 > bounds.back() && at + 1 < text.size()) bounds.push_back(at + 1);
+  }
+  bounds.push_back(text.size());
+  std::vector<std::string_view> pieces;
+  for (size_t k = 0; k + 1 < bounds.size(); k++) pieces.push_back(text.substr(bounds[k], bounds[k + 1] - bounds[k]));
+  return pieces;
+}
+
 SourceScene loadMeshFile(const std::string& path, int threads) {
   std::string ext = path.substr(path.find_last_of('.') == std::string::npos ? path.size() : path.find_last_of('.'));
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   if (ext == ".obj") return loadObj(path, threads);
-  if (ext == ".off") return loadOff(path);
+  if (ext == ".off") return loadOff(path, threads);
   if (ext == ".ply") return loadPly(path);
   if (ext == ".gltf" || ext == ".glb") return loadGltf(path);
   throw InputError(path, "unknown mesh format '" + ext + "' (expected .obj, .off, .ply, .gltf or .glb)");

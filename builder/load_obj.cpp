@@ -148,17 +148,10 @@ SourceScene loadObj(const std::string& path, int threads) {
   const std::string_view data(bytes.data(), bytes.size());
   // Four pieces a thread (they parse at different speeds), of at least 1 MB, each ending after a newline.
   const size_t pieceCount = std::max<size_t>(1, std::min<size_t>(size_t(std::max(threads, 1)) * 4, data.size() >> 20));
-  std::vector<size_t> bounds{0};
-  for (size_t k = 1; k < pieceCount; k++) {
-    const size_t at = data.find('\n', std::max(bounds.back(), data.size() * k / pieceCount));
-    if (at == std::string_view::npos) break;
-    if (at + 1 > bounds.back()) bounds.push_back(at + 1);
-  }
-  bounds.push_back(data.size());
-  const size_t pieces = bounds.size() - 1;
-  auto text = [&](size_t k) { return data.substr(bounds[k], bounds[k + 1] - bounds[k]); };
+  const std::vector<std::string_view> piece = linePieces(data, pieceCount);
+  const size_t pieces = piece.size();
   std::vector<PieceCounts> counts(pieces);
-  parallelFor(pieces, threads, [&](size_t k) { counts[k] = countPiece(text(k)); });
+  parallelFor(pieces, threads, [&](size_t k) { counts[k] = countPiece(piece[k]); });
   std::vector<ObjPiece> parsed(pieces);
   std::vector<std::exception_ptr> errors(pieces);
   std::vector<PieceCounts> before(pieces);  // of the pieces before each
@@ -176,7 +169,7 @@ SourceScene loadObj(const std::string& path, int threads) {
   auto parseAll = [&] {
     parallelFor(pieces, threads, [&](size_t k) {
       try {
-        parsed[k] = parsePiece(text(k), path, 1 + before[k].lines, before[k].vertices, before[k].normals, counts[k]);
+        parsed[k] = parsePiece(piece[k], path, 1 + before[k].lines, before[k].vertices, before[k].normals, counts[k]);
       } catch (...) {
         errors[k] = std::current_exception();
       }

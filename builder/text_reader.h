@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "builder.h"
 
@@ -16,6 +17,10 @@ namespace vgeo {
 // cannot be opened or read.
 FillLaterVector<char> readWholeFile(const std::string& path, int threads = 1);
 
+// `text` cut into up to `count` pieces of whole lines (each but the last ending after a newline), in
+// order, none empty unless the text is.
+std::vector<std::string_view> linePieces(std::string_view text, size_t count);
+
 class TextReader {
  public:
   // `firstLine`: the line `text` starts at in the file (error messages name file lines).
@@ -24,6 +29,7 @@ class TextReader {
 
   bool atEnd() { return pos_ >= text_.size(); }
   size_t line() const { return line_; }
+  size_t offset() const { return pos_; }
   const std::string& file() const { return file_; }
 
   // Skips spaces and tabs (not newlines).

@@ -204,5 +204,67 @@ TEST(ObjInPieces, TheMeshAndTheFirstErrorOfOneThread) {
   }
 }
 
+// An OFF file of more than 256 KB in one element a line is read in pieces on several threads; a file
+// that leaves that form anywhere, and any error, is read as one thread reads it.
+TEST(OffInPieces, TheMeshAndTheErrorsOfOneThread) {
+  const std::string dir = test::tempDir();
+  constexpr int kSide = 320;
+  std::string vertices, faces;
+  for (int y = 0; y < kSide; y++)
+    for (int x = 0; x < kSide; x++) {
+      vertices += std::to_string(x) + " " + std::to_string(y) + " " + std::to_string((x * y) % 7) + "\n";
+      if ((x + y) % 97 == 0) vertices += "# a comment\n\n";
+    }
+  for (int y = 0; y + 1 < kSide; y++)
+    for (int x = 0; x + 1 < kSide; x++) {
+      const int v = y * kSide + x;
+      faces += "4 " + std::to_string(v) + " " + std::to_string(v + 1) + " " + std::to_string(v + kSide + 1) + " " +
+               std::to_string(v + kSide) + ((x % 5 == 0) ? " 255 0 0\r\n" : "\n");
+    }
+  const std::string counts = std::to_string(kSide * kSide) + " " + std::to_string((kSide - 1) * (kSide - 1)) + " 0";
+  auto same = [&](const std::string& name, const std::string& text) {
+    const std::string path = test::writeFile(dir, name, text);
+    const SourceScene one = loadOff(path, 1), four = loadOff(path, 4);
+    EXPECT_EQ(one.meshes[0].faceCount(), size_t((kSide - 1) * (kSide - 1))) << name;
+    EXPECT_TRUE(one.meshes[0].positions == four.meshes[0].positions) << name;
+    EXPECT_TRUE(one.meshes[0].faceStart == four.meshes[0].faceStart) << name;
+    EXPECT_TRUE(one.meshes[0].faceVertices == four.meshes[0].faceVertices) << name;
+  };
+  const std::string text = "OFF\n# made here\n" + counts + "\n" + vertices + faces;
+  ASSERT_GT(text.size(), size_t(3) << 20);
+  same("grid.off", text);
+  // Two vertices on one line, a face over two lines, late in the file: the one-thread reader's meaning.
+  std::string twoOnALine = text;
+  const size_t late = twoOnALine.find('\n', vertices.size() * 9 / 10 + 20) + 1;
+  twoOnALine.erase(twoOnALine.find('\n', late), 1);
+  twoOnALine.insert(twoOnALine.find('\n', late), " ");
+  same("two.off", twoOnALine + "1 2 3\n");  // a line past the last face, as many lines as one a line
+  std::string split = text;
+  const size_t face = split.find("\n4 ", split.size() * 9 / 10) + 1;
+  split[split.find(' ', split.find(' ', face + 2) + 1)] = '\n';
+  same("split.off", split);
+  // Errors: a bad index at 90% of the file, and a face fewer than the counts promise.
+  std::string bad = text;
+  const size_t at = bad.find("\n4 ", bad.size() * 9 / 10) + 3;
+  bad.replace(at, bad.find(' ', at) - at, "999999999");
+  std::string truncated = text.substr(0, text.rfind('\n', text.size() - 2) + 1);
+  for (const auto& [name, content] : {std::pair{"bad.off", bad}, std::pair{"truncated.off", truncated}}) {
+    const std::string path = test::writeFile(dir, name, content);
+    std::string one, four;
+    try {
+      loadOff(path, 1);
+    } catch (const InputError& e) {
+      one = e.what();
+    }
+    try {
+      loadOff(path, 4);
+    } catch (const InputError& e) {
+      four = e.what();
+    }
+    EXPECT_FALSE(one.empty()) << name;
+    EXPECT_EQ(one, four) << name;
+  }
+}
+
 }  // namespace
 }  // namespace vgeo
