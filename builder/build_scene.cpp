@@ -128,7 +128,7 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
                                   std::to_string(uint64_t(triangles)) + " triangles over " +
                                   std::to_string(uint64_t(vertices)) + " vertices (limit about 1 billion triangles)");
   }
-  returnFreePages(options.threads, &stats.stages);  // the file's text, repair's copies and sorts: freed
+  returnFreePages(options.threads, &stats.stages);  // what the file's text, repair's copies and sorts held
   // One mesh at a time, from subdivision to layout, each array freed once used: the build's peak memory
   // is one mesh's.
   std::vector<shaderio::Instance> instances;

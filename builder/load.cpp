@@ -62,7 +62,9 @@ SourceScene singleMeshScene(PolygonMesh mesh) {
   return scene;
 }
 
-std::vector<std::string_view> linePieces(std::string_view text, size_t count) {
+std::vector<std::string_view> linePieces(std::string_view text, int threads, int minPieceLog2) {
+  const size_t count =
+      std::max<size_t>(1, std::min<size_t>(size_t(std::max(threads, 1)) * 4, text.size() >> minPieceLog2));
   std::vector<size_t> bounds{0};
   for (size_t k = 1; k < count; k++) {
     const size_t at = text.find('\n', std::max(bounds.back(), text.size() * k / count));

@@ -146,9 +146,7 @@ ObjPiece parsePiece(std::string_view text, const std::string& path, size_t first
 SourceScene loadObj(const std::string& path, int threads) {
   const FillLaterVector<char> bytes = readWholeFile(path, threads);
   const std::string_view data(bytes.data(), bytes.size());
-  // Four pieces a thread (they parse at different speeds), of at least 1 MB, each ending after a newline.
-  const size_t pieceCount = std::max<size_t>(1, std::min<size_t>(size_t(std::max(threads, 1)) * 4, data.size() >> 20));
-  const std::vector<std::string_view> piece = linePieces(data, pieceCount);
+  const std::vector<std::string_view> piece = linePieces(data, threads, 20);  // pieces of 1 MB or more
   const size_t pieces = piece.size();
   std::vector<PieceCounts> counts(pieces);
   parallelFor(pieces, threads, [&](size_t k) { counts[k] = countPiece(piece[k]); });

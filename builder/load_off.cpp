@@ -128,9 +128,7 @@ bool parsePiece(std::string_view text, const OffHeader& h, size_t first, std::ve
 // The elements of `body` (the lines after the counts') read on up to `threads` threads, or nothing
 // where the file is not in the one-element-a-line form.
 std::optional<PolygonMesh> readElementsByLines(std::string_view body, const OffHeader& h, int threads) {
-  // Four pieces a thread (they parse at different speeds), each ending after a newline.
-  const size_t pieceCount = std::max<size_t>(1, std::min<size_t>(size_t(threads) * 4, body.size() >> kPieceBytesLog2));
-  const std::vector<std::string_view> piece = linePieces(body, pieceCount);
+  const std::vector<std::string_view> piece = linePieces(body, threads, kPieceBytesLog2);
   const size_t pieces = piece.size();
   std::vector<size_t> first(pieces + 1, 0);
   parallelFor(pieces, threads, [&](size_t k) { first[k + 1] = countElementLines(piece[k]); });

@@ -17,9 +17,10 @@ namespace vgeo {
 // cannot be opened or read.
 FillLaterVector<char> readWholeFile(const std::string& path, int threads = 1);
 
-// `text` cut into up to `count` pieces of whole lines (each but the last ending after a newline), in
-// order, none empty unless the text is.
-std::vector<std::string_view> linePieces(std::string_view text, size_t count);
+// `text` cut into pieces of whole lines for `threads` threads to parse: four a thread (they parse at
+// different speeds), each of 2^minPieceLog2 bytes or more, each but the last ending after a newline,
+// in order, none empty unless the text is.
+std::vector<std::string_view> linePieces(std::string_view text, int threads, int minPieceLog2);
 
 class TextReader {
  public:
