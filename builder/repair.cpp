@@ -14,6 +14,7 @@
 #include <numeric>
 
 #include "../common/bucket_sort.h"
+#include "../common/first_of_equal.h"
 #include "../common/parallel.h"
 #include "builder.h"
 
@@ -195,52 +196,44 @@ std::vector<uint8_t> checkPositions(const PolygonMesh& mesh, const std::string& 
   return used;
 }
 
-// Every vertex's position bits (-0 as +0) with its id, equal positions next to each other. The keys
-// themselves are sorted, not vertex ids compared through the positions: on a large mesh every such
-// comparison missed the cache. Equal positions only need to be next to each other, so the buckets are a
-// hash of the position, about one vertex a bucket (what is left to sort is tiny).
-struct PositionKey {
+// A position's bits, -0 as +0: the key of welding (bit-identical positions are one vertex).
+std::array<uint32_t, 3> positionBits(const glm::vec3& p) {
   std::array<uint32_t, 3> bits;
-  uint32_t vertex;
-  bool operator<(const PositionKey& o) const { return bits != o.bits ? bits < o.bits : vertex < o.vertex; }
-};
-FillLaterVector<PositionKey> positionsByBits(const std::vector<glm::vec3>& positions, int threads) {
-  return bucketSorted<PositionKey>(
-      positions.size(), 64, std::max(kChunkedBucketBits, bitsFor(positions.size() + 1)), threads,
-      [&](size_t v, auto&& emit) {
-        PositionKey key{{}, uint32_t(v)};
-        for (int i = 0; i < 3; i++) {
-          const float f = positions[v][i] + 0.0f;  // -0 + 0 = +0
-          std::memcpy(&key.bits[size_t(i)], &f, 4);
-        }
-        emit(hashWords(key.bits.data(), 3), key);
+  for (int i = 0; i < 3; i++) {
+    const float f = p[i] + 0.0f;  // -0 + 0 = +0
+    std::memcpy(&bits[size_t(i)], &f, 4);
+  }
+  return bits;
+}
+
+// Each vertex's first vertex at its position (firstOfEqual over the positions' bits).
+FillLaterVector<uint32_t> firstAtPosition(const std::vector<glm::vec3>& positions, int threads) {
+  return firstOfEqual(
+      positions.size(), threads,
+      [&](size_t v) {
+        const std::array<uint32_t, 3> bits = positionBits(positions[v]);
+        return hashWords(bits.data(), 3);
       },
-      std::less<PositionKey>());
+      [&](size_t a, size_t b) { return positionBits(positions[a]) == positionBits(positions[b]); });
 }
 
 // Weld: maps each vertex to the first of those at its position.
-std::vector<uint32_t> weldPositions(const PolygonMesh& mesh, const std::vector<uint8_t>& used, size_t& welded,
-                                    int threads) {
-  std::vector<uint32_t> weld(mesh.positions.size());
-  const FillLaterVector<PositionKey> keys = positionsByBits(mesh.positions, threads);
+FillLaterVector<uint32_t> weldPositions(const PolygonMesh& mesh, const std::vector<uint8_t>& used, size_t& welded,
+                                        int threads) {
+  FillLaterVector<uint32_t> weld = firstAtPosition(mesh.positions, threads);
   size_t joined = 0;
-  parallelForRuns(
-      keys.size(), threads, [&](size_t i, size_t j) { return keys[i].bits == keys[j].bits; },
-      [&](size_t i, size_t j) {
-        size_t n = 0;
-        for (size_t k = i; k < j; k++) {
-          weld[keys[k].vertex] = keys[i].vertex;
-          n += k > i && used[keys[k].vertex];
-        }
-        if (n) __atomic_fetch_add(&joined, n, __ATOMIC_RELAXED);
-      });
+  parallelForRanges(weld.size(), threads, [&](size_t begin, size_t end) {
+    size_t n = 0;
+    for (size_t v = begin; v < end; v++) n += weld[v] != v && used[v];
+    if (n) __atomic_fetch_add(&joined, n, __ATOMIC_RELAXED);
+  });
   welded += joined;
   return weld;
 }
 
 // The faces over welded corners: repeated neighbours merged, faces with < 3 distinct corners dropped
 // (counted in `degenerate`). Takes the positions from `mesh`.
-PolygonMesh weldFaces(PolygonMesh& mesh, const std::vector<uint32_t>& weld, size_t& degenerate, int threads) {
+PolygonMesh weldFaces(PolygonMesh& mesh, const FillLaterVector<uint32_t>& weld, size_t& degenerate, int threads) {
   const bool withNormals = !mesh.cornerNormals.empty();
   const size_t before = mesh.faceCount();
   PolygonMesh faces =
@@ -377,11 +370,11 @@ size_t countBoundaryEdges(const PolygonMesh& out, int threads) {
 }  // namespace
 
 bool positionsDistinct(const std::vector<glm::vec3>& positions, int threads) {
-  const FillLaterVector<PositionKey> keys = positionsByBits(positions, threads);
+  const FillLaterVector<uint32_t> first = firstAtPosition(positions, threads);
   bool repeated = false;
-  parallelForRanges(keys.size(), threads, [&](size_t begin, size_t end) {
-    for (size_t i = std::max<size_t>(begin, 1); i < end; i++)
-      if (keys[i].bits == keys[i - 1].bits) {
+  parallelForRanges(first.size(), threads, [&](size_t begin, size_t end) {
+    for (size_t v = begin; v < end; v++)
+      if (first[v] != v) {
         __atomic_store_n(&repeated, true, __ATOMIC_RELAXED);
         return;
       }
@@ -394,7 +387,7 @@ RepairReport repairMesh(PolygonMesh& mesh, const std::string& file, int threads)
   PolygonMesh faces;
   {
     const std::vector<uint8_t> used = checkPositions(mesh, file, threads);
-    const std::vector<uint32_t> weld = weldPositions(mesh, used, report.weldedVertices, threads);
+    const FillLaterVector<uint32_t> weld = weldPositions(mesh, used, report.weldedVertices, threads);
     faces = weldFaces(mesh, weld, report.degenerateFaces, threads);
     mesh = PolygonMesh();  // its positions moved to `faces`; its faces are not needed again
   }
