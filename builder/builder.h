@@ -116,10 +116,13 @@ struct CornerEdge {
   }
 };
 // What orientation leaves for repair's split step, which would otherwise make both again: every corner's
-// edge of the oriented mesh sorted by (first, second, corner), and each corner's face.
+// edge of the oriented mesh sorted by (first, second, corner), and each corner's face. Where no face
+// turned and no edge has more than two faces (almost every input), also each corner's partner: the
+// corner of the other face on its edge, which walks it the other way, or UINT32_MAX on a boundary.
 struct OrientedEdges {
   FillLaterVector<CornerEdge> edges;
   FillLaterVector<uint32_t> cornerFace;
+  FillLaterVector<uint32_t> partner;  // empty unless as above
 };
 // Turns faces so that every component walks each of its two-face edges once each way, keeping the
 // orientation of the larger part (by area) of each component. Deterministic; positions are not moved.

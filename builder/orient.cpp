@@ -42,11 +42,15 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads, OrientedEdges* oriented
   // Across each two-face edge, the corner of the other face that starts it: a face's neighbours are
   // its corners' partners, visited in the order of their edges' keys.
   FillLaterVector<uint32_t> partner = parallelFilled(mesh.faceVertices.size(), UINT32_MAX, threads);
+  bool crowded = false;  // an edge of more than two faces, or of one face twice
   parallelForRuns(
       halfEdges.size(), threads, [&](size_t i, size_t j) { return halfEdges[i].key() == halfEdges[j].key(); },
       [&](size_t i, size_t j) {
         const uint32_t c0 = halfEdges[i].corner, c1 = j - i == 2 ? halfEdges[i + 1].corner : c0;
-        if (j - i == 2 && cornerFace[c0] != cornerFace[c1]) partner[c0] = c1, partner[c1] = c0;
+        if (j - i == 2 && cornerFace[c0] != cornerFace[c1])
+          partner[c0] = c1, partner[c1] = c0;
+        else if (j - i > 1)
+          __atomic_store_n(&crowded, true, __ATOMIC_RELAXED);
       });
   auto edgeKey = [&](uint32_t c) {
     const uint32_t f = cornerFace[c], next = c + 1 == mesh.faceStart[f + 1] ? mesh.faceStart[f] : c + 1;
@@ -156,8 +160,12 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads, OrientedEdges* oriented
     if (turned > kept)
       for (uint32_t f : component) flip[f] ^= 1u;
   }
-  FillLaterVector<uint32_t>().swap(partner);
   const bool anyFlip = anyTurned || anyConflict;  // else no face turns
+  // Unturned, every two-face edge is walked once each way: a pair walking it alike would differ in turn.
+  if (oriented && !anyFlip && !crowded)
+    oriented->partner = std::move(partner);
+  else
+    FillLaterVector<uint32_t>().swap(partner);
   if (oriented && anyFlip) {
     // A turned face keeps its edges; the edge that started at corner k of n starts at n-2-k (mod n),
     // and the order stays (key, corner), since a key's corners are in distinct faces, in face order.

@@ -3,7 +3,8 @@
 // than two faces, or two of one orientation, the first face and the first later face of opposite
 // orientation stay joined; the other faces' wedges there get vertices of their own. The joins are a
 // union-find over every corner; where every edge is manifold (almost every input) a walk around each
-// vertex first finds whether any vertex has two fans, and without one the faces are kept as they are.
+// vertex first finds whether any vertex has two fans (its turns read off orientation's partners where
+// it left them), and without one the faces are kept as they are.
 #include <algorithm>
 
 #include "../common/parallel.h"
@@ -22,15 +23,15 @@ void flagCorner(FillLaterVector<uint8_t>& flags, uint32_t c, uint8_t flag) {
 }
 
 // Whether every used vertex's corners form one fan, where every edge has one face or two that walk it
-// opposite ways. Corner c at v turns to `turn[c]`: the corner at v of the other face on the edge into
+// opposite ways. Corner c at v turns to `turn(c)`: the corner at v of the other face on the edge into
 // c, or none (UINT32_MAX) where that edge is a boundary. No two corners turn to one, so a vertex's
 // corners fall into paths, each from a corner flagged kPathStart, and loops; a vertex with more than
 // one path, or a path and a loop, or a corner no walk reaches, has more than one fan. A loop is walked
 // from the first unreached corner a thread finds at a vertex no walk has claimed; a second loop at a
 // vertex is never walked, and its corners stay unreached. The union-find of splitNonManifold joins the
 // same corners. Adds kSeen to `flags` (the union-find that follows a false return reads only kIsolated).
-bool oneFanEach(const PolygonMesh& faces, const FillLaterVector<uint32_t>& turn, FillLaterVector<uint8_t>& flags,
-                int threads) {
+template <class Turn>
+bool oneFanEach(const PolygonMesh& faces, Turn&& turn, FillLaterVector<uint8_t>& flags, int threads) {
   const size_t cornerCount = faces.faceVertices.size();
   constexpr uint8_t kPath = 1, kLoop = 2;  // what claimed a vertex first
   FillLaterVector<uint8_t> walked = parallelFilled(faces.positions.size(), uint8_t(0), threads);
@@ -41,7 +42,7 @@ bool oneFanEach(const PolygonMesh& faces, const FillLaterVector<uint32_t>& turn,
   auto mark = [&](uint32_t c) { __atomic_store_n(&flags[c], uint8_t(load(c) | kSeen), __ATOMIC_RELAXED); };
   auto walk = [&](uint32_t start) {
     mark(start);
-    for (uint32_t c = turn[start]; c != UINT32_MAX && c != start; c = turn[c]) mark(c);
+    for (uint32_t c = turn(start); c != UINT32_MAX && c != start; c = turn(c)) mark(c);
   };
   parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
     for (size_t c = begin; c < end; c++)
@@ -87,11 +88,45 @@ PolygonMesh splitNonManifold(PolygonMesh& faces, OrientedEdges&& oriented, Repai
   };
   // From min to max in face order: the corner's vertex is the key's smaller one.
   auto forward = [&](const CornerEdge& e) { return faces.faceVertices[e.corner] == e.first; };
+  auto freeEdges = [&] {
+    FillLaterVector<CornerEdge>().swap(oriented.edges);
+    FillLaterVector<uint32_t>().swap(oriented.cornerFace);
+    FillLaterVector<uint32_t>().swap(oriented.partner);
+  };
+  FillLaterVector<uint8_t> flags = parallelFilled(cornerCount, uint8_t(0), threads);
+  bool manyFans = false;  // found so already
+  if (!oriented.partner.empty()) {
+    // Every edge of one face or of two walking it opposite ways (orientFaces' partners): no edge is
+    // non-manifold, the edge into corner c is its previous corner's, and the turns are read off the
+    // partners rather than found again from the sorted edges.
+    const FillLaterVector<uint32_t>& partner = oriented.partner;
+    size_t single = 0;
+    parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
+      size_t n = 0;
+      for (size_t c = begin; c < end; c++)
+        if (partner[c] == UINT32_MAX) flags[c] = kPathStart, n++;
+      __atomic_fetch_add(&single, n, __ATOMIC_RELAXED);
+    });
+    auto turn = [&](uint32_t c) {
+      const uint32_t f = cornerFace[c];
+      return partner[c == faces.faceStart[f] ? faces.faceStart[f + 1] - 1 : c - 1];
+    };
+    if (oneFanEach(faces, turn, flags, threads)) {
+      singleEdges += single;
+      freeEdges();
+      return std::move(faces);
+    }
+    // A vertex of several fans: the path below, from fresh flags.
+    FillLaterVector<uint32_t>().swap(oriented.partner);
+    manyFans = true;
+    parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
+      std::fill(flags.begin() + long(begin), flags.begin() + long(end), uint8_t(0));
+    });
+  }
 
   // A key's corners are one run of the sorted edges. Wedges that get a vertex of their own are
   // flagged kIsolated first, then the manifold edges join theirs. The same pass finds each corner's
   // turn around its vertex for oneFanEach (complete where no edge is non-manifold).
-  FillLaterVector<uint8_t> flags = parallelFilled(cornerCount, uint8_t(0), threads);
   FillLaterVector<uint32_t> newCorner(cornerCount);  // turns; then each corner's class, then its vertex
   FillLaterVector<uint32_t>& turn = newCorner;
   auto sameKey = [&](size_t i, size_t j) { return edges[i].key() == edges[j].key(); };
@@ -126,10 +161,11 @@ PolygonMesh splitNonManifold(PolygonMesh& faces, OrientedEdges&& oriented, Repai
   });
   singleEdges += single;
   report.nonManifoldEdges += nonManifold;
-  if (nonManifold == 0 && oneFanEach(faces, turn, flags, threads)) {
+  if (nonManifold == 0 && !manyFans &&
+      oneFanEach(
+          faces, [&](uint32_t c) { return turn[c]; }, flags, threads)) {
     // Every vertex one fan: the union-find below would give each corner its own vertex again.
-    FillLaterVector<CornerEdge>().swap(oriented.edges);
-    FillLaterVector<uint32_t>().swap(oriented.cornerFace);
+    freeEdges();
     return std::move(faces);
   }
   // Join the wedges across manifold edges; c0 runs a->b in its face, c1 b->a in its. An isolated wedge
@@ -147,8 +183,7 @@ PolygonMesh splitNonManifold(PolygonMesh& faces, OrientedEdges&& oriented, Repai
     wedges.unite(c0, nextCorner(c1));
     wedges.unite(nextCorner(c0), c1);
   });
-  FillLaterVector<CornerEdge>().swap(oriented.edges);
-  FillLaterVector<uint32_t>().swap(oriented.cornerFace);
+  freeEdges();
 
   // Output vertices: the class of a vertex's first corner keeps the vertex; every other class (a fan
   // of wedges, or an isolated wedge alone) gets a copy, numbered in the order of its first corner,
