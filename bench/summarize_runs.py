@@ -7,7 +7,7 @@ import json
 import statistics as st
 import sys
 
-STAGES = [('subdivide', 'subdivide'), ('patches', 'patches'), ('limit', 'limit'), ('patch chord errors', 'chords'),
+STAGES = [('load', 'load'), ('repair', 'repair'), ('subdivide', 'subdivide'), ('patches', 'patches'), ('limit', 'limit'), ('patch chord errors', 'chords'),
           ('patch points', 'patch_points'), ('layout', 'layout'), ('leaf clusters', 'leaves'), ('write', 'write')]
 
 rows = [json.loads(line) for line in open(sys.argv[1])]
