@@ -263,42 +263,47 @@ PolygonMesh weldFaces(PolygonMesh& mesh, const FillLaterVector<uint32_t>& weld, 
   return faces;
 }
 
+// Whether faces a and b of `faces` have one corner set (repair left each face's corners distinct).
+bool sameCornerSet(const PolygonMesh& faces, uint32_t a, uint32_t b) {
+  const uint32_t n = faces.faceSize(a);
+  if (faces.faceSize(b) != n) return false;
+  const uint32_t *ca = faces.face(a), *cb = faces.face(b);
+  if (n <= 16) return std::all_of(ca, ca + n, [&](uint32_t v) { return std::find(cb, cb + n, v) != cb + n; });
+  std::vector<uint32_t> sa(ca, ca + n), sb(cb, cb + n);
+  std::sort(sa.begin(), sa.end());
+  std::sort(sb.begin(), sb.end());
+  return sa == sb;
+}
+
 // Duplicates: faces with the same corner set; the first one stays. Returns how many went.
 size_t dropDuplicateFaces(PolygonMesh& faces, int threads) {
   size_t duplicates = 0;
   const size_t n = faces.faceCount();
-  // (hash of the corner set, face) pairs, sorted as they are (comparing face ids through a hash array
-  // missed the cache on large meshes), about one face a bucket. Faces of one corner set meet in one
-  // run, the first face first.
-  struct FaceHash {
-    uint64_t hash;
-    uint32_t face;
-    bool operator<(const FaceHash& o) const { return hash != o.hash ? hash < o.hash : face < o.face; }
-  };
-  FillLaterVector<FaceHash> byHash = bucketSorted<FaceHash>(
+  // The top half of each face's corner-set hash beside its id in one 8-byte word, the words sorted
+  // as they are (comparing face ids through a hash array missed the cache on large meshes), about one
+  // face a bucket. Faces of one corner set meet in one run of equal halves, the first face first;
+  // only within a run are corners compared.
+  auto tag = [](uint64_t word) { return word >> 32; };
+  FillLaterVector<uint64_t> byHash = bucketSorted<uint64_t>(
       n, 64, std::max(kChunkedBucketBits, bitsFor(n + 1)), threads,
       [&](size_t f, auto&& emit) {
         const uint64_t h = hashOfSet(faces.face(f), faces.faceSize(f));
-        emit(h, FaceHash{h, uint32_t(f)});
+        emit(h, tag(h) << 32 | f);
       },
-      std::less<FaceHash>());
-  // Each run of one hash on its own: a face is in one run, so runs never write the same flag.
+      std::less<uint64_t>());
+  // Each run on its own: a face is in one run, so runs never write the same flag. A face dropped is
+  // passed over, so a run of many copies of one face costs its length, not its square.
   FillLaterVector<uint8_t> drop = parallelFilled(n, uint8_t(0), threads);
   bool dropped = false;
   parallelForRuns(
-      n, threads, [&](size_t i, size_t j) { return byHash[i].hash == byHash[j].hash; },
+      n, threads, [&](size_t i, size_t j) { return tag(byHash[i]) == tag(byHash[j]); },
       [&](size_t begin, size_t end) {
-        std::vector<uint32_t> sa, sb;
-        for (size_t i = begin; i < end; i++) {
-          const uint32_t fi = byHash[i].face;
+        for (size_t i = begin; i + 1 < end; i++) {
+          const uint32_t fi = uint32_t(byHash[i]);
+          if (drop[fi]) continue;
           for (size_t j = i + 1; j < end; j++) {
-            const uint32_t fj = byHash[j].face;
-            if (drop[fj]) continue;
-            sa.assign(faces.face(fi), faces.face(fi) + faces.faceSize(fi));
-            sb.assign(faces.face(fj), faces.face(fj) + faces.faceSize(fj));
-            std::sort(sa.begin(), sa.end());
-            std::sort(sb.begin(), sb.end());
-            if (sa == sb && !drop[fi]) {
+            const uint32_t fj = uint32_t(byHash[j]);
+            if (!drop[fj] && sameCornerSet(faces, fi, fj)) {
               drop[fj] = 1;
               __atomic_store_n(&dropped, true, __ATOMIC_RELAXED);
             }

@@ -98,6 +98,22 @@ TEST(Repair, DropsDegenerateAndDuplicateFacesAndWelds) {
   expectManifold(m);
 }
 
+// A crafted file can repeat one face a million times: each copy is dropped once, the others passed
+// over (a comparison of every pair of copies would run past the suite's timeout).
+TEST(Repair, AMillionCopiesOfOneFaceGoAsDuplicates) {
+  PolygonMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  const uint32_t tetra[4][3] = {{0, 2, 1}, {0, 3, 2}, {0, 1, 3}, {1, 2, 3}};
+  for (auto& f : tetra) m.addFace(f, 3);
+  constexpr size_t kCopies = 1000000;
+  for (size_t i = 0; i < kCopies; i++) m.addFace(tetra[0], 3);
+  const RepairReport r = repairMesh(m, "copies", 2);
+  EXPECT_EQ(r.duplicateFaces, kCopies);
+  EXPECT_EQ(m.faceCount(), 4u);
+  EXPECT_EQ(r.boundaryEdges, 0u);
+  expectManifold(m);
+}
+
 TEST(Repair, TurnsFacesToAgreeWithTheirComponent) {
   // CGAL's cube of 12 triangles with every other face reversed, and a second cube apart from it with
   // one face reversed: each becomes consistent, keeping the orientation most of its area has.
