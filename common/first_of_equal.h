@@ -1,7 +1,7 @@
 // first_of_equal.h: for each of n items, the first item equal to it, by one concurrent hash table
-// (open addressing, linear probing) filled and then read on the threads. Repair welds positions and
-// drops repeated faces this way: a table of 8-byte entries at most half full of the items' ids stays
-// in the cache where a sort moved every item's key through memory three times. An entry holds the
+// (open addressing, linear probing) filled and then read on the threads. Repair welds positions this
+// way, and a subdivided cage's limit positions are checked for repeats: a table of 8-byte entries at
+// most half full takes fewer trips through memory than a sort of every item's key (three). An entry holds the
 // top half of the item's hash beside its id; an item goes to the first slot from its hash's home that
 // is empty or holds an item equal to it, where the smaller id stays (a compare-and-swap). Equal items
 // have one hash and so one probe sequence, and a slot once taken keeps its class of items, so the
