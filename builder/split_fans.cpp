@@ -116,12 +116,9 @@ PolygonMesh splitNonManifold(PolygonMesh& faces, OrientedEdges&& oriented, Repai
       freeEdges();
       return std::move(faces);
     }
-    // A vertex of several fans: the path below, from fresh flags.
+    // A vertex of several fans: the union-find below, which reads only kIsolated of the flags.
     FillLaterVector<uint32_t>().swap(oriented.partner);
     manyFans = true;
-    parallelForRanges(cornerCount, threads, [&](size_t begin, size_t end) {
-      std::fill(flags.begin() + long(begin), flags.begin() + long(end), uint8_t(0));
-    });
   }
 
   // A key's corners are one run of the sorted edges. Wedges that get a vertex of their own are
