@@ -466,6 +466,17 @@ size_t distinctCount(const std::vector<uint32_t>& indices);
 glm::vec4 sphereOfPoints(const std::vector<glm::vec3>& positions, const uint32_t* vertices, size_t count);
 // Smallest sphere enclosing the spheres (CGAL), rounded outward so that float tests agree.
 glm::vec4 sphereOfSpheres(const glm::vec4* spheres, size_t count);
+struct BuildCluster;
+// What the file keeps of a cluster's extent: the cone of its triangle normals (shaderio.h,
+// clusterFacesAway: axis the normalised mean of the unit normals, w the sine of the widest angle from
+// it, -1 from 90 degrees on), the sphere of its own vertices (a leaf's is its self sphere) and their count.
+struct ClusterBounds {
+  glm::vec4 cone{0.0f}, sphere{0.0f};
+  uint32_t vertexCount = 0;
+};
+// `shading` maps the cluster's wedges to their vertices (null: its ids are the vertices).
+ClusterBounds clusterBounds(const BuildCluster& c, const std::vector<glm::vec3>& positions,
+                            const ShadingNormals* shading);
 
 // ---- group.cpp --------------------------------------------------------------------------------------
 struct GroupPlan {
@@ -538,7 +549,8 @@ struct Dag {
   uint32_t relaxedGroups = 0;            // groups that needed any relaxation (see SimplifiedGroup)
   uint32_t stuckGroups = 0;              // groups that could not be halved; their clusters were retried
   uint32_t rootClusters = 0;
-  SurfaceTopology roots;  // of the root clusters' triangles together
+  SurfaceTopology roots;              // of the root clusters' triangles together
+  std::vector<ClusterBounds> bounds;  // one a cluster
 };
 // A surface the DAG cannot be built on (it folds onto itself: two leaf triangles hold the same edge in
 // the same direction, so no cut of it is watertight); buildScene reports it as an InputError.

@@ -5,6 +5,7 @@
 // self spheres, so both only grow toward the root (monotonic), and the clusters a group produces take
 // the group's (error, sphere) as their self pair.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "../common/bucket_sort.h"
@@ -119,32 +120,77 @@ struct GroupOutcome {
   std::vector<BuildCluster> produced;
 };
 
+// The bounds of the DAG's clusters (ClusterBounds, for the layout), found a few clusters at a time by
+// threads that would otherwise wait on a round's last groups, the rest once the rounds are done. The
+// clusters made before a round do not change during it; a cluster's bounds do not depend on when or
+// where they are found.
+class BoundsFinder {
+ public:
+  BoundsFinder(Dag& dag, const std::vector<glm::vec3>& positions, const ShadingNormals* shading)
+      : dag_(dag), positions_(positions), shading_(shading) {}
+  // Before a round: the clusters made so far may be taken from now on.
+  void startRound() {
+    dag_.bounds.resize(dag_.clusters.size());
+    end_ = dag_.clusters.size();
+  }
+  // During a round, from any thread: finds the bounds of the next few clusters; false when none is left.
+  bool findSome() {
+    const size_t first = next_.fetch_add(kClustersAPiece, std::memory_order_relaxed);
+    if (first >= end_) return false;
+    for (size_t id = first; id < std::min(end_, first + kClustersAPiece); id++)
+      dag_.bounds[id] = clusterBounds(dag_.clusters[id], positions_, shading_);
+    return true;
+  }
+  // After a round, on the calling thread: the pieces handed out past its clusters are taken back.
+  void endRound() { next_.store(std::min(next_.load(), end_)); }
+  // After the rounds: the rest, on the threads.
+  void finish(int threads) {
+    startRound();
+    const size_t first = std::min(next_.load(), end_);
+    parallelFor(end_ - first, threads, [&](size_t i) {
+      dag_.bounds[first + i] = clusterBounds(dag_.clusters[first + i], positions_, shading_);
+    });
+  }
+
+ private:
+  static constexpr size_t kClustersAPiece = 4;  // tens of microseconds: a round ends at most that late
+  Dag& dag_;
+  const std::vector<glm::vec3>& positions_;
+  const ShadingNormals* shading_;
+  std::atomic<size_t> next_{0};
+  size_t end_ = 0;
+};
+
 // Each planned group's triangles simplified to half with its border locked, then split into clusters;
-// the groups of round `round`'s clusters, made at level round - 1.
+// the groups of round `round`'s clusters, made at level round - 1. Threads left without a group find
+// clusters' bounds meanwhile.
 std::vector<GroupOutcome> simplifyGroups(const std::vector<GroupPlan>& plans, const std::vector<BuildCluster>& clusters,
                                          const std::vector<glm::vec3>& positions, const ChordRule& chords,
                                          const std::vector<uint64_t>& openEdges, uint32_t round,
-                                         const BuildOptions& options) {
+                                         const BuildOptions& options, BoundsFinder& bounds) {
   std::vector<GroupOutcome> outcomes(plans.size());
   // Largest groups first, so that the round does not end waiting on a large one started last.
   std::vector<std::pair<uint64_t, uint32_t>> bySize(plans.size());
   for (uint32_t g = 0; g < plans.size(); g++) bySize[g] = {~triangleCount(clusters, plans[g].clusters), g};
   std::sort(bySize.begin(), bySize.end());
-  parallelForInOrder(plans.size(), options.threads, [&](size_t i) {
-    const size_t g = bySize[i].second;
-    std::vector<uint32_t> indices;
-    for (uint32_t m : plans[g].clusters)
-      indices.insert(indices.end(), clusters[m].indices.begin(), clusters[m].indices.end());
-    auto chordAllowed = [&](uint32_t a, uint32_t b) { return chords.allowed(uint32_t(g), a, b); };
-    outcomes[g].simplified =
-        simplifyGroup(indices, positions, chordAllowed, openEdges, simplifyTarget(indices.size() / 3));
-    if (outcomes[g].simplified.halved) {
-      outcomes[g].group = groupOf(clusters, plans[g].clusters, outcomes[g].simplified.error, round - 1);
-      outcomes[g].produced = splitIntoClusters(outcomes[g].simplified, positions, options.shading);
-    }
-    std::vector<uint32_t>().swap(outcomes[g].simplified.indices);  // held as the clusters now
-    std::vector<uint32_t>().swap(outcomes[g].simplified.globals);
-  });
+  parallelForInOrder(
+      plans.size(), options.threads,
+      [&](size_t i) {
+        const size_t g = bySize[i].second;
+        std::vector<uint32_t> indices;
+        for (uint32_t m : plans[g].clusters)
+          indices.insert(indices.end(), clusters[m].indices.begin(), clusters[m].indices.end());
+        auto chordAllowed = [&](uint32_t a, uint32_t b) { return chords.allowed(uint32_t(g), a, b); };
+        outcomes[g].simplified =
+            simplifyGroup(indices, positions, chordAllowed, openEdges, simplifyTarget(indices.size() / 3));
+        if (outcomes[g].simplified.halved) {
+          outcomes[g].group = groupOf(clusters, plans[g].clusters, outcomes[g].simplified.error, round - 1);
+          outcomes[g].produced = splitIntoClusters(outcomes[g].simplified, positions, options.shading);
+        }
+        std::vector<uint32_t>().swap(outcomes[g].simplified.indices);  // held as the clusters now
+        std::vector<uint32_t>().swap(outcomes[g].simplified.globals);
+      },
+      [&] { return bounds.findSome(); });
   return outcomes;
 }
 
@@ -206,7 +252,8 @@ constexpr uint64_t kSmallestRoot = 16;  // triangles
 
 }  // namespace
 
-// The build loop: leaves, then rounds of group -> simplify -> split -> add, then the roots.
+// The build loop: leaves, then rounds of group -> simplify -> split -> add, then the roots, then the
+// bounds of the clusters that the rounds' idle threads did not reach.
 Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
   auto report = [&](double f, const char* stage) {
     if (options.progress) options.progress(f, stage);
@@ -226,6 +273,7 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
   const double totalWork = double(dag.levelTriangles[0]) * 2.0;
   double doneWork = 0.0;
   size_t unrecorded = 0;  // the first cluster whose edges are not in the chord rule's set yet
+  BoundsFinder bounds(dag, mesh.positions, options.shading);
 
   // Go on while more than one cluster is left, and then keep halving the last one down to a few
   // triangles: far away, an instance costs only its root, so a small root keeps the triangles drawn
@@ -257,8 +305,10 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
     freeBorders(dag.clusters, active, options.threads);
     roundChords.stop();
     StageTimer simplifying(options.times, "simplify and split");
+    bounds.startRound();
     std::vector<GroupOutcome> outcomes =
-        simplifyGroups(plans, dag.clusters, mesh.positions, chords, openEdges, round, options);
+        simplifyGroups(plans, dag.clusters, mesh.positions, chords, openEdges, round, options, bounds);
+    bounds.endRound();
     simplifying.stop();
     StageTimer adding(options.times, "add round");
     unrecorded = dag.clusters.size();
@@ -276,6 +326,9 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
   addRootGroups(dag, active, mesh.positions, options);
   freeBorders(dag.clusters, active, options.threads);
   rootGroups.stop();
+  StageTimer bounding(options.times, "cluster bounds");
+  bounds.finish(options.threads);
+  bounding.stop();
   report(1.0, "done");
   return dag;
 }

@@ -12,34 +12,6 @@
 #include "layout.h"
 
 namespace vgeo {
-namespace {
-
-// The cone of a cluster's triangle normals (shaderio.h, clusterFacesAway): axis the normalised mean of
-// the unit normals, w the sine of the widest angle from it, -1 when that angle reaches 90 degrees.
-glm::vec4 normalCone(const std::vector<uint32_t>& indices, const std::vector<glm::vec3>& positions) {
-  std::vector<glm::dvec3> normals;
-  glm::dvec3 sum(0.0);
-  for (size_t t = 0; t + 2 < indices.size(); t += 3) {
-    glm::dvec3 a(positions[indices[t]]), b(positions[indices[t + 1]]), c(positions[indices[t + 2]]);
-    glm::dvec3 n = glm::cross(b - a, c - a);
-    double len = glm::length(n);
-    if (len == 0.0) continue;  // degenerate: faces nowhere, culling it is harmless
-    normals.push_back(n / len);
-    sum += n / len;
-  }
-  double len = glm::length(sum);
-  if (normals.empty() || len < 1e-9) return glm::vec4(0.0f, 0.0f, 1.0f, -1.0f);
-  glm::dvec3 axis = sum / len;
-  double minCos = 1.0;
-  for (const auto& n : normals) minCos = std::min(minCos, glm::dot(axis, n));
-  if (minCos <= 0.02) return glm::vec4(glm::vec3(axis), -1.0f);
-  double sine = std::sqrt(std::max(0.0, 1.0 - minCos * minCos));
-  // Rounded up a little so that float tests never cull a cluster that has a triangle facing the eye.
-  return glm::vec4(glm::vec3(axis), float(std::min(1.0, sine * 1.0001 + 1e-6)));
-}
-
-}  // namespace
-
 PatchBases appendPatchPoints(SectionSink& file, MeshPatches& patches) {
   PatchBases bases{uint32_t(file.count(Section::ControlPoints)), uint32_t(file.count(Section::PatchPoints))};
   file.append(Section::ControlPoints, patches.points);
@@ -79,17 +51,16 @@ void appendGeometry(SectionSink& file, const Dag& dag, const PolygonMesh& leafMe
     }
   if (clusterOrder.size() != dag.clusters.size())
     throw std::logic_error("appendGeometry: a cluster belongs to no group");
+  if (dag.bounds.size() != dag.clusters.size()) throw std::logic_error("appendGeometry: a cluster has no bounds");
   const bool patched = patches.info.size() == leafMesh.faceCount() && leafMesh.faceCount() > 0;
   const size_t vertices = shading.wedgeVertex.size();
-  // The file's last geometry: what each section will hold is known before it is appended (the clusters'
-  // vertices once counted with the cones below; its patch points are in already), so that a file sink
-  // writes them in place.
+  // The file's last geometry: what each section will hold is known before it is appended (its patch
+  // points are in already), so that a file sink writes them in place.
   auto expectMore = [&](Section s, uint64_t more) {
     if (last) file.expectTotal(s, file.count(s) + more);
   };
   // Where each cluster's arrays start in their sections, in cluster order (one more: the ends): known
-  // from the counts, so that a batch of clusters is laid out straight into its place. The vertices'
-  // column is filled once the cones below have counted them.
+  // from the counts, so that a batch of clusters is laid out straight into its place.
   struct Place {
     uint64_t vertex, triangle, face, faceVertex;
   };
@@ -99,6 +70,7 @@ void appendGeometry(SectionSink& file, const Dag& dag, const PolygonMesh& leafMe
   for (size_t i = 0; i < clusterOrder.size(); i++) {
     const BuildCluster& c = dag.clusters[clusterOrder[i]];
     Place next = places[i];
+    next.vertex += dag.bounds[clusterOrder[i]].vertexCount;
     next.triangle += c.indices.size() / 3;
     if (patched) {
       next.face += c.cageFaces.size();
@@ -113,6 +85,7 @@ void appendGeometry(SectionSink& file, const Dag& dag, const PolygonMesh& leafMe
     expectMore(Section::Positions, vertices);
     expectMore(Section::Normals, vertices);
     expectMore(Section::Clusters, dag.clusters.size());
+    expectMore(Section::ClusterVertices, to.vertex - from.vertex);
     expectMore(Section::ClusterTriangles, to.triangle - from.triangle);
     expectMore(Section::Groups, dag.groups.size());
     expectMore(Section::BvhNodes, bvh.nodes.size());
@@ -124,13 +97,9 @@ void appendGeometry(SectionSink& file, const Dag& dag, const PolygonMesh& leafMe
     expectMore(Section::PatchPoints, 0);
   }
 
-  // Vertices: one a wedge (shading_normals.cpp), which is one a leaf vertex unless the mesh has hard edges.
-  // They go to the file on one thread while the others find each cluster's normal cone, the sphere of
-  // its own vertices (a leaf's is its self sphere) and their number, kept apart from the serial layout
-  // below since CGAL's exact sphere is the layout's costliest step.
-  std::vector<shaderio::ClusterCone> cones(dag.clusters.size());
-  std::vector<uint32_t> clusterVertexCounts(dag.clusters.size());
-  {
+  // Vertices: one a wedge (shading_normals.cpp), which is one a leaf vertex unless the mesh has hard
+  // edges; they go to the file on one thread while the others number the faces.
+  auto appendVertices = [&] {
     FillLaterVector<glm::vec3> positions(vertices);
     FillLaterVector<uint32_t> normals(vertices);
     parallelForRanges(vertices, threads, [&](size_t begin, size_t end) {
@@ -139,47 +108,27 @@ void appendGeometry(SectionSink& file, const Dag& dag, const PolygonMesh& leafMe
         normals[w] = encodeNormal(shading.wedgeNormal[w]);
       }
     });
-    auto appendVertices = [&] {
-      file.append(Section::Positions, positions.data(), vertices);
-      file.append(Section::Normals, normals.data(), vertices);
-    };
-    auto findCones = [&] {
-      parallelFor(dag.clusters.size(), threads, [&](size_t id) {
-        const BuildCluster& c = dag.clusters[id];
-        cones[id].cone = normalCone(c.indices, leafMesh.positions);
-        const std::vector<uint32_t>& ids = c.wedges.empty() ? c.indices : c.wedges;
-        if (c.level == 0) {
-          cones[id].sphere = c.selfSphere;
-          clusterVertexCounts[id] = uint32_t(distinctCount(ids));
-          return;
-        }
-        std::vector<uint32_t> own, local;
-        localIds(ids, own, local);
-        clusterVertexCounts[id] = uint32_t(own.size());
-        for (uint32_t& v : own) v = shading.wedgeVertex[v];  // the wedges' positions
-        cones[id].sphere = sphereOfPoints(leafMesh.positions, own.data(), own.size());
-      });
-    };
-    withThreads(threads, [&] { parallelInvoke(threads > 1, appendVertices, findCones); });
-  }
-  for (size_t i = 0; i < clusterOrder.size(); i++)
-    places[i + 1].vertex = places[i].vertex + clusterVertexCounts[clusterOrder[i]];
-  expectMore(Section::ClusterVertices, places.back().vertex - places.front().vertex);
-
+    file.append(Section::Positions, positions.data(), vertices);
+    file.append(Section::Normals, normals.data(), vertices);
+  };
   // One patch per face of a subdivided cage (its words verbatim: control-point indices relative to the
   // geometry's first control point). Neighbours name faces by their index in the file, whose order
   // (cluster order) is known first; an edge is locked at factor 1 where the face on its other side
   // belongs to another level-0 group (which may be drawn coarser) or is flat.
   const uint32_t pointBase = bases.point, wordBase = bases.word;
-  std::vector<uint32_t> fileFace(patched ? leafMesh.faceCount() : 0, UINT32_MAX),
-      faceGroup(patched ? leafMesh.faceCount() : 0, UINT32_MAX);
-  uint32_t nextFace = cageOffset;
-  if (patched)
+  std::vector<uint32_t> fileFace, faceGroup;
+  auto numberFaces = [&] {
+    if (!patched) return;
+    fileFace.assign(leafMesh.faceCount(), UINT32_MAX);
+    faceGroup.assign(leafMesh.faceCount(), UINT32_MAX);
+    uint32_t nextFace = cageOffset;
     for (uint32_t id : clusterOrder)
       for (uint32_t f : dag.clusters[id].cageFaces) {
         fileFace[f] = nextFace++;
         faceGroup[f] = dag.clusters[id].group;
       }
+  };
+  withThreads(threads, [&] { parallelInvoke(threads > 1, appendVertices, numberFaces); });
   auto flat = [&](uint32_t f) { return !patches.patched(f) || f >= patchErrors.size(); };
   auto filePatch = [&](uint32_t f) {
     shaderio::Patch out{};
@@ -247,7 +196,7 @@ void appendGeometry(SectionSink& file, const Dag& dag, const PolygonMesh& leafMe
       out.vertexOffset = uint32_t(at.vertex);
       out.triangleOffset = uint32_t(at.triangle);
       out.cageFaceOffset = uint32_t(at.face);
-      batch.cones[i] = cones[id];
+      batch.cones[i] = {dag.bounds[id].cone, dag.bounds[id].sphere};
       // Its vertices in order of first use, its triangles as three local indices.
       thread_local std::vector<uint32_t> own, local;
       localIds(c.wedges.empty() ? c.indices : c.wedges, own, local);

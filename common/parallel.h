@@ -55,22 +55,34 @@ void parallelFor(size_t count, int threads, Fn&& fn) {
 
 // fn(i) for every i in [0, count), on up to `threads` threads, each thread taking the next i as it
 // gets free: for few, heavy items of unequal cost, listed heaviest first, so that none of the heavy
-// ones is left to start last. An exception thrown by fn stops the loop and is rethrown here.
-template <class Fn>
-void parallelForInOrder(size_t count, int threads, Fn&& fn) {
-  if (threads <= 1 || count <= 1) {
+// ones is left to start last. While items are still running, a thread with none left to take calls
+// fill() until it returns false or the last item is done: for work wanted later, a short piece a
+// call, done by the threads that would wait on the loop's last items. An exception thrown by fn stops
+// the loop and is rethrown here.
+template <class Fn, class Fill>
+void parallelForInOrder(size_t count, int threads, Fn&& fn, Fill&& fill) {
+  if (threads <= 1 || count == 0) {
     for (size_t i = 0; i < count; i++) fn(i);
     return;
   }
-  std::atomic<size_t> next{0};
+  std::atomic<size_t> next{0}, running{count};
   withThreads(threads, [&] {
     tbb::parallel_for(
         0, threads,
         [&](int) {
-          for (size_t i = next++; i < count && !tbb::is_current_task_group_canceling(); i = next++) fn(i);
+          for (size_t i = next++; i < count && !tbb::is_current_task_group_canceling(); i = next++) {
+            fn(i);
+            running--;
+          }
+          while (running.load(std::memory_order_relaxed) > 0 && !tbb::is_current_task_group_canceling() && fill()) {
+          }
         },
         tbb::simple_partitioner());
   });
+}
+template <class Fn>
+void parallelForInOrder(size_t count, int threads, Fn&& fn) {
+  parallelForInOrder(count, count > 1 ? threads : 1, std::forward<Fn>(fn), [] { return false; });
 }
 
 // Lowers `target` to `value` when smaller, from any thread (the smallest of all offered wins).
