@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <condition_variable>
 #include <cstdlib>
@@ -22,7 +23,11 @@ namespace {
 constexpr size_t kSpoolBuffer = size_t(1) << 20;  // bytes a section collects before a write
 constexpr size_t kCopyChunk = size_t(4) << 20;    // bytes read back at a time to copy a spool into place
 constexpr size_t kSumChunk = size_t(1) << 20;     // and by each thread to checksum the file's sections
-constexpr size_t kBuffersInFlight = 8;            // full buffers the writer thread may lag behind: bounds the memory
+constexpr size_t kBuffersInFlight = 8;            // full buffers the writers may lag behind: bounds the memory
+// Writer threads of a sink of `threads`: none on one (each write done at once), one on up to seven (a
+// thread summing and writing keeps up with a few builders), then one more for each four threads, to
+// four (a section is one thread's at a time; most bytes are in four or five sections).
+int writerThreads(int threads) { return threads <= 1 ? 0 : std::clamp(threads / 4, 1, 4); }
 
 // A temporary file in `folder` that no name leads to: O_TMPFILE where the file system has it, else a
 // named file unlinked at once.
@@ -109,19 +114,20 @@ void VgeoDataSink::expected(Section s) {
 }
 
 // Each write: the bytes added to their section's checksum (where it is taken as written), written at
-// their offset and sent on to the disk. Threaded, the buffers go to the writer thread in order and the
-// caller gets an empty one back (a recycled one, or a new one while fewer than kBuffersInFlight are
-// out; else it waits for one); otherwise each write is done at once. A spool's copy into place is a
-// job of the same queue, so that the section's later writes reach its checksum after the copy's bytes.
+// their offset and sent on to the disk. Threaded, the buffers go to the writer threads and the caller
+// gets an empty one back (a recycled one, or a new one while fewer than kBuffersInFlight are out; else
+// it waits for one); otherwise each write is done at once. A spool's copy into place is a job like the
+// others. A free thread takes the oldest job of a section no other thread is writing, so that a
+// section's bytes reach its checksum in order while other sections are summed and written beside it.
 class VgeoFileSink::Writer {
  public:
-  Writer(AtomicFile& out, bool threaded) : out_(out) {
-    if (threaded) thread_ = std::thread([this] { run(); });
+  Writer(AtomicFile& out, int threads) : out_(out) {
+    for (int i = 0; i < threads; i++) threads_.emplace_back([this] { run(); });
   }
   ~Writer() { finish(); }
-  // Takes the bytes of `buffer`, leaving it empty.
-  void write(std::vector<uint8_t>& buffer, uint64_t offset, VgeoChecksum* sum) {
-    if (!thread_.joinable()) {
+  // Takes the bytes of `buffer` (of section `section`), leaving it empty.
+  void write(uint32_t section, std::vector<uint8_t>& buffer, uint64_t offset, VgeoChecksum* sum) {
+    if (threads_.empty()) {
       perform(buffer, offset, sum);
       buffer.clear();
       return;
@@ -136,21 +142,21 @@ class VgeoFileSink::Writer {
       } else {
         buffers_++;
       }
-      jobs_.push_back({std::move(buffer), offset, sum});
+      jobs_.push_back({section, std::move(buffer), offset, sum});
     }
     changed_.notify_all();
     if (next.capacity() < kSpoolBuffer) next.reserve(kSpoolBuffer);
     buffer = std::move(next);
   }
   // Copies the first `bytes` of spool `fd` to `offset` (summed into `sum` where given) and closes it.
-  void copy(int fd, uint64_t bytes, uint64_t offset, VgeoChecksum* sum) {
-    if (!thread_.joinable()) {
+  void copy(uint32_t section, int fd, uint64_t bytes, uint64_t offset, VgeoChecksum* sum) {
+    if (threads_.empty()) {
       performCopy(fd, bytes, offset, sum);
       return;
     }
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      jobs_.push_back({{}, offset, sum, fd, bytes});
+      jobs_.push_back({section, {}, offset, sum, fd, bytes});
     }
     changed_.notify_all();
   }
@@ -158,17 +164,19 @@ class VgeoFileSink::Writer {
   int readError() const { return readError_; }
   // Waits for every write given so far.
   void finish() {
-    if (!thread_.joinable()) return;
+    if (threads_.empty()) return;
     {
       std::lock_guard<std::mutex> lock(mutex_);
       stop_ = true;
     }
     changed_.notify_all();
-    thread_.join();
+    for (std::thread& t : threads_) t.join();
+    threads_.clear();
   }
 
  private:
   struct Job {
+    uint32_t section;
     std::vector<uint8_t> bytes;
     uint64_t offset;
     VgeoChecksum* sum;
@@ -188,27 +196,35 @@ class VgeoFileSink::Writer {
       out_.writeAt(at, p, n);
       at += n;
     });
-    if (error && !readError_) readError_ = error;
+    if (error) {
+      int none = 0;
+      __atomic_compare_exchange_n(&readError_, &none, error, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED);
+    }
     out_.startWriteback(offset, bytes);
     ::close(fd);  // its disk space back
+  }
+  // The oldest job whose section no thread is writing, or jobs_.end().
+  std::deque<Job>::iterator takeable() {
+    return std::find_if(jobs_.begin(), jobs_.end(), [&](const Job& j) { return !(writing_ >> j.section & 1u); });
   }
   void run() {
     std::unique_lock<std::mutex> lock(mutex_);
     for (;;) {
-      changed_.wait(lock, [&] { return stop_ || !jobs_.empty(); });
-      if (jobs_.empty()) return;  // stopped, every job done
-      Job job = std::move(jobs_.front());
-      jobs_.pop_front();
+      auto job = jobs_.end();
+      changed_.wait(lock, [&] { return (job = takeable()) != jobs_.end() || (stop_ && jobs_.empty()); });
+      if (job == jobs_.end()) return;  // stopped, every job taken
+      Job taken = std::move(*job);
+      jobs_.erase(job);
+      writing_ |= uint64_t(1) << taken.section;
       lock.unlock();
-      if (job.spool >= 0) {
-        performCopy(job.spool, job.spoolBytes, job.offset, job.sum);
-        lock.lock();
-        continue;
-      }
-      perform(job.bytes, job.offset, job.sum);
-      job.bytes.clear();
+      if (taken.spool >= 0)
+        performCopy(taken.spool, taken.spoolBytes, taken.offset, taken.sum);
+      else
+        perform(taken.bytes, taken.offset, taken.sum);
+      taken.bytes.clear();
       lock.lock();
-      free_.push_back(std::move(job.bytes));
+      writing_ &= ~(uint64_t(1) << taken.section);
+      if (taken.spool < 0) free_.push_back(std::move(taken.bytes));
       changed_.notify_all();
     }
   }
@@ -217,10 +233,12 @@ class VgeoFileSink::Writer {
   std::condition_variable changed_;
   std::deque<Job> jobs_;
   std::vector<std::vector<uint8_t>> free_;
-  size_t buffers_ = 0;  // made for the thread so far
+  size_t buffers_ = 0;    // made for the threads so far
+  uint64_t writing_ = 0;  // a bit a section being written by a thread now
+  static_assert(uint32_t(Section::Count_) - 1 <= 64, "a bit a section");
   bool stop_ = false;
-  int readError_ = 0;  // written by the thread, read after finish()
-  std::thread thread_;
+  int readError_ = 0;  // written by the threads, read after finish()
+  std::vector<std::thread> threads_;
 };
 
 VgeoFileSink::VgeoFileSink(std::string path, int threads)
@@ -243,7 +261,7 @@ void VgeoFileSink::flush(uint32_t section) {
   if (section < placed_) {
     if (spool.sent == 0 && totals_[section] != kUnknown && !spool.sum)
       spool.sum.emplace(totals_[section] * sectionElementSize(Section(section + 1)));
-    writer_->write(spool.buffer, spool.offset + spool.sent, spool.sum ? &*spool.sum : nullptr);
+    writer_->write(section, spool.buffer, spool.offset + spool.sent, spool.sum ? &*spool.sum : nullptr);
   } else {
     const uint8_t* p = spool.buffer.data();
     size_t left = bytes;
@@ -288,14 +306,14 @@ void VgeoFileSink::place() {
     }
     if (!out_) {
       out_ = std::make_unique<AtomicFile>(path_);
-      writer_ = std::make_unique<Writer>(*out_, threads_ > 1);
+      writer_ = std::make_unique<Writer>(*out_, writerThreads(threads_));
     }
     Spool& spool = spools_[placed_];
     spool.offset = vgeoSectionStart(end);
     static const uint8_t zeros[16] = {};
     out_->writeAt(end, zeros, size_t(spool.offset - end));
     if (totals_[placed_] != kUnknown) spool.sum.emplace(totals_[placed_] * sectionElementSize(Section(placed_ + 1)));
-    writer_->copy(spool.fd, spool.sent, spool.offset, spool.sum ? &*spool.sum : nullptr);
+    writer_->copy(placed_, spool.fd, spool.sent, spool.offset, spool.sum ? &*spool.sum : nullptr);
     spool.fd = -1;
     placed_++;
   }

@@ -64,11 +64,11 @@ class VgeoDataSink : public SectionSink {
 
 // The .vgeo file `path`, written atomically (atomic_file.h). A section goes straight to its place in
 // the file once the totals of every section before it are known (expectTotal): each full buffer is
-// added to the section's checksum, written and sent on to the disk, on a thread of its own when the
-// sink has `threads` > 1 (the appending thread then only fills buffers). Until then a section goes to
-// a temporary file of its own in path's folder, unlinked at once so that the system removes it however
-// the process ends, and is copied into place when its place is known (at the latest, at commit).
-// Write failures throw OutputError("path: cause").
+// added to the section's checksum, written and sent on to the disk, on writer threads of their own
+// when the sink has `threads` > 1 (the appending thread then only fills buffers), each section's
+// buffers in order. Until then a section goes to a temporary file of its own in path's folder,
+// unlinked at once so that the system removes it however the process ends, and is copied into place
+// when its place is known (at the latest, at commit). Write failures throw OutputError("path: cause").
 class VgeoFileSink : public SectionSink {
  public:
   explicit VgeoFileSink(std::string path, int threads = 1);
@@ -87,7 +87,7 @@ class VgeoFileSink : public SectionSink {
     std::vector<uint8_t> buffer;      // written out when full
     std::optional<VgeoChecksum> sum;  // taken as written, where its total was known at its first byte
   };
-  class Writer;  // the writes into the file, in order, on a thread of their own or at once
+  class Writer;  // the writes into the file, each section's in order, on threads of their own or at once
   void write(Section s, const void* data, uint64_t count) override;
   void expected(Section s) override;
   void flush(uint32_t section);

@@ -179,13 +179,14 @@ TEST(Format, TheFileWrittenAsItIsBuiltIsTheOneBuiltInMemory) {
   // part in place, what came before it spooled and copied into place. The same bytes as the in-memory
   // build writes, for a subdivided cage (patches, whose points are spooled before the DAG), a flat mesh,
   // and a glTF of many meshes (each section holds every geometry's part, in order), whether the sink
-  // writes on a thread of its own or not; the spools leave nothing behind.
+  // writes on threads of its own (one, or four on a sink of 16) or not; the spools leave nothing behind.
   const std::string dir = test::tempDir();
   for (const auto& [path, subdiv, sinkThreads] : std::vector<std::tuple<std::string, int, int>>{
            {test::asset("horned_cube.obj"), 2, 1},
            {test::cgalMesh("cow.off"), 0, 3},
            {test::assimpModel("2CylinderEngine-glTF-Binary/2CylinderEngine.glb"), 0, 1},
-           {test::assimpModel("2CylinderEngine-glTF-Binary/2CylinderEngine.glb"), 0, 4}}) {
+           {test::assimpModel("2CylinderEngine-glTF-Binary/2CylinderEngine.glb"), 0, 4},
+           {test::asset("horned_cube.obj"), 3, 16}}) {
     SCOPED_TRACE(path + " with a sink of " + std::to_string(sinkThreads) + " threads");
     SceneBuildOptions options;
     options.subdivisionLevels = subdiv;
@@ -260,6 +261,10 @@ TEST(Format, TheFileSinkWritesASectionInPlaceOnceTheTotalsBeforeItAreKnown) {
   {
     SCOPED_TRACE("every total after a third of each section, last section first");
     replay([&](int piece, SectionSink& sink) { piece == 1 ? expectAll(sink, true) : void(); }, 2);
+  }
+  {
+    SCOPED_TRACE("the same with four writer threads: copies and writes of several sections at once");
+    replay([&](int piece, SectionSink& sink) { piece == 1 ? expectAll(sink, true) : void(); }, 16);
   }
   {
     SCOPED_TRACE("the totals of the first three sections only: the fourth placed, the rest spooled");
