@@ -1,28 +1,10 @@
 #!/bin/bash
-# vgeo_head (6b24634) against vgeo_new on one device host: armadillo Loop x2 on one thread (four
-# rounds) and 16 (eight), Loop x3 on one thread (two) and 16 (four), the two binaries' order
-# alternating by round; clusterlod (one thread) and nv_cluster_lod_builder (16) once a mesh; the cage
-# at --subdiv 2 on 16 threads (four). Output bytes compared (a DIFF line in host.txt when they differ).
-# Run from the repository root with .dev/ as bench/device_build_runs.sh describes; results under $OUT.
+# vgeo_head (6b24634) against vgeo_new (the clusters' bounds found in the rounds' waits) by
+# bench/device_build_ab.sh, then the rounds one by one. Run from the repository root with .dev/ as
+# bench/device_build_runs.sh describes, plus .dev/vgeo_tr; results under $OUT.
 set -u
-. bench/device_build_runs.sh  # D, W, host.txt and run()
-A=$D/data/armadillo.off
-for l in 2 3; do $D/peers/prep $A $W/a$l.bin $l loop >/dev/null && $D/peers/bin2obj $W/a$l.bin $W/a$l.obj >/dev/null; done
-peer() { # driver mesh threads round
-  sync; echo "{\"bin\":\"$1\",\"mesh\":\"$2\",\"threads\":$3,\"round\":$4,\"peer\":$($D/peers/$1 $W/$2.bin $3 1 | tail -1)}" >> $OUT/runs.jsonl
-}
-order() { [ $(($1 % 2)) = 1 ] && echo "vgeo_head vgeo_new" || echo "vgeo_new vgeo_head"; }
-for r in $(seq 1 8); do
-  [ $r -le 4 ] && for b in $(order $r); do run $b $W/a2.obj 0 1 $r a2; done
-  for b in $(order $r); do run $b $W/a2.obj 0 16 $r a2; done
-done
-for r in 1 2 3 4; do
-  [ $r -le 2 ] && for b in $(order $r); do run $b $W/a3.obj 0 1 $r a3; done
-  for b in $(order $r); do run $b $W/a3.obj 0 16 $r a3; done
-  for b in $(order $r); do run $b $A 2 16 $r cage; done
-done
-for m in a2 a3; do peer clod_driver $m 1 1; peer nvlod_driver $m 16 1; done
-grep -c . $OUT/runs.jsonl; date -u >> $OUT/host.txt
+bash bench/device_build_ab.sh
+. bench/device_build_runs.sh  # D, W
 # The rounds one by one (vgeo_tr: vgeo_new printing each round's stages), Loop x2 on 1 and 16 threads.
 for t in 1 16 16 16; do
   rm -f $W/o.vgeo; $D/vgeo_tr build $W/a2.obj -o $W/o.vgeo --threads $t --stats $W/s.json 2>&1 >/dev/null | grep TR > $W/tr.txt

@@ -4,12 +4,8 @@
 # 16, the order turning by round. Run from the repository root with .dev/ as
 # bench/device_build_runs.sh describes, plus .dev/scaling_probe; results under $OUT.
 set -u
-. bench/device_build_runs.sh  # D, W, host.txt and run()
-A=$D/data/armadillo.off
-for l in 2 3; do $D/peers/prep $A $W/a$l.bin $l loop >/dev/null && $D/peers/bin2obj $W/a$l.bin $W/a$l.obj >/dev/null; done
-peer() { # driver mesh threads round
-  sync; echo "{\"bin\":\"$1\",\"mesh\":\"$2\",\"threads\":$3,\"round\":$4,\"peer\":$($D/peers/$1 $W/$2.bin $3 1 | tail -1)}" >> $OUT/runs.jsonl
-}
+. bench/device_build_runs.sh  # D, W, host.txt, run(), prepLoops, peer()
+prepLoops 2 3
 round() { # mesh round
   if [ $(($2 % 2)) = 1 ]; then
     peer clod_driver $1 1 $2; run vgeo_new $W/$1.obj 0 1 $2 $1; run vgeo_new $W/$1.obj 0 16 $2 $1; peer nvlod_driver $1 16 $2
