@@ -128,9 +128,11 @@ class BoundsFinder {
  public:
   BoundsFinder(Dag& dag, const std::vector<glm::vec3>& positions, const ShadingNormals* shading)
       : dag_(dag), positions_(positions), shading_(shading) {}
-  // Before a round: the clusters made so far may be taken from now on.
+  // Before a round: the clusters made so far may be taken from now on (the pieces handed out past the
+  // last round's are taken back).
   void startRound() {
     dag_.bounds.resize(dag_.clusters.size());
+    next_.store(std::min(next_.load(), end_));
     end_ = dag_.clusters.size();
   }
   // During a round, from any thread: finds the bounds of the next few clusters; false when none is left.
@@ -141,12 +143,10 @@ class BoundsFinder {
       dag_.bounds[id] = clusterBounds(dag_.clusters[id], positions_, shading_);
     return true;
   }
-  // After a round, on the calling thread: the pieces handed out past its clusters are taken back.
-  void endRound() { next_.store(std::min(next_.load(), end_)); }
   // After the rounds: the rest, on the threads.
   void finish(int threads) {
     startRound();
-    const size_t first = std::min(next_.load(), end_);
+    const size_t first = next_.load();
     parallelFor(end_ - first, threads, [&](size_t i) {
       dag_.bounds[first + i] = clusterBounds(dag_.clusters[first + i], positions_, shading_);
     });
@@ -308,7 +308,6 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
     bounds.startRound();
     std::vector<GroupOutcome> outcomes =
         simplifyGroups(plans, dag.clusters, mesh.positions, chords, openEdges, round, options, bounds);
-    bounds.endRound();
     simplifying.stop();
     StageTimer adding(options.times, "add round");
     unrecorded = dag.clusters.size();
