@@ -491,12 +491,11 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
     pyramidMade_ = true;
     pyramidView_ = settings.cullView;
   }
-  if (settings.occlusion == Occlusion::Auto && frame.occlusion != VGEO_OCCLUSION_FROZEN && mayOcclude(settings)) {
-    const shaderio::Counters& c = result.counters;
-    occlusionPolicy_.record(plan, uint64_t(c.occludedInstances) + c.occludedNodes, c.occludedClusters,
-                            std::min(c.drawCount, drawCapacity_), c.visibleInstances);
-  }
   if (checkDrained(result)) growOverflowedLists(result.counters, settings.tau);
+  // An incomplete frame's time says nothing of either way (it is drawn again, with larger lists).
+  if (settings.occlusion == Occlusion::Auto && frame.occlusion != VGEO_OCCLUSION_FROZEN && mayOcclude(settings) &&
+      result.complete)
+    occlusionPolicy_.record(plan, result.frameMs, result.pyramidMs);
   return result;
 }
 

@@ -1,13 +1,16 @@
 // occlusion_policy.h: which frames cull by occlusion when the user leaves it to the renderer.
 // Two-pass occlusion culling (docs/design.md, "Occlusion culling") costs a frame a fixed amount whatever
 // it hides: the depth pyramid, the early pass's tests of everything against it, the late pass's steps.
-// Where little is hidden (a scene seen from above, a few objects side by side) that is all it does, so
-// the automatic policy runs two passes only while they hide a tenth of what a frame draws, and otherwise
-// probes again every kOcclusionProbePeriod frames: a frame that leaves a pyramid, then a two-pass frame
-// that tests against it. The picture is the same whichever frame runs which way; only time differs.
+// What it saves is what the hidden part would have cost to select, cull and rasterize. Neither is known
+// from counts alone (a hidden cluster of 2 triangles saves less than one of 128; on one device the fixed
+// part is 0.07 ms, on another 30 ms), so the automatic policy decides by the frames' own measured times:
+// two passes while a two-pass frame takes no longer than the last one-pass frame did, one pass otherwise.
+// Each way is measured again every kOcclusionProbePeriod frames: while one pass wins, a frame that leaves
+// a pyramid and a two-pass frame against it; while two win, one frame in one pass (it leaves a pyramid
+// too, so the next frame's early pass has the depth of the frame before it). The picture is the same
+// whichever frame runs which way; only time differs.
 #pragma once
 
-#include <algorithm>
 #include <cstdint>
 
 namespace vgeo {
@@ -21,40 +24,39 @@ enum class OcclusionPlan {
   TwoPass,             // early pass against the last pyramid, the pyramid, late pass against it
 };
 
-// Frames between probes while two passes do not pay: the probe's two frames cost about one frame's
-// worth of the two passes' fixed cost, spread over this many (bench/occlusion.md).
+// Frames between measurements of the way not taken. A probe costs about one frame's difference between
+// the two ways (plus a pyramid while one pass wins), spread over this many frames: a few per cent at
+// most of a frame where the losing way costs 1.5x (bench/occlusion.md).
 constexpr uint32_t kOcclusionProbePeriod = 16;
-// Two passes pay while they hide at least 1 / kOcclusionPaysAbove of what a frame draws: about what they
-// cost a frame that hides nothing, on the H100 and on lavapipe (bench/occlusion.md).
-constexpr uint64_t kOcclusionPaysAbove = 10;
 
 class OcclusionPolicy {
  public:
   // The next frame's plan. The first two frames draw in one pass (`vgeo render` of a picture builds no
-  // pyramid nobody reads); the first probe is the fourth frame.
+  // pyramid nobody reads); the third leaves a pyramid, the fourth runs two passes against it.
   OcclusionPlan next(bool pyramidMade) const {
-    if ((pays_ || untilProbe_ == 0) && pyramidMade) return OcclusionPlan::TwoPass;
+    if (twoPassWins_)
+      return untilProbe_ == 0 || !pyramidMade ? OcclusionPlan::OnePassThenPyramid : OcclusionPlan::TwoPass;
+    if (untilProbe_ == 0 && pyramidMade) return OcclusionPlan::TwoPass;
     return untilProbe_ <= 1 ? OcclusionPlan::OnePassThenPyramid : OcclusionPlan::OnePass;
   }
-  // What a frame of `plan` did. For two passes: the late pass's hidden instances, BVH nodes and groups,
-  // and clusters (each hidden instance or node counted as the clusters an instance draws on average), and
-  // the clusters drawn and instances visible in both passes.
-  void record(OcclusionPlan plan, uint64_t hiddenInstancesAndNodes, uint64_t hiddenClusters, uint64_t drawnClusters,
-              uint64_t visibleInstances) {
-    if (plan != OcclusionPlan::TwoPass) {
-      if (untilProbe_ > 0) untilProbe_--;
-      return;
-    }
-    const uint64_t perInstance = visibleInstances ? std::max<uint64_t>(drawnClusters / visibleInstances, 1) : 1;
-    const uint64_t hidden = hiddenClusters + hiddenInstancesAndNodes * perInstance;
-    pays_ = hidden > 0 && hidden * kOcclusionPaysAbove >= drawnClusters;
-    if (!pays_) untilProbe_ = kOcclusionProbePeriod;
+  // What a frame of `plan` took: the whole frame, and of it the depth pyramid's build (a one-pass frame
+  // that leaves a pyramid counts as a one-pass frame without it).
+  void record(OcclusionPlan plan, double frameMs, double pyramidMs) {
+    const bool twoPass = plan == OcclusionPlan::TwoPass;
+    (twoPass ? twoPassMs_ : onePassMs_) = twoPass ? frameMs : frameMs - pyramidMs;
+    (twoPass ? measuredTwoPass_ : measuredOnePass_) = true;
+    if (twoPass != twoPassWins_)
+      untilProbe_ = kOcclusionProbePeriod;  // the way not taken was measured: the next probe is a period away
+    else if (untilProbe_ > 0)
+      untilProbe_--;
+    twoPassWins_ = measuredOnePass_ && measuredTwoPass_ && twoPassMs_ <= onePassMs_;
   }
-  bool pays() const { return pays_; }
+  bool twoPassWins() const { return twoPassWins_; }
 
  private:
-  bool pays_ = false;
-  uint32_t untilProbe_ = 3;  // frames until the probe's two-pass frame (the one before leaves the pyramid)
+  bool twoPassWins_ = false, measuredOnePass_ = false, measuredTwoPass_ = false;
+  double onePassMs_ = 0.0, twoPassMs_ = 0.0;  // the last frame of each way
+  uint32_t untilProbe_ = 3;                   // frames until the way not taken is measured again
 };
 
 }  // namespace vgeo
