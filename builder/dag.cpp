@@ -248,7 +248,9 @@ void freeBorders(std::vector<BuildCluster>& clusters, const std::vector<uint32_t
   parallelFor(ids.size(), threads, [&](size_t i) { std::vector<uint64_t>().swap(clusters[ids[i]].border); });
 }
 
-constexpr uint64_t kSmallestRoot = 16;  // triangles
+// A root of at most this many triangles (a far instance draws it): 8, a square-ish shape's fewest, where
+// 16 drew 14-triangle roots for armadillos that each cover a few pixels.
+constexpr uint64_t kSmallestRoot = 8;  // triangles
 
 }  // namespace
 
@@ -277,9 +279,10 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
 
   // Go on while more than one cluster is left, and then keep halving the last one down to a few
   // triangles: far away, an instance costs only its root, so a small root keeps the triangles drawn
-  // in proportion to the pixels covered.
-  for (uint32_t round = 1;
-       active.size() > 1 || (active.size() == 1 && triangleCount(dag.clusters, active) > kSmallestRoot); round++) {
+  // in proportion to the pixels covered. A mesh whose leaves fit one cluster (a box) keeps it: it has
+  // no coarser level that could look like it.
+  for (uint32_t round = 1; active.size() > 1 || (round > 1 && triangleCount(dag.clusters, active) > kSmallestRoot);
+       round++) {
     report(doneWork / totalWork, "simplifying");
     // The last round's clusters' edges go into the chord rule's set beside this round's partition into
     // groups, which does not read it: the inserts fill the threads that the grouping leaves idle. The set's
