@@ -173,6 +173,7 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
     patchLayout.stop();
     BuildOptions bo;
     bo.threads = options.threads;
+    bo.groupSize = options.groupSize;
     bo.leafFaceErrors = &patchErrors;
     bo.leavesAreRepairedFaces = trianglesOnly;
     bo.times = &stats.stages;

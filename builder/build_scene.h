@@ -16,6 +16,7 @@ struct SceneBuildOptions {
   // Inputs without normals (OBJ, OFF, PLY): faces meeting at more than this many degrees get a hard
   // edge; 180 smooths everything. Subdivided cages always get the limit surface's normals.
   float creaseAngleDegrees = 180.0f;
+  uint32_t groupSize = 16;  // clusters a group aims at (BuildOptions::groupSize)
   std::function<void(double fraction, const char* stage)> progress;
 };
 

@@ -48,6 +48,15 @@ double median(std::vector<double> v);
 // items, in device-clock ticks (worker_profile.cpp).
 nlohmann::ordered_json summarizeWorkerProfile(const std::vector<uint32_t>& words, uint32_t workgroups);
 
+class VulkanContext;
+// DAG quality as numbers (cut_quality.cpp): from the views of qualityViews (the framing camera from the
+// front, right, back and left, and four times as far), the cut at `tau` of `scene` (one geometry):
+// triangles listed and drawn per covered pixel, and the share of pixels whose coverage or normal differs
+// from the leaves' picture; the totals and a record per view.
+std::vector<std::pair<std::string, Camera>> qualityViews(const RenderScene& scene, uint32_t width, uint32_t height);
+nlohmann::ordered_json measureCutQuality(VulkanContext& vk, const RenderScene& scene, uint32_t width, uint32_t height,
+                                         float tau);
+
 void addBenchFrameCommand(CLI::App& bench, int& exitCode);
 void addBenchBuildCommand(CLI::App& bench, int& exitCode);
 

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../renderer/gpu_renderer.h"
+#include "../renderer/image.h"
 #include "bench.h"
 #include "commands.h"
 
@@ -83,6 +84,9 @@ struct BenchArgs {
            sweepBudget = kDefaultSweepBudget;
   bool profileWorkers = false;
   std::string instanceCulling = "auto";
+  // The cut alone by default: with occlusion culling a frame selects twice (early and late pass) and lists
+  // only what the depth pyramid leaves, a different quantity from the cut the CPU reference selects.
+  std::string occlusion = "off";
   float fov = 60.0f;
 };
 
@@ -92,6 +96,9 @@ void runBenchCut(const BenchArgs& a) {
   RenderScene base = loadRenderScene(a.input);
   VulkanContext vk({a.device, false});
   nlohmann::ordered_json records = nlohmann::json::array();
+  std::vector<Occlusion> occlusions;
+  for (const std::string& o : parseList<std::string>(a.occlusion))
+    occlusions.push_back(occlusionNamed("--occlusion", o));
   for (const std::string& layout : parseList<std::string>(a.layouts)) {
     if (layout != "grid" && layout != "scatter") throw std::runtime_error("--layouts: grid or scatter");
     const BenchLayout benchLayout = benchLayoutNamed(layout);
@@ -105,84 +112,101 @@ void runBenchCut(const BenchArgs& a) {
       bool sceneWarm = false;
       for (const std::string& mode : modes)
         for (const auto& [cameraName, camera] : cameraPath(scene, a.fov))
-          for (float tau : parseList<float>(a.taus)) {
-            FrameSettings s;
-            s.drawView = s.cullView = makeView(camera, width, height, scene.bounds);
-            s.tau = tau;
-            s.sweepBudget = a.sweepBudget;
-            s.instanceCulling = instanceCullingNamed(a.instanceCulling);
-            // On a GPU every frame also draws (not timed: the traversal has its own timestamps): selection
-            // alone left an H100 idle most of the time, its clock dropped within ~100 ms, and the same
-            // traversal then measured 2-4x slower. lavapipe has no clocks to keep up: selection only.
-            s.draw = !vk.isLavapipe();
-            s.readImage = false;
-            nlohmann::ordered_json r;
-            r["layout"] = layout;
-            r["instances"] = count;
-            r["camera"] = cameraName;
-            r["tau"] = tau;
-            r["mode"] = mode;
-            if (mode == "cpu") {
-              if (uint64_t(count) > a.cpuMaxInstances) continue;
-              std::vector<double> ms;
-              SceneCut cut;
-              for (uint32_t f = 0; f < std::max(1u, a.frames / 2); f++) {
-                auto start = std::chrono::steady_clock::now();
-                cut = selectSceneCut(scene, s.cullView, tau);
-                ms.push_back(
-                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-              }
-              r["traversal_ms"] = median(ms);
-              r["timing"] = "host";
-              r["visible_clusters"] = cut.entries.size() + cut.borderline.size();
-            } else {
-              s.traversal = traversalNamed("--traversals", mode);
-              if (s.traversal == Traversal::Flat && count > a.flatMaxInstances) continue;
-              FrameResult f = renderer.renderFrame(s);  // warm-up (and growth after an overflow)
-              while (!f.complete) f = renderer.renderFrame(s);
-              // At least 3 more frames and 300 ms: a GPU that idled (during the CPU reference or the scene's
-              // upload) measured up to 4x slow in its first frames back, and 100 ms of frames were not
-              // always enough to bring its clock back (H100). The first record of a scene follows the last
-              // scene's CPU reference (up to ~30 s of host work): 2 s there (300 ms left it 2x slow).
-              auto warm = std::chrono::steady_clock::now();
-              const auto warmFor = std::chrono::milliseconds(sceneWarm ? 300 : 2000);
-              for (int i = 0; i < 3 || std::chrono::steady_clock::now() - warm < warmFor; i++) renderer.renderFrame(s);
-              sceneWarm = true;
-              std::vector<double> ms, cullMs;
-              for (uint32_t i = 0; i < a.frames; i++) {
-                f = renderer.renderFrame(s);
-                ms.push_back(f.instanceCullMs + f.traversalMs);  // the whole selection
-                cullMs.push_back(f.instanceCullMs);
-              }
-              r["traversal_ms"] = median(ms);
-              r["instance_cull_ms"] =
-                  median(cullMs);  // part of traversal_ms (the counter reset when culled in the traversal)
-              addFrameCounters(r, f, renderer, vk);
-              if (s.traversal == Traversal::Persistent) {
-                r["workgroups"] = renderer.persistentWorkgroups();
-                r["sweep_budget"] = a.sweepBudget;
-                r["swept_tests"] = f.counters.sweptTests;
-                // One more frame, profiled (not timed: the stamps cost time of their own).
-                if (a.profileWorkers && renderer.canProfileWorkers()) {
-                  FrameSettings p = s;
-                  p.profileWorkers = true;
-                  r["worker_profile"] =
-                      summarizeWorkerProfile(renderer.renderFrame(p).workerProfile, renderer.persistentWorkgroups());
+          for (float tau : parseList<float>(a.taus))
+            for (Occlusion occlusion : occlusions) {
+              if (mode == "cpu" && occlusion != occlusions.front()) continue;
+              FrameSettings s;
+              s.drawView = s.cullView = makeView(camera, width, height, scene.bounds);
+              s.tau = tau;
+              s.sweepBudget = a.sweepBudget;
+              s.instanceCulling = instanceCullingNamed(a.instanceCulling);
+              s.occlusion = occlusion;
+              // On a GPU every frame also draws (not timed: the traversal has its own timestamps): selection
+              // alone left an H100 idle most of the time, its clock dropped within ~100 ms, and the same
+              // traversal then measured 2-4x slower. lavapipe has no clocks to keep up: selection only.
+              s.draw = !vk.isLavapipe();
+              s.readImage = false;
+              nlohmann::ordered_json r;
+              r["layout"] = layout;
+              r["instances"] = count;
+              r["camera"] = cameraName;
+              r["tau"] = tau;
+              r["mode"] = mode;
+              if (mode != "cpu") r["occlusion_setting"] = occlusionName(occlusion);
+              if (mode == "cpu") {
+                if (uint64_t(count) > a.cpuMaxInstances) continue;
+                std::vector<double> ms;
+                SceneCut cut;
+                for (uint32_t f = 0; f < std::max(1u, a.frames / 2); f++) {
+                  auto start = std::chrono::steady_clock::now();
+                  cut = selectSceneCut(scene, s.cullView, tau);
+                  ms.push_back(
+                      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+                }
+                r["traversal_ms"] = median(ms);
+                r["timing"] = "host";
+                r["visible_clusters"] = cut.entries.size() + cut.borderline.size();
+              } else {
+                s.traversal = traversalNamed("--traversals", mode);
+                if (s.traversal == Traversal::Flat && count > a.flatMaxInstances) continue;
+                FrameResult f = renderer.renderFrame(s);  // warm-up (and growth after an overflow)
+                while (!f.complete) f = renderer.renderFrame(s);
+                // At least 3 more frames and 300 ms: a GPU that idled (during the CPU reference or the scene's
+                // upload) measured up to 4x slow in its first frames back, and 100 ms of frames were not
+                // always enough to bring its clock back (H100). The first record of a scene follows the last
+                // scene's CPU reference (up to ~30 s of host work): 2 s there (300 ms left it 2x slow).
+                auto warm = std::chrono::steady_clock::now();
+                const auto warmFor = std::chrono::milliseconds(sceneWarm ? 300 : 2000);
+                for (int i = 0; i < 3 || std::chrono::steady_clock::now() - warm < warmFor; i++)
+                  renderer.renderFrame(s);
+                sceneWarm = true;
+                std::vector<double> ms, cullMs;
+                uint32_t twoPass = 0;
+                for (uint32_t i = 0; i < a.frames; i++) {
+                  f = renderer.renderFrame(s);
+                  ms.push_back(f.instanceCullMs + f.traversalMs);  // the whole selection (both passes' with occlusion)
+                  cullMs.push_back(f.instanceCullMs);
+                  twoPass += f.occlusion ? 1u : 0u;
+                }
+                r["two_pass_frames"] = twoPass;
+                // What the cut costs per pixel it covers: one more frame, its picture read back (not timed).
+                FrameSettings picture = s;
+                picture.readImage = picture.draw = true;
+                const FrameResult p = renderer.renderFrame(picture);
+                const uint64_t covered = coveredPixels(p.rgba);
+                r["pixels_covered"] = covered;
+                r["triangles_listed_per_pixel"] = covered ? double(p.counters.triangles) / double(covered) : 0.0;
+                r["triangles_drawn_per_pixel"] = covered ? double(p.trianglesDrawn) / double(covered) : 0.0;
+                r["traversal_ms"] = median(ms);
+                r["instance_cull_ms"] =
+                    median(cullMs);  // part of traversal_ms (the counter reset when culled in the traversal)
+                addFrameCounters(r, f, renderer, vk);
+                if (s.traversal == Traversal::Persistent) {
+                  r["workgroups"] = renderer.persistentWorkgroups();
+                  r["sweep_budget"] = a.sweepBudget;
+                  r["swept_tests"] = f.counters.sweptTests;
+                  // One more frame, profiled (not timed: the stamps cost time of their own).
+                  if (a.profileWorkers && renderer.canProfileWorkers()) {
+                    FrameSettings p = s;
+                    p.profileWorkers = true;
+                    r["worker_profile"] =
+                        summarizeWorkerProfile(renderer.renderFrame(p).workerProfile, renderer.persistentWorkgroups());
+                  }
                 }
               }
+              if (mode == "cpu") {
+                r["device"] = "host CPU";
+                r["driver"] = "";
+              }
+              r["width"] = width;
+              r["height"] = height;
+              r["commit"] = VGEO_COMMIT;
+              std::fprintf(stderr, "%-7s %6u instances %-8s tau %-3g %-10s %-4s %9.3f ms %8s clusters\n",
+                           layout.c_str(), count, cameraName.c_str(), tau, mode.c_str(),
+                           mode == "cpu" ? "" : occlusionName(occlusion), r["traversal_ms"].get<double>(),
+                           std::to_string(r["visible_clusters"].get<uint64_t>()).c_str());
+              records.push_back(r);
             }
-            if (mode == "cpu") {
-              r["device"] = "host CPU";
-              r["driver"] = "";
-            }
-            r["width"] = width;
-            r["height"] = height;
-            r["commit"] = VGEO_COMMIT;
-            std::fprintf(stderr, "%-7s %6u instances %-8s tau %-3g %-10s %9.3f ms %8s clusters\n", layout.c_str(),
-                         count, cameraName.c_str(), tau, mode.c_str(), r["traversal_ms"].get<double>(),
-                         std::to_string(r["visible_clusters"].get<uint64_t>()).c_str());
-            records.push_back(r);
-          }
     }
   }
   writeJson(a.output, records, 1);
@@ -213,6 +237,9 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
                   "Persistent traversal: cluster tests a frame may sweep instead of walking (0: none)")
       ->capture_default_str();
   addInstanceCullingOption(cut, a->instanceCulling);
+  cut->add_option("--occlusion", a->occlusion,
+                  "Occlusion culling off, on and/or auto, a record each (off: the cut alone, as the CPU selects it)")
+      ->capture_default_str();
   cut->add_flag("--profile-workers", a->profileWorkers,
                 "Persistent records: one more frame with the workers' iterations timed in the shader (needs "
                 "VK_KHR_shader_clock)");

@@ -26,6 +26,7 @@ void addBuildCommand(CLI::App& app, int& exitCode) {
   struct Args {
     std::string input, output, stats;
     int subdiv = 0;
+    uint32_t groupSize = 16;
     float creaseAngle = 180.0f;
     int threads = int(std::max(1u, std::thread::hardware_concurrency()));
     bool quiet = false;
@@ -41,6 +42,11 @@ void addBuildCommand(CLI::App& app, int& exitCode) {
                   "without normals is flat)")
       ->capture_default_str()
       ->check(CLI::Range(0.0f, 180.0f));
+  cmd->add_option("--group-size", args->groupSize,
+                  "Clusters a group aims at, simplified together (a trade of triangles drawn against build time: "
+                  "bench/cut-quality.md)")
+      ->capture_default_str()
+      ->check(CLI::Range(2, 64));
   cmd->add_option("--threads", args->threads, "Worker threads (the output does not depend on it; default: the cores)")
       ->check(CLI::Range(1, 256));
   cmd->add_option("--stats", args->stats, "Write build statistics as JSON to this file");
@@ -56,6 +62,7 @@ void addBuildCommand(CLI::App& app, int& exitCode) {
     SceneBuildOptions options;
     options.subdivisionLevels = args->subdiv;
     options.threads = args->threads;
+    options.groupSize = args->groupSize;
     options.creaseAngleDegrees = args->creaseAngle;
     options.progress = [&](double f, const char* stage) { bar.update(f, stage); };
     SceneBuildStats s;

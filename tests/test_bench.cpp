@@ -36,6 +36,15 @@ TEST(BenchCut, WritesRecordsOnWhichAllModesAgree) {
         EXPECT_EQ(rec["instance_culling"], "pass");
       }
     }
+    if (rec["mode"] != "cpu") {
+      // The cut alone by default, and what it costs per pixel it covers: every drawn triangle was listed.
+      EXPECT_EQ(rec["occlusion_setting"], "off");
+      EXPECT_EQ(rec["two_pass_frames"], 0);
+      if (rec["pixels_covered"].get<uint64_t>() > 0) {
+        EXPECT_GT(rec["triangles_listed_per_pixel"].get<double>(), 0.0);
+        EXPECT_LE(rec["triangles_drawn_per_pixel"].get<double>(), rec["triangles_listed_per_pixel"].get<double>());
+      }
+    }
     std::string group = rec["layout"].get<std::string>() + std::to_string(rec["instances"].get<int>()) +
                         rec["camera"].get<std::string>() + std::to_string(rec["tau"].get<double>());
     drawn[group].push_back(rec["visible_clusters"].get<uint64_t>());
@@ -143,7 +152,20 @@ TEST(BenchBuild, OneRecordPerMeshSubdivAndThreads) {
     }
     for (const auto& total : rec["total_seconds_all"]) totals += total.get<double>();
     EXPECT_LE(steps, totals);
+    // The cut's quality from five views: a root of at most 8 triangles for a far instance, some triangles
+    // a pixel, and at tau 1 a picture within a few per cent of the leaves' (tau 0.01).
+    EXPECT_LE(rec["root_triangles"].get<double>(), 8.0);
+    const auto& q = rec["cut_quality"];
+    ASSERT_EQ(q["views"].size(), 5u);
+    EXPECT_GT(q["triangles_drawn_per_pixel"].get<double>(), 0.0);
+    EXPECT_LE(q["triangles_drawn_per_pixel"].get<double>(), q["triangles_listed_per_pixel"].get<double>());
+    EXPECT_GE(q["pixel_error"].get<double>(), q["coverage_error"].get<double>());
+    EXPECT_LT(q["pixel_error"].get<double>(), 0.05);
+    for (const auto& v : q["views"]) EXPECT_GT(v["covered_pixels"].get<uint64_t>(), 0u) << v["view"];
   }
+  // A level-0 DAG is exact at every cut of its leaves' own level: the picture of the finest views equals
+  // the leaves' where the cut is the leaves (the framing views of 684 triangles at 1280x720).
+  EXPECT_EQ(records[0]["cut_quality"]["views"][0]["pixel_error"].get<double>(), 0.0);
   // Every face of a level-1 cage is a quad: 684 triangles (342 quads) -> 4 x 342 quads = 2,736 triangles.
   EXPECT_EQ(records[2]["leaf_triangles"].get<int>(), 2736);
   EXPECT_EQ(records[0]["clusters"], records[1]["clusters"]);  // the DAG does not depend on the thread count
