@@ -13,16 +13,19 @@
 namespace vgeo {
 
 FillLaterVector<char> readWholeFile(const std::string& path, int threads) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  // O_NONBLOCK: opening a FIFO waits for a writer otherwise; it is refused below like any non-file.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0) throw InputError(path, std::string("cannot open: ") + std::strerror(errno));
   struct Closer {
     int fd;
     ~Closer() { ::close(fd); }
   } closer{fd};
+  // Only regular files: a device (a link to /dev/zero) or a FIFO never ends or never starts.
+  struct stat status = {};
+  if (::fstat(fd, &status) != 0 || !S_ISREG(status.st_mode)) throw InputError(path, "not a regular file");
   // A regular file is read at its size, in pieces side by side: each thread first touches the pages
   // it reads into (zeroing a fresh gigabyte on one thread takes half a second).
-  struct stat status = {};
-  if (::fstat(fd, &status) == 0 && S_ISREG(status.st_mode) && status.st_size > 0) {
+  if (status.st_size > 0) {
     const size_t size = size_t(status.st_size);
     constexpr size_t kPiece = size_t(2) << 20;  // small enough that a file of tens of MB uses every thread
     FillLaterVector<char> data(size);
@@ -43,11 +46,14 @@ FillLaterVector<char> readWholeFile(const std::string& path, int threads) {
     if (!shorter && ::pread(fd, &next, 1, off_t(size)) == 0) return data;
     ::lseek(fd, 0, SEEK_SET);  // it changed while read: read it as a stream
   }
+  // A file that reports no size (procfs) or changed while read: as a stream, up to what a mesh file may be.
+  constexpr size_t kMaxStreamed = size_t(16) << 30;
   FillLaterVector<char> data;
   std::vector<char> buffer(size_t(1) << 16);
   for (;;) {
     const ssize_t n = ::read(fd, buffer.data(), buffer.size());
     if (n < 0 && errno == EINTR) continue;
+    if (data.size() > kMaxStreamed) throw InputError(path, "grows past 16 GiB while it is read");
     if (n < 0) throw InputError(path, std::string("read error: ") + std::strerror(errno));
     if (n == 0) return data;
     data.insert(data.end(), buffer.begin(), buffer.begin() + n);

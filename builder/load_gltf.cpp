@@ -22,6 +22,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "../common/json_depth.h"
 #include "builder.h"
 #include "text_reader.h"
 
@@ -29,7 +30,6 @@ namespace vgeo {
 namespace {
 
 constexpr uint64_t kMaxFileBytes = uint64_t(2) << 30;   // the glTF, the GLB, each buffer file
-constexpr int kMaxJsonDepth = 64;                       // a glTF's own structure is under 10 deep
 constexpr uint64_t kMaxInstances = uint64_t(1) << 18;   // node instances of meshes, from one file
 constexpr uint64_t kMaxNodeVisits = 4 * kMaxInstances;  // node paths walked, meshes or not
 
@@ -42,29 +42,6 @@ std::string firstLine(const std::string& text) {
   if (start == std::string::npos) return "unknown error";
   size_t end = text.find_first_of("\n\r", start);
   return text.substr(start, end == std::string::npos ? std::string::npos : end - start);
-}
-
-// The deepest nesting of objects and arrays in JSON text (strings skipped); stops counting past `limit`.
-int jsonDepth(const char* text, size_t size, int limit) {
-  int depth = 0, deepest = 0;
-  bool inString = false;
-  for (size_t i = 0; i < size; i++) {
-    const char c = text[i];
-    if (inString) {
-      if (c == '\\')
-        i++;
-      else if (c == '"')
-        inString = false;
-    } else if (c == '"') {
-      inString = true;
-    } else if (c == '{' || c == '[') {
-      deepest = std::max(deepest, ++depth);
-      if (deepest > limit) return deepest;
-    } else if (c == '}' || c == ']') {
-      depth--;
-    }
-  }
-  return deepest;
 }
 
 // File system callbacks that keep tinygltf inside the glTF's folder.

@@ -126,9 +126,18 @@ inline void checkOutputPath(const std::string& option, const std::string& path, 
     throw UsageError(option, path + (fs::is_directory(status)
                                          ? " is a folder"
                                          : " is not a regular file (a link or a device): it would be replaced"));
-  for (const std::string& input : inputs)
-    if (fs::exists(path, ec) && fs::exists(input, ec) && fs::equivalent(path, input, ec))
-      throw UsageError(option, path + " is an input of this command; it would be overwritten");
+  // The same file whether or not it exists yet: an existing one by identity (links, hard links), a new one
+  // by its folder's identity and its name (`-o new.vgeo --stats new.vgeo`, or ./new.vgeo).
+  auto same = [&](const fs::path& a, const fs::path& b) {
+    if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec);
+    if (fs::exists(a, ec) != fs::exists(b, ec)) return false;
+    const fs::path fa = a.parent_path().empty() ? "." : a.parent_path(),
+                   fb = b.parent_path().empty() ? "." : b.parent_path();
+    return a.filename() == b.filename() && fs::equivalent(fa, fb, ec);
+  };
+  for (const std::string& other : inputs)
+    if (!other.empty() && same(path, other))
+      throw UsageError(option, path + " is an input or another output of this command; it would be overwritten");
 }
 
 }  // namespace vgeo

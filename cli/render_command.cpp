@@ -57,6 +57,15 @@ FrameSettings frameSettings(const RenderArgs& a, const RenderScene& scene, const
   return settings;
 }
 
+// Views the shaders can use: finite in float (an eye at 3e19 or --fov 1e-20 is finite in double, not in the
+// view-projection the GPU multiplies by).
+void checkViews(const RenderArgs& a, const FrameSettings& settings) {
+  const char* cause =
+      "makes a view that is not finite in float: the eye too far from the scene or the field of view too narrow";
+  if (!finiteView(settings.drawView)) throw UsageError(a.camera.empty() ? "--fov" : "--camera", cause);
+  if (!finiteView(settings.cullView)) throw UsageError("--freeze-camera", cause);
+}
+
 struct RenderRun {
   FrameResult result;  // the last frame's
   uint32_t frames = 0, queueOverflows = 0, drawOverflows = 0, triangleOverflows = 0, patchOverflows = 0;
@@ -221,6 +230,7 @@ int runRender(const RenderArgs& a) {
                            a.triangleCapacity ? a.triangleCapacity : renderer.triangleCapacity(),
                            renderer.patchCapacity());
   const FrameSettings settings = frameSettings(a, scene, *camera, *cullCamera, width, height);
+  checkViews(a, settings);
   if (settings.raster == Raster::Software && !renderer.hasSoftwareRaster())
     throw UsageError("--raster", "software needs 64-bit buffer atomics (shaderBufferInt64Atomics), which " +
                                      vk.deviceName() + " lacks, and a picture of at most " +

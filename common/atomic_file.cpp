@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <random>
 
 namespace vgeo {
 namespace {
@@ -32,6 +33,9 @@ void track(const std::string& temp) {
   if (!installed) {
     std::signal(SIGINT, removeTempAndDie);
     std::signal(SIGTERM, removeTempAndDie);
+    // Past a file-size limit (ulimit -f) a write fails with EFBIG and the temporary file is removed;
+    // SIGXFSZ's default would end the process and leave it.
+    std::signal(SIGXFSZ, SIG_IGN);
     installed = true;
   }
   gTempActive = 0;
@@ -44,12 +48,30 @@ void untrack() { gTempActive = 0; }
 }  // namespace
 
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
-  temp_ = path_ + ".tmp." + std::to_string(::getpid());
-  track(temp_);
-  file_ = std::fopen(temp_.c_str(), "w+b");  // readable: see descriptor()
+  // A new file of a name nobody can guess, never through a link: O_EXCL | O_NOFOLLOW, so that a link
+  // planted at the temporary name (to a file outside the folder) fails the open instead of being
+  // followed and overwritten; then another name is tried.
+  std::random_device random;
+  int fd = -1, error = 0;
+  for (int attempt = 0; attempt < 16 && fd < 0; attempt++) {
+    char suffix[16];
+    std::snprintf(suffix, sizeof suffix, "%08x", unsigned(random()));
+    temp_ = path_ + ".tmp." + std::to_string(::getpid()) + "." + suffix;
+    track(temp_);
+    fd = ::open(temp_.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    error = errno;
+    if (fd < 0) untrack();
+    if (fd < 0 && error != EEXIST) break;
+  }
+  if (fd >= 0) file_ = ::fdopen(fd, "w+b");  // readable: see descriptor()
   if (!file_) {
-    untrack();
-    throw OutputError(path_, std::string("cannot write: ") + std::strerror(errno));
+    if (fd >= 0) {
+      error = errno;
+      ::close(fd);
+      ::unlink(temp_.c_str());
+      untrack();
+    }
+    throw OutputError(path_, std::string("cannot write: ") + std::strerror(error));
   }
 }
 

@@ -171,14 +171,12 @@ void checkReferences(const VgeoData& data, const Fail& fail) {
         !within(g.cageFaceOffset, g.cageFaceCount, data.cageFaces.size()))
       fail(what + " refers outside the file's arrays");
   }
+  if (data.instances.empty()) fail("no instances: nothing to draw");
   for (size_t i = 0; i < data.instances.size(); i++) {
     const auto& inst = data.instances[i];
     if (inst.geometry >= data.geometries.size()) fail("instance " + std::to_string(i) + " uses a missing geometry");
-    if (!(inst.maxScale > 0.0f) || !std::isfinite(inst.maxScale))
-      fail("instance " + std::to_string(i) + " has a bad scale");
-    for (int r = 0; r < 4; r++)
-      if (!std::isfinite(inst.row0[r]) || !std::isfinite(inst.row1[r]) || !std::isfinite(inst.row2[r]))
-        fail("instance " + std::to_string(i) + " has a non-finite transform");
+    const std::string problem = instanceProblem(inst, data.geometries[inst.geometry]);
+    if (!problem.empty()) fail("instance " + std::to_string(i) + " " + problem);
   }
   for (size_t i = 0; i < data.clusters.size(); i++) {
     const auto& c = data.clusters[i];
@@ -206,6 +204,43 @@ void checkReferences(const VgeoData& data, const Fail& fail) {
       fail("group " + std::to_string(i) + " refers outside the cluster array");
     else if (data.groups[i].clusterCount > VGEO_MAX_GROUP_CLUSTERS)
       fail("group " + std::to_string(i) + " has more than " + std::to_string(VGEO_MAX_GROUP_CLUSTERS) + " clusters");
+}
+
+// The values the renderer's tests rely on: spheres finite with a radius >= 0, errors >= 0 (not NaN; a
+// parent's may be +inf), no empty group, every BVH node with children, every cage face's triangles inside
+// its leaf cluster (the GPU reads them by firstTriangle), and every geometry with clusters.
+void checkValues(const VgeoData& data, const Fail& fail) {
+  auto sphere = [](const glm::vec4& s) {
+    return std::isfinite(s.x) && std::isfinite(s.y) && std::isfinite(s.z) && std::isfinite(s.w) && s.w >= 0.0f;
+  };
+  auto error = [](float e) { return e >= 0.0f; };  // false for NaN
+  for (size_t i = 0; i < data.geometries.size(); i++) {
+    if (!sphere(data.geometries[i].boundsSphere)) fail("geometry " + std::to_string(i) + " has a bad bounding sphere");
+    if (data.geometries[i].clusterCount == 0) fail("geometry " + std::to_string(i) + " has no clusters");
+  }
+  for (size_t i = 0; i < data.clusters.size(); i++) {
+    const auto& c = data.clusters[i];
+    const std::string what = "cluster " + std::to_string(i);
+    if (!sphere(c.selfSphere) || !sphere(c.parentSphere)) fail(what + " has a bad bounding sphere");
+    if (!error(c.selfError) || !error(c.parentError)) fail(what + " has a negative or NaN error");
+    const uint32_t triangles = shaderio::clusterTriangleCount(c.counts);
+    for (uint32_t k = 0; k < shaderio::clusterCageFaceCount(c.counts); k++) {
+      const auto& f = data.cageFaces[c.cageFaceOffset + k];
+      if (f.leafCluster != i || f.vertexCount < 3 || f.firstTriangle > triangles ||
+          f.vertexCount - 2 > triangles - f.firstTriangle)
+        fail(what + ": cage face " + std::to_string(c.cageFaceOffset + k) + " names triangles outside the cluster");
+    }
+  }
+  for (size_t i = 0; i < data.groups.size(); i++) {
+    const auto& g = data.groups[i];
+    if (!sphere(g.sphere) || !error(g.error) || g.clusterCount == 0)
+      fail("group " + std::to_string(i) + " has a bad sphere or error, or no clusters");
+  }
+  for (size_t i = 0; i < data.nodes.size(); i++) {
+    const auto& n = data.nodes[i];
+    if (!sphere(n.sphere) || !error(n.maxError) || (n.childCountAndFlags & ~VGEO_NODE_LEAF_BIT) == 0)
+      fail("BVH node " + std::to_string(i) + " has a bad sphere or error, or no children");
+  }
 }
 
 // Nodes: children in range, and every node reached once from its geometry's root (no cycles), no
@@ -332,7 +367,24 @@ VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name) {
   checkBvh(data, fail);
   checkGeometryOwnership(data, fail);
   checkPatches(data, fail);
+  checkValues(data, fail);
   return data;
+}
+
+std::string instanceProblem(const shaderio::Instance& inst, const shaderio::Geometry& geometry) {
+  if (!(inst.maxScale > 0.0f) || !std::isfinite(inst.maxScale)) return "has a zero or non-finite scale";
+  for (int r = 0; r < 4; r++)
+    if (!std::isfinite(inst.row0[r]) || !std::isfinite(inst.row1[r]) || !std::isfinite(inst.row2[r]))
+      return "has a non-finite transform";
+  // In double: the float product may itself overflow.
+  const glm::dvec4 s(geometry.boundsSphere);
+  const glm::dvec4 h(s.x, s.y, s.z, 1.0);
+  const glm::dvec3 c(glm::dot(glm::dvec4(inst.row0), h), glm::dot(glm::dvec4(inst.row1), h),
+                     glm::dot(glm::dvec4(inst.row2), h));
+  const double reach = std::max({std::abs(c.x), std::abs(c.y), std::abs(c.z)}) + s.w * double(inst.maxScale);
+  if (!(reach <= double(kMaxWorldExtent)))
+    return "reaches past +-1e15 from the origin (the renderer's float precision)";
+  return "";
 }
 
 glm::vec3 VgeoData::evaluatePatch(uint32_t face, float s, float t, glm::vec3* normal) const {

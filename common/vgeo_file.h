@@ -78,7 +78,16 @@ struct VgeoData {
 std::vector<uint8_t> serializeVgeo(const VgeoData& data);
 // The deepest BVH a file may hold (the builder's are ~10 levels): what walks it may keep on a stack.
 constexpr uint32_t kMaxBvhDepth = 64;
-// Parses and checks a .vgeo image; throws InputError("name: cause") for anything wrong with it.
+// How far from the origin, in world units, an instance's bounds may reach: the shaders multiply world
+// points by a view-projection in float, and products of 1e15 with a view's ~1e15 still fit a float.
+constexpr float kMaxWorldExtent = 1e15f;
+// Why instance `inst` of `geometry` cannot be drawn (its transform is not finite, or its world bounds
+// reach past kMaxWorldExtent), or empty when it can.
+std::string instanceProblem(const shaderio::Instance& inst, const shaderio::Geometry& geometry);
+// Parses and checks a .vgeo image; throws InputError("name: cause") for anything wrong with it: its
+// structure, every index the CPU or GPU follows, and the values the renderer relies on (finite spheres,
+// errors >= 0, every BVH node with children, at least one instance). `vgeo check` adds the invariants
+// of docs/design.md, which need the whole DAG walked.
 VgeoData parseVgeo(const uint8_t* bytes, size_t size, const std::string& name);
 // Writes to a temporary file beside `path` and renames it, so no half-written file is ever left.
 // Throws OutputError("path: cause") when that fails (atomic_file.h).

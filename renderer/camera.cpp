@@ -41,6 +41,17 @@ View makeView(const Camera& camera, uint32_t width, uint32_t height, glm::vec4 b
   return v;
 }
 
+bool finiteView(const View& v) {
+  auto finite = [](const float* x, int n) {
+    for (int i = 0; i < n; i++)
+      if (!std::isfinite(x[i])) return false;
+    return true;
+  };
+  return finite(&v.viewProjection[0][0], 16) && finite(&v.view[0][0], 16) && finite(&v.planes[0][0], 20) &&
+         finite(&v.eye[0], 3) && finite(&v.projection[0], 2) && std::isfinite(v.projScale) && std::isfinite(v.znear) &&
+         v.znear > 0.0f;
+}
+
 Camera defaultCamera(glm::vec4 bounds, glm::vec3 boxMin, glm::vec3 boxMax, float fovYDegrees, float aspect) {
   Camera c;
   c.fovYDegrees = fovYDegrees;

@@ -24,6 +24,9 @@ struct View {
 
 // A view of `camera` for a width x height image; near and far planes fit a scene of `bounds` (sphere).
 View makeView(const Camera& camera, uint32_t width, uint32_t height, glm::vec4 bounds);
+// Whether every number of the view is finite in float, the precision the shaders use it in (an eye at
+// 3e19, or a field of view of 1e-20 degrees, overflows the view-projection into infinities and NaNs).
+bool finiteView(const View& v);
 // Frames an object from its front (+z), a little from the right and above, its box filling the
 // picture of width / height `aspect`; a flat scene (a grid of instances) is seen from low over its near
 // corner, so that distance shows in the picture.

@@ -461,6 +461,8 @@ bool GpuRenderer::checkDrained(FrameResult& result) {
 }
 
 FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
+  if (!finiteView(settings.drawView) || !finiteView(settings.cullView))
+    throw std::invalid_argument("the camera's view is not finite in float (eye too far, or field of view too narrow)");
   const OcclusionPlan plan = occlusionPlan(settings);
   shaderio::FrameData frame = frameConstants(settings, plan);
   if (frame.occlusion == VGEO_OCCLUSION_FROZEN && !pyramidDrawnFrom(settings.cullView)) {

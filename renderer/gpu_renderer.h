@@ -3,6 +3,7 @@
 // frame is done. Targets and pipelines: gpu_pipelines.cpp.
 #pragma once
 
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -232,11 +233,13 @@ class GpuRenderer {
   }
   // Whether a frame culled by occlusion keeps the depth pyramid it has (a frozen cut: both passes test
   // against the pyramid of the camera it froze at) instead of building one between its passes.
-  static bool keepsPyramid(const FrameSettings& s) { return s.cullView.viewProjection != s.drawView.viewProjection; }
-  // Whether the depth pyramid was drawn from this camera: a frozen cut needs it from the camera it froze at.
-  bool pyramidDrawnFrom(const View& view) const {
-    return pyramidMade_ && pyramidView_.viewProjection == view.viewProjection;
+  // Views compare by their bits, so that the two questions below are each other's negation for any view.
+  static bool sameView(const View& a, const View& b) {
+    return std::memcmp(&a.viewProjection, &b.viewProjection, sizeof(a.viewProjection)) == 0;
   }
+  static bool keepsPyramid(const FrameSettings& s) { return !sameView(s.cullView, s.drawView); }
+  // Whether the depth pyramid was drawn from this camera: a frozen cut needs it from the camera it froze at.
+  bool pyramidDrawnFrom(const View& view) const { return pyramidMade_ && sameView(pyramidView_, view); }
   void recordResolve(VkCommandBuffer cmd, uint32_t mode, bool patches, bool bare);
   VkPipeline computePipeline(const uint32_t* code, size_t bytes, const VkSpecializationInfo* specialization = nullptr);
   VkPipeline resolvePipeline(uint32_t mode, bool patches, bool everyPixel);

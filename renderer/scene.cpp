@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <random>
 
@@ -23,6 +24,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "../common/input_error.h"
+#include "../common/json_depth.h"
 
 namespace vgeo {
 
@@ -195,30 +197,56 @@ RenderScene loadSceneFile(const std::string& path) {
   if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "cannot open: not a file");
   if (std::filesystem::file_size(path, ec) > kMaxSceneFileBytes)
     throw InputError(path, "larger than the 64 MiB a scene file may be");
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "cannot open");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (jsonDepth(text.data(), text.size(), kMaxJsonDepth) > kMaxJsonDepth)
+    throw InputError(path, "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
   RenderScene scene;
   try {
-    nlohmann::json j = nlohmann::json::parse(in);
+    const nlohmann::json j = nlohmann::json::parse(text);
     onlyKeys(j, {"geometries", "instances"}, path, "the scene");
     if (!j.contains("geometries") || !j.at("geometries").is_array() || j.at("geometries").empty())
       throw InputError(path, "'geometries' must be a non-empty array of paths");
     std::filesystem::path dir = std::filesystem::path(path).parent_path();
+    // Each distinct file read and merged once, however many entries name it.
     std::vector<VgeoData> files;
+    std::vector<size_t> fileOf;  // geometries entry -> files
+    std::map<std::string, size_t> byPath;
     for (size_t g = 0; g < j.at("geometries").size(); g++) {
       const auto& entry = j.at("geometries")[g];
       const std::string where = "geometry " + std::to_string(g);
       if (entry.is_object()) onlyKeys(entry, {"path"}, path, where);
       const nlohmann::json& name = entry.is_object() && entry.contains("path") ? entry.at("path") : entry;
       if (!name.is_string()) sceneError(path, where, "expected a path or {\"path\": ...}");
-      files.push_back(readVgeo(geometryPath(dir, name.get<std::string>(), path, where)));
+      const std::string file = geometryPath(dir, name.get<std::string>(), path, where);
+      const std::string key = std::filesystem::weakly_canonical(file, ec).string();
+      auto [it, added] = byPath.emplace(key, files.size());
+      if (added) files.push_back(readVgeo(file));
+      fileOf.push_back(it->second);
     }
-    std::vector<nlohmann::json> placements;
-    if (j.contains("instances")) {
-      if (!j.at("instances").is_array()) throw InputError(path, "'instances' must be an array");
-      placements.assign(j.at("instances").begin(), j.at("instances").end());
-    } else {
-      for (size_t i = 0; i < files.size(); i++) placements.push_back({{"geometry", i}});
+    const nlohmann::json* placements = nullptr;
+    if (j.contains("instances") && !j.at("instances").is_array())
+      throw InputError(path, "'instances' must be an array");
+    if (j.contains("instances")) placements = &j.at("instances");
+    // Counted before any is made: a small file may name a file of many instances many times.
+    uint64_t total = 0;
+    for (size_t k = 0; k < (placements ? placements->size() : fileOf.size()); k++) {
+      size_t entry = k;
+      if (placements) {
+        const nlohmann::json& p = (*placements)[k];
+        if (!p.is_object() || !p.contains("geometry"))
+          sceneError(path, "instance " + std::to_string(k), "no 'geometry'");
+        const auto& g = p.at("geometry");
+        if (!g.is_number_integer() || g.get<int64_t>() < 0 || uint64_t(g.get<int64_t>()) >= fileOf.size())
+          sceneError(path, "instance " + std::to_string(k),
+                     "'geometry' must be an index into 'geometries' (0.." + std::to_string(fileOf.size() - 1) +
+                         "), got " + g.dump());
+        entry = size_t(g.get<int64_t>());
+      }
+      total += files[fileOf[entry]].instances.size();
+      if (total > kMaxSceneInstances)
+        throw InputError(path, "more than " + std::to_string(kMaxSceneInstances) + " instances in all");
     }
     std::vector<uint32_t> base(files.size());
     VgeoData merged;
@@ -227,17 +255,17 @@ RenderScene loadSceneFile(const std::string& path) {
       copy.instances.clear();
       base[i] = appendVgeo(merged, copy);
     }
-    for (size_t k = 0; k < placements.size(); k++) {
+    merged.instances.reserve(total);
+    for (size_t k = 0; k < (placements ? placements->size() : fileOf.size()); k++) {
       const std::string where = "instance " + std::to_string(k);
-      onlyKeys(placements[k], {"geometry", "translation", "rotation", "scale", "matrix"}, path, where);
-      if (!placements[k].contains("geometry")) sceneError(path, where, "no 'geometry'");
-      const auto& g = placements[k].at("geometry");
-      if (!g.is_number_integer() || g.get<int64_t>() < 0 || uint64_t(g.get<int64_t>()) >= files.size())
-        sceneError(path, where,
-                   "'geometry' must be an index into 'geometries' (0.." + std::to_string(files.size() - 1) + "), got " +
-                       g.dump());
-      const size_t file = size_t(g.get<int64_t>());
-      glm::mat4 m = parseTransform(placements[k], path, where);
+      glm::mat4 m(1.0f);
+      size_t file = fileOf[k < fileOf.size() ? k : 0];
+      if (placements) {
+        const nlohmann::json& p = (*placements)[k];
+        onlyKeys(p, {"geometry", "translation", "rotation", "scale", "matrix"}, path, where);
+        file = fileOf[size_t(p.at("geometry").get<int64_t>())];
+        m = parseTransform(p, path, where);
+      }
       for (const auto& inst : files[file].instances) {
         uint32_t geometry = base[file] + inst.geometry;
         shaderio::Instance placed =
@@ -246,6 +274,8 @@ RenderScene loadSceneFile(const std::string& path) {
         if (!(placed.maxScale > 0.0f) || !std::isfinite(placed.maxScale) ||
             !(std::abs(glm::determinant(linear)) > 1e-9f * placed.maxScale * placed.maxScale * placed.maxScale))
           sceneError(path, where, "has a degenerate transform (it flattens the geometry)");
+        const std::string problem = instanceProblem(placed, merged.geometries[geometry]);
+        if (!problem.empty()) sceneError(path, where, "places an instance that " + problem);
         merged.instances.push_back(placed);
       }
     }
@@ -395,6 +425,9 @@ BenchLayout benchLayoutNamed(const std::string& name) {
 }
 
 RenderScene makeBenchScene(const RenderScene& base, uint32_t count, BenchLayout layout, uint64_t seed) {
+  if (count > kMaxSceneInstances)
+    throw std::runtime_error(std::to_string(count) + " instances: more than a scene may hold (" +
+                             std::to_string(kMaxSceneInstances) + ")");
   RenderScene scene;
   scene.data = base.data;
   scene.data.instances.clear();
@@ -424,6 +457,12 @@ RenderScene makeBenchScene(const RenderScene& base, uint32_t count, BenchLayout 
     }
     scene.data.instances.push_back(makeInstance(m, 0, closed));
   }
+  for (size_t i : {size_t(0), scene.data.instances.size() - 1}) {  // the layout's corners
+    if (i >= scene.data.instances.size()) continue;
+    const auto& inst = scene.data.instances[i];
+    const std::string problem = instanceProblem(inst, g);
+    if (!problem.empty()) throw std::runtime_error(std::to_string(count) + " instances laid out: one " + problem);
+  }
   finishScene(scene);
   return scene;
 }
@@ -438,19 +477,33 @@ RenderScene loadRenderScene(const std::string& path, uint32_t grid) {
   if (scene.data.instances.empty()) throw InputError(path, "the scene has no instances");
   finishScene(scene);
   if (grid > 1) {
+    if (uint64_t(grid) * grid * scene.data.instances.size() > kMaxSceneInstances)
+      throw InputError(path, "a grid of " + std::to_string(grid) + " x " + std::to_string(grid) + " copies of " +
+                                 std::to_string(scene.data.instances.size()) + " instances is more than " +
+                                 std::to_string(kMaxSceneInstances) + " instances");
     // N x N copies of the whole scene on the x-z plane, with a quarter of its diameter between copies.
     float spacing = 2.5f * scene.bounds.w;
     std::vector<shaderio::Instance> original = scene.data.instances;
+    auto offset = [&](uint32_t x, uint32_t z) {
+      return glm::translate(glm::mat4(1.0f), glm::vec3((float(x) - 0.5f * float(grid - 1)) * spacing, 0.0f,
+                                                       (float(z) - 0.5f * float(grid - 1)) * spacing));
+    };
+    for (uint32_t corner : {0u, grid - 1})  // the grid's corners, before any copy is made
+      for (const auto& inst : original) {
+        const std::string problem =
+            instanceProblem(makeInstance(offset(corner, corner) * instanceMatrix(inst), inst.geometry, false),
+                            scene.data.geometries[inst.geometry]);
+        if (!problem.empty())
+          throw InputError(path, "a grid of " + std::to_string(grid) + " puts an instance that " + problem);
+      }
     scene.data.instances.clear();
+    scene.data.instances.reserve(size_t(grid) * grid * original.size());
     for (uint32_t z = 0; z < grid; z++)
-      for (uint32_t x = 0; x < grid; x++) {
-        glm::mat4 t = glm::translate(glm::mat4(1.0f), glm::vec3((float(x) - 0.5f * float(grid - 1)) * spacing, 0.0f,
-                                                                (float(z) - 0.5f * float(grid - 1)) * spacing));
+      for (uint32_t x = 0; x < grid; x++)
         for (const auto& inst : original)
           scene.data.instances.push_back(
-              makeInstance(t * instanceMatrix(inst), inst.geometry,
+              makeInstance(offset(x, z) * instanceMatrix(inst), inst.geometry,
                            scene.data.geometries[inst.geometry].flags & VGEO_GEOMETRY_CLOSED));
-      }
     finishScene(scene);
   }
   return scene;

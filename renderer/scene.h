@@ -27,6 +27,10 @@ struct RenderScene {
   std::vector<glm::uvec2> instanceRoots;  // shaderio_frame.h, SceneArrays
 };
 
+// The most instances a scene may hold: sweep runs carry the instance index in VGEO_RUN_INSTANCE_BITS
+// bits (shaderio_frame.h). Scenes are counted against it before their instances are made.
+constexpr uint64_t kMaxSceneInstances = (uint64_t(1) << VGEO_RUN_INSTANCE_BITS) - 1;
+
 // Loads a .vgeo, or a scene file (JSON, see README: geometries by path, instances with transforms),
 // then repeats the instances on an N x N grid when grid > 1. Throws InputError for bad files.
 RenderScene loadRenderScene(const std::string& path, uint32_t grid = 1);

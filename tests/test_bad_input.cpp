@@ -85,13 +85,13 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"GltfMeshesNotAnArray", test::assimpModel("wrongTypes/badArray.gltf"), "", "shows no triangle mesh"}),
     [](const ::testing::TestParamInfo<BadCase>& info) { return info.param.name; });
 
-TEST(BadInputFolder, AFolderNamedLikeAMeshIsAReadError) {
-  // Read as a stream, a folder once gave "out of memory" and no file name.
+TEST(BadInputFolder, AFolderNamedLikeAMeshIsRefused) {
+  // Read as a stream, a folder once gave "out of memory" and no file name; only regular files are read.
   const std::string dir = test::tempDir(), folder = dir + "/folder.obj";
   std::filesystem::create_directories(folder);
   test::RunResult r = test::runVgeo("build '" + folder + "' -o '" + dir + "/f.vgeo' -q");
   EXPECT_EQ(r.exitCode, 1) << r.output;
-  EXPECT_EQ(r.output, folder + ": read error: Is a directory\n");
+  EXPECT_EQ(r.output, folder + ": not a regular file\n");
 }
 
 TEST(GoodInput, BoxBadNormalsBuilds) {

@@ -79,7 +79,8 @@ TEST_F(CommandLine, BadValuesAreUsageErrorsBeforeAnyWork) {
   // The input itself is never overwritten.
   std::filesystem::copy_file(*dir + "/cow.vgeo", *dir + "/same.vgeo",
                              std::filesystem::copy_options::overwrite_existing);
-  expectOneLine("build " + *dir + "/same.vgeo -o " + *dir + "/same.vgeo", 2, "is an input of this command");
+  expectOneLine("build " + *dir + "/same.vgeo -o " + *dir + "/same.vgeo", 2,
+                "is an input or another output of this command");
   // A bad file is the file's fault (exit 1, its name first), not the command line's.
   expectOneLine("render " + *dir + "/nothing.vgeo -o " + *dir + "/out.png", 1, *dir + "/nothing.vgeo: ");
 }

@@ -1,0 +1,172 @@
+// test_hostile_values.cpp: what an attacker or a careless user can give the renderer besides a bad
+// mesh: .vgeo values `check` refuses (render refuses them too: one validation), cameras and transforms
+// past float, scene files nested deep or naming files thousands of times, inputs that are not regular
+// files, links planted at an output's temporary name, an output named twice. Each ends with one line
+// and exit 1 (the file's fault) or 2 (the command line's), quickly, never a crash.
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+
+#include "../common/atomic_file.h"
+#include "test_util.h"
+
+namespace vgeo {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Runs `args`; expects exit `code` within 20 s and one line holding `expected`.
+void expectOneLine(const std::string& args, int code, const std::string& expected) {
+  SCOPED_TRACE(args);
+  const auto start = std::chrono::steady_clock::now();
+  const test::RunResult r = test::runVgeo(args);
+  EXPECT_EQ(r.exitCode, code) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_NE(r.output.find(expected), std::string::npos) << "expected '" << expected << "' in: " << r.output;
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 20.0);
+}
+
+std::string save(const std::string& dir, const std::string& name, const VgeoData& d) {
+  const std::vector<uint8_t> bytes = serializeVgeo(d);
+  return test::writeFile(dir, name, std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+}
+
+TEST(HostileValues, WhatCheckRefusesRenderRefusesToo) {
+  // A subdivided cage (cage faces, patches), each crafted value in a copy: `check` and `render` both
+  // refuse it on load with the file's name, before the GPU could follow it.
+  const std::string dir = test::tempDir();
+  const VgeoData good = test::build(test::asset("horned_cube.obj"), 1);
+  ASSERT_FALSE(good.cageFaces.empty());
+  struct Case {
+    const char* name;
+    std::function<void(VgeoData&)> craft;
+    const char* cause;
+  };
+  const float nan = std::nanf("");
+  const std::vector<Case> cases = {
+      {"first_triangle", [](VgeoData& d) { d.cageFaces[3].firstTriangle = 1000000; }, "triangles outside the cluster"},
+      {"first_triangle_edge",
+       [](VgeoData& d) {
+         const auto& c = d.clusters[d.cageFaces[0].leafCluster];
+         d.cageFaces[0].firstTriangle = shaderio::clusterTriangleCount(c.counts) - 1;  // its second triangle past the end
+       },
+       "triangles outside the cluster"},
+      {"face_other_cluster", [](VgeoData& d) { d.cageFaces[0].leafCluster = d.cageFaces.back().leafCluster; },
+       "cage face"},
+      {"nan_cluster_sphere", [nan](VgeoData& d) { d.clusters[5].selfSphere.w = nan; }, "bad bounding sphere"},
+      {"negative_error", [](VgeoData& d) { d.clusters[7].selfError = -1.0f; }, "negative or NaN error"},
+      {"nan_group_error", [nan](VgeoData& d) { d.groups[2].error = nan; }, "group 2"},
+      {"nan_group_sphere", [nan](VgeoData& d) { d.groups[1].sphere.x = nan; }, "group 1"},
+      {"nan_node_error", [nan](VgeoData& d) { d.nodes[1].maxError = nan; }, "BVH node 1"},
+      {"childless_root", [](VgeoData& d) { d.nodes[0].childCountAndFlags &= VGEO_NODE_LEAF_BIT; }, "no children"},
+      {"far_instance", [](VgeoData& d) { d.instances[0].row0.w = -1.7e38f; }, "reaches past"},
+      {"zero_scale", [](VgeoData& d) { d.instances[0].maxScale = 0.0f; }, "zero or non-finite scale"},
+      {"no_instances", [](VgeoData& d) { d.instances.clear(); }, "no instances"},
+  };
+  for (const Case& c : cases) {
+    VgeoData d = good;
+    c.craft(d);
+    const std::string path = save(dir, std::string(c.name) + ".vgeo", d);
+    expectOneLine("check " + path, 1, path + ": ");
+    expectOneLine("check " + path, 1, c.cause);
+    expectOneLine("render " + path + " -o " + dir + "/o.png --size 64x48", 1, c.cause);
+    EXPECT_FALSE(fs::exists(dir + "/o.png")) << c.name;
+  }
+  // The good file passes both.
+  const std::string path = save(dir, "good.vgeo", good);
+  EXPECT_EQ(test::runVgeo("check " + path + " --cuts 2").exitCode, 0);
+  EXPECT_EQ(test::runVgeo("render " + path + " -o " + dir + "/o.png --size 64x48").exitCode, 0);
+}
+
+TEST(HostileValues, ViewsAndPlacesPastFloatAreRefused) {
+  const std::string dir = test::tempDir();
+  const std::string cube = dir + "/cube.vgeo", out = " -o " + dir + "/o.png --size 64x48";
+  writeVgeo(test::build(test::cgalMesh("cube_quad.off"), 0), cube);
+  // Finite in double, not in the float view-projection: refused as the option's fault, no crash.
+  expectOneLine("render " + cube + out + " --camera 3e19,0,0,0,0,0", 2, "--camera");
+  expectOneLine("render " + cube + out + " --freeze-camera 1e20,0,0,0,0,0", 2, "--freeze-camera");
+  expectOneLine("render " + cube + out + " --fov 1e-20", 2, "not finite in float");
+  expectOneLine("render " + cube + out + " --mode frozen-diff --freeze-camera 3e19,1,1,0,0,0", 2,
+                "--freeze-camera");
+  // A scene with two instances at +-1e20, and a grid that would lay copies past float: the file's fault.
+  const std::string scene = test::writeFile(
+      dir, "far.json",
+      R"({"geometries": ["cube.vgeo"], "instances": [{"geometry": 0, "translation": [1e20, 0, 0]},)"
+      R"({"geometry": 0, "translation": [-1e20, 0, 0]}]})");
+  expectOneLine("render " + scene + out, 1, scene + ": instance 0");
+  const std::string edge = test::writeFile(
+      dir, "edge.json", R"({"geometries": ["cube.vgeo"], "instances": [{"geometry": 0, "scale": [1e13, 1e13, 1e13]}]})");
+  expectOneLine("render " + edge + out + " --grid 2000", 1, "past +-1e15");
+  EXPECT_FALSE(fs::exists(dir + "/o.png"));
+}
+
+TEST(HostileValues, SceneFilesAreCountedAndNestedShallow) {
+  const std::string dir = test::tempDir();
+  const std::string cube = dir + "/cube.vgeo", out = " -o " + dir + "/o.png --size 64x48";
+  writeVgeo(test::build(test::cgalMesh("cube_quad.off"), 0), cube);
+  // 80,000 levels of arrays inside an instance: refused before parsing, not by a stack overflow.
+  const std::string deep = test::writeFile(dir, "deep.json",
+                                           R"({"geometries": ["cube.vgeo"], "instances": [{"geometry": 0, "x": )" +
+                                               std::string(80000, '[') + std::string(80000, ']') + "}]}");
+  expectOneLine("render " + deep + out, 1, "nested deeper than 64");
+  // One path named 400,000 times: read once (the scene draws one instance of it).
+  std::string names = R"({"geometries": [)";
+  for (int i = 0; i < 400000; i++) names += std::string(i ? "," : "") + "\"cube.vgeo\"";
+  const std::string many = test::writeFile(dir, "many.json", names + R"(], "instances": [{"geometry": 399999}]})");
+  const auto start = std::chrono::steady_clock::now();
+  const test::RunResult r = test::runVgeo("render " + many + out);
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 20.0);
+  // Instances counted before any is made: a file of 65,536 instances placed 1,100 times, and a grid of
+  // 33 x 33 copies of 65,536, pass the 67 M a scene may hold; refused at once.
+  VgeoData d = test::build(test::cgalMesh("cube_quad.off"), 0);
+  const shaderio::Instance one = d.instances[0];
+  d.instances.assign(65536, one);
+  for (size_t i = 0; i < d.instances.size(); i++) d.instances[i].row0.w = float(i) * 4.0f;
+  writeVgeo(d, dir + "/crowd.vgeo");
+  std::string placed = R"({"geometries": ["crowd.vgeo"], "instances": [)";
+  for (int i = 0; i < 1100; i++) placed += std::string(i ? "," : "") + R"({"geometry": 0})";
+  const std::string crowd = test::writeFile(dir, "crowd.json", placed + "]}");
+  expectOneLine("render " + crowd + out, 1, "more than 67108863 instances");
+  expectOneLine("render " + dir + "/crowd.vgeo" + out + " --grid 33", 1, "more than 67108863 instances");
+}
+
+TEST(HostileValues, InputsMustBeRegularFilesAndOutputsNamedOnce) {
+  const std::string dir = test::tempDir();
+  // A link to /dev/zero and a FIFO named like meshes: refused at once, neither read forever nor waited on.
+  fs::remove(dir + "/zero.obj");
+  fs::create_symlink("/dev/zero", dir + "/zero.obj");
+  expectOneLine("build " + dir + "/zero.obj -o " + dir + "/z.vgeo -q", 1, "not a regular file");
+  for (const char* fifo : {"pipe.off", "pipe.ply", "pipe.obj"}) {
+    fs::remove(dir + "/" + fifo);
+    test::runShell("mkfifo " + dir + "/" + fifo);
+    expectOneLine("build " + dir + "/" + fifo + " -o " + dir + "/p.vgeo -q", 1, "not a regular file");
+  }
+  EXPECT_FALSE(fs::exists(dir + "/z.vgeo") || fs::exists(dir + "/p.vgeo"));
+  // --stats naming the output, before either exists (and through ./): refused, nothing written.
+  const std::string cow = test::cgalMesh("cow.off");
+  expectOneLine("build " + cow + " -o " + dir + "/new.vgeo --stats " + dir + "/new.vgeo -q", 2, "--stats");
+  expectOneLine("build " + cow + " -o " + dir + "/new.vgeo --stats " + dir + "/./new.vgeo -q", 2, "--stats");
+  EXPECT_FALSE(fs::exists(dir + "/new.vgeo"));
+}
+
+TEST(HostileValues, ALinkPlantedAtTheTemporaryNameIsNotFollowed) {
+  // The temporary name once was OUT.tmp.PID: a link planted there sent the write to its target, outside
+  // the output's folder. Planted at that name and its neighbours now, the target stays as it was.
+  const std::string dir = test::tempDir(), outside = test::tempDir();
+  const std::string target = test::writeFile(outside, "precious.txt", "keep me\n");
+  const std::string out = dir + "/planted.vgeo";
+  const std::string base = out + ".tmp." + std::to_string(::getpid());
+  fs::remove(base);
+  fs::create_symlink(target, base);
+  writeFileAtomically(out, "new contents\n");
+  std::ifstream in(target);
+  std::string kept((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(kept, "keep me\n");
+  std::ifstream written(out);
+  EXPECT_EQ(std::string((std::istreambuf_iterator<char>(written)), std::istreambuf_iterator<char>()), "new contents\n");
+  EXPECT_TRUE(fs::is_symlink(base));
+}
+
+}  // namespace
+}  // namespace vgeo
