@@ -16,9 +16,7 @@ namespace {
 constexpr float kNormalDegrees = 10.0f;
 constexpr float kReferenceTau = 0.01f;
 
-glm::vec3 decodedNormal(const uint8_t* p) {
-  return glm::vec3(p[0], p[1], p[2]) / 127.5f - 1.0f;
-}
+glm::vec3 decodedNormal(const uint8_t* p) { return glm::vec3(p[0], p[1], p[2]) / 127.5f - 1.0f; }
 
 }  // namespace
 
@@ -70,8 +68,8 @@ nlohmann::ordered_json measureCutQuality(VulkanContext& vk, const RenderScene& s
       e += a || b;
       if (a != b)
         cd++;
-      else if (a && glm::dot(glm::normalize(decodedNormal(&cut.rgba[i])), glm::normalize(decodedNormal(&leaves.rgba[i]))) <
-                        cosLimit)
+      else if (a && glm::dot(glm::normalize(decodedNormal(&cut.rgba[i])),
+                             glm::normalize(decodedNormal(&leaves.rgba[i]))) < cosLimit)
         nd++;
     }
     nlohmann::ordered_json v;

@@ -200,10 +200,10 @@ void GpuRenderer::createDescriptorSet() {
   setInfo.bindingCount = kRendererBindings;
   setInfo.pBindings = bindings;
   vkCheck(vkCreateDescriptorSetLayout(dev, &setInfo, nullptr, &setLayout_), "vkCreateDescriptorSetLayout");
-  VkDescriptorPoolSize sizes[4] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
+  VkDescriptorPoolSize sizes[4] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
                                    {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1},
                                    {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1},
-                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kRendererBindings - 4}};
+                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kRendererBindings - 3}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = 1;
   poolInfo.poolSizeCount = 4;

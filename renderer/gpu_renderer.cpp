@@ -103,7 +103,7 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
   }
   sceneArrays_ = vk_.createBuffer(sizeof(addresses), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
   vk_.upload(sceneArrays_, &addresses, sizeof(addresses));
-  frameData_ = vk_.createBuffer(sizeof(shaderio::FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+  frameData_ = vk_.createBuffer(sizeof(shaderio::FrameData), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
   counters_ = vk_.createBuffer(sizeof(shaderio::Counters),
                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
   workerProfile_ = vk_.createBuffer(16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);

@@ -331,10 +331,10 @@ const char* traversalName(Traversal t);
 // Binding count of the one descriptor set (shaderio.h, VGEO_BINDING_*).
 constexpr uint32_t kRendererBindings = VGEO_BINDING_COUNT;
 inline VkDescriptorType descriptorType(uint32_t binding) {
-  return binding == VGEO_BINDING_FRAME || binding == VGEO_BINDING_SCENE ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
-         : binding == VGEO_BINDING_COLOR_IMAGE                          ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
-         : binding == VGEO_BINDING_DEPTH_IMAGE                          ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
-                                                                        : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  return binding == VGEO_BINDING_SCENE         ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
+         : binding == VGEO_BINDING_COLOR_IMAGE ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
+         : binding == VGEO_BINDING_DEPTH_IMAGE ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
+                                               : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 }
 
 }  // namespace vgeo

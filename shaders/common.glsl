@@ -7,7 +7,10 @@
 #endif
 #include "shaderio.h"
 
-layout(set = 0, binding = VGEO_BINDING_FRAME) uniform FrameBlock { FrameData frame; };
+// The frame's constants in a storage buffer, not a uniform buffer: lavapipe (Mesa 22.3) inlines uniform
+// values that steer branches and compiles the shader again at every dispatch, keeping each copy
+// (docs/gpu-notes.md, 23). FrameData's std140 and std430 layouts are the same (no scalar arrays).
+layout(set = 0, binding = VGEO_BINDING_FRAME, std430) readonly restrict buffer FrameBlock { FrameData frame; };
 // Which pass of the frame this is (VGEO_PASS_*: two with occlusion culling, shaderio_frame.h).
 layout(push_constant) uniform PassBlock { PassConstants passConstants; };
 
