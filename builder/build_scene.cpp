@@ -76,13 +76,29 @@ double signedVolume(const PolygonMesh& mesh, int threads) {
 }
 
 // The scene's instances of its meshes, each flagged by whether its mesh is `closed`; those of zero scale,
-// which show nothing, left out.
-std::vector<shaderio::Instance> sceneInstances(const SourceScene& scene, const std::vector<bool>& closed) {
+// which show nothing (glTF hides nodes so), left out and counted in `dropped`. An instance whose mesh
+// (every vertex within `reach[mesh]` of its origin) could land past kMaxWorldExtent, half of it for the
+// bounding sphere's slack, is the file's fault: the renderer could not place it in float.
+std::vector<shaderio::Instance> sceneInstances(const std::string& path, const SourceScene& scene,
+                                               const std::vector<bool>& closed, const std::vector<double>& reach,
+                                               uint32_t& dropped) {
   std::vector<shaderio::Instance> instances;
+  dropped = 0;
   for (const SourceInstance& inst : scene.instances) {
     shaderio::Instance out = makeInstance(inst.transform, inst.mesh, closed[inst.mesh]);
-    if (out.maxScale > 0.0f && std::isfinite(out.maxScale)) instances.push_back(out);
+    const glm::dvec3 t(out.row0.w, out.row1.w, out.row2.w);
+    const double far = glm::length(t) + 2.0 * double(out.maxScale) * reach[inst.mesh];
+    const std::string mesh = scene.meshNames[inst.mesh];
+    if (!std::isfinite(out.maxScale) || !(far <= double(kMaxWorldExtent)))
+      throw InputError(path, "an instance of mesh '" + mesh + "' is placed past +-1e15 by its transform (scale " +
+                                 std::to_string(out.maxScale) + "): too far or too large for float");
+    if (out.maxScale > 0.0f)
+      instances.push_back(out);
+    else
+      dropped++;
   }
+  if (instances.empty() && !scene.instances.empty())
+    throw InputError(path, "every instance has a zero scale: nothing to draw");
   return instances;
 }
 
@@ -107,8 +123,10 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
   if (options.subdivisionLevels < 0) throw InputError(path, "--subdiv must be >= 0");
 
   std::vector<bool> closed(scene.meshes.size());
+  std::vector<double> reach(scene.meshes.size(), 0.0);  // the farthest vertex from the mesh's origin
   for (size_t m = 0; m < scene.meshes.size(); m++) {
     PolygonMesh& mesh = scene.meshes[m];
+    for (const glm::vec3& p : mesh.positions) reach[m] = std::max(reach[m], glm::length(glm::dvec3(p)));
     stats.inputTriangles += triangleCount(mesh, options.threads);
     const std::string where = scene.meshes.size() > 1 ? path + " (mesh '" + scene.meshNames[m] + "')" : path;
     StageTimer repairing(&stats.stages, "repair");
@@ -203,7 +221,7 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
     StageTimer layout(&stats.stages, "layout");
     const bool last = m + 1 == scene.meshes.size();
     if (last) {  // every mesh's closedness is known: the instances' total too
-      instances = sceneInstances(scene, closed);
+      instances = sceneInstances(path, scene, closed, reach, stats.zeroScaleInstances);
       data.expectTotal(Section::Instances, data.count(Section::Instances) + instances.size());
     }
     appendGeometry(data, dag, leaves, shading, patches, patchBases, patchErrors, closed[m], last, options.threads);
@@ -226,7 +244,7 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
     stats.stuckGroups += dag.stuckGroups;
     stats.buildSeconds += secondsSince(buildStart);
   }
-  if (scene.meshes.empty()) instances = sceneInstances(scene, closed);
+  if (scene.meshes.empty()) instances = sceneInstances(path, scene, closed, reach, stats.zeroScaleInstances);
   data.append(Section::Instances, instances);
   stats.geometries = uint32_t(data.count(Section::Geometries));
   stats.instances = uint32_t(data.count(Section::Instances));

@@ -42,7 +42,8 @@ struct SceneBuildStats {
   uint64_t stuckGroups = 0;
   uint32_t geometries = 0;
   uint32_t instances = 0;
-  RepairReport repair;  // summed over meshes
+  uint32_t zeroScaleInstances = 0;  // left out: they show nothing
+  RepairReport repair;              // summed over meshes
   std::vector<UnreducedMesh> unreduced;
   double loadSeconds = 0.0, subdivideSeconds = 0.0, buildSeconds = 0.0;
   StageTimes stages;  // every step's seconds, the DAG's own steps among them

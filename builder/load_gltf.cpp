@@ -390,6 +390,16 @@ SourceScene loadGltf(const std::string& path) {
       cause += " (a buffer is a data URI or a relative path to a regular file inside the glTF's folder)";
     throw InputError(path, cause);
   }
+  // A required extension must be understood or the file refused (glTF 2.0, 3.12): those that change
+  // geometry (instancing, compression, quantized positions) are not read here, and an unknown one may
+  // be anything. Those that only change appearance leave the shape as the builder reads it.
+  for (const std::string& ext : model.extensionsRequired) {
+    const bool appearance = ext.rfind("KHR_materials_", 0) == 0 || ext == "KHR_texture_transform" ||
+                            ext == "KHR_texture_basisu" || ext == "KHR_lights_punctual" || ext == "EXT_texture_webp";
+    if (!appearance)
+      throw InputError(path,
+                       "requires the extension " + ext + ", which vgeo does not read (its geometry would be lost)");
+  }
   return GltfReader(model, path).read();
 }
 

@@ -145,7 +145,7 @@ ObjPiece parsePiece(std::string_view text, const std::string& path, size_t first
 
 SourceScene loadObj(const std::string& path, int threads) {
   const FillLaterVector<char> bytes = readWholeFile(path, threads);
-  const std::string_view data(bytes.data(), bytes.size());
+  const std::string_view data = withoutByteOrderMark(std::string_view(bytes.data(), bytes.size()));
   const std::vector<std::string_view> piece = linePieces(data, threads, 20);  // pieces of 1 MB or more
   const size_t pieces = piece.size();
   std::vector<PieceCounts> counts(pieces);

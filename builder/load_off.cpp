@@ -33,7 +33,15 @@ OffHeader readHeader(TextReader& in, size_t fileSize) {
   std::string_view header = in.token();
   if (header.size() < 3 || header.substr(header.size() - 3) != "OFF")
     in.fail("not an OFF file (first word is '" + std::string(header.substr(0, 16)) + "')");
-  h.extras = header.find('N') != std::string_view::npos || header.find('C') != std::string_view::npos;
+  // [ST][C][N]OFF: texture coordinates, colours and normals follow a vertex's x y z (read as extras).
+  // 4OFF and nOFF have other than three coordinates a vertex: refused, not misread.
+  std::string_view prefix = header.substr(0, header.size() - 3);
+  for (std::string_view part : {"ST", "C", "N"})
+    if (prefix.substr(0, part.size()) == part) prefix.remove_prefix(part.size());
+  if (!prefix.empty())
+    in.fail("unsupported OFF variant '" + std::string(header.substr(0, 16)) +
+            "' (4D or n-dimensional vertices; OFF, COFF, NOFF, STOFF are read)");
+  h.extras = header.size() > 3;
   h.vertices = in.number<int64_t>("vertex count");
   h.faces = in.number<int64_t>("face count");
   in.number<int64_t>("edge count");
@@ -166,7 +174,7 @@ std::optional<PolygonMesh> readElementsByLines(std::string_view body, const OffH
 
 SourceScene loadOff(const std::string& path, int threads) {
   const FillLaterVector<char> data = readWholeFile(path, threads);
-  const std::string_view text(data.data(), data.size());
+  const std::string_view text = withoutByteOrderMark(std::string_view(data.data(), data.size()));
   TextReader in(text, path);
   const OffHeader header = readHeader(in, data.size());
   if (threads > 1 && data.size() >= kPiecewiseBytes && in.atLineEnd()) {  // the elements on lines of their own

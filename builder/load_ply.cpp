@@ -101,7 +101,18 @@ class ValueReader {
 SourceScene loadPly(const std::string& path) {
   const FillLaterVector<char> bytes = readWholeFile(path);
   const std::string_view data(bytes.data(), bytes.size());
-  size_t headerEnd = data.find("end_header");
+  // The header ends at a line that is "end_header" (a comment may contain the words).
+  size_t headerEnd = std::string_view::npos;
+  for (size_t at = 0; at < data.size();) {
+    const size_t eol = std::min(data.find('\n', at), data.size());
+    std::string_view line = data.substr(at, eol - at);
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t')) line.remove_suffix(1);
+    if (line == "end_header") {
+      headerEnd = at;
+      break;
+    }
+    at = eol + 1;
+  }
   if (data.compare(0, 3, "ply") != 0) throw InputError(path, "not a PLY file (no 'ply' magic)");
   if (headerEnd == std::string_view::npos) throw InputError(path, "truncated: no 'end_header' line");
   size_t bodyStart = data.find('\n', headerEnd);

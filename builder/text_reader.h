@@ -17,6 +17,12 @@ namespace vgeo {
 // cannot be opened or read.
 FillLaterVector<char> readWholeFile(const std::string& path, int threads = 1);
 
+// `text` without a UTF-8 byte order mark at its start (editors on Windows write one; read as part of
+// the first line it dropped an OBJ's first vertex).
+inline std::string_view withoutByteOrderMark(std::string_view text) {
+  return text.substr(0, 3) == "\xEF\xBB\xBF" ? text.substr(3) : text;
+}
+
 // `text` cut into pieces of whole lines for `threads` threads to parse: four a thread (they parse at
 // different speeds), each of 2^minPieceLog2 bytes or more, each but the last ending after a newline,
 // in order, none empty unless the text is.

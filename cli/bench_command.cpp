@@ -232,7 +232,8 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
       ->capture_default_str();
   cut->add_option("--flat-max-instances", a->flatMaxInstances, "Largest scene the flat traversal runs on")
       ->capture_default_str();
-  cut->add_option("--workgroups", a->workgroups, "Persistent traversal workgroups (default: the renderer's)");
+  cut->add_option("--workgroups", a->workgroups, "Persistent traversal workgroups (default: the renderer's)")
+      ->check(CLI::Range(1u, 65535u));  // a dispatch's most workgroups that every device runs
   cut->add_option("--sweep-budget", a->sweepBudget,
                   "Persistent traversal: cluster tests a frame may sweep instead of walking (0: none)")
       ->capture_default_str();

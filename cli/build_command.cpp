@@ -101,6 +101,7 @@ void addBuildCommand(CLI::App& app, int& exitCode) {
                                   {"reason", u.reason}});
       j["geometries"] = s.geometries;
       j["instances"] = s.instances;
+      j["zero_scale_instances"] = s.zeroScaleInstances;  // left out: they show nothing
       j["repair"] = {{"welded_vertices", s.repair.weldedVertices},
                      {"degenerate_faces", s.repair.degenerateFaces},
                      {"duplicate_faces", s.repair.duplicateFaces},
@@ -129,6 +130,9 @@ void addBuildCommand(CLI::App& app, int& exitCode) {
         (unsigned long long)s.inputTriangles, (unsigned long long)s.leafTriangles, (unsigned long long)s.clusters,
         s.leafClusters ? double(s.levelTriangles[0]) / double(s.leafClusters) : 0.0, s.levels,
         (unsigned long long)s.rootClusters, s.rootClusters == 1 ? "" : "s", (unsigned long long)s.relaxedGroups);
+    if (s.zeroScaleInstances)
+      std::printf("left out %u instance%s of zero scale (they show nothing)\n", s.zeroScaleInstances,
+                  s.zeroScaleInstances == 1 ? "" : "s");
     std::printf(
         "time: DAG %.2f s (%.2f M leaf triangles/s on %d threads), total %.2f s; peak memory %.1f MB (%.0f bytes per "
         "leaf triangle)\n",

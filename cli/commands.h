@@ -14,10 +14,16 @@
 
 namespace vgeo {
 
-// "WxH" with both in 1..16384.
+// "WxH" with both in 1..16384, digits only, nothing after (sscanf's %u wrapped 4294967616 to 320).
 inline bool parseSize(const std::string& text, uint32_t& width, uint32_t& height) {
-  return std::sscanf(text.c_str(), "%ux%u", &width, &height) == 2 && width > 0 && height > 0 && width <= 16384 &&
-         height <= 16384;
+  const size_t x = text.find('x');
+  auto number = [](const std::string& digits, uint32_t& out) {
+    if (digits.empty() || digits.size() > 5 || digits.find_first_not_of("0123456789") != std::string::npos)
+      return false;
+    out = uint32_t(std::stoul(digits));
+    return out > 0 && out <= 16384;
+  };
+  return x != std::string::npos && number(text.substr(0, x), width) && number(text.substr(x + 1), height);
 }
 
 // Writes JSON (stats, benchmark records) to `path`, atomically; throws OutputError("path: cause").

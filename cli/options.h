@@ -43,7 +43,8 @@ inline CLI::Validator finiteBetween(double lo, double hi, bool closedLow = false
         } catch (...) {
           return "'" + text + "' is not a number";
         }
-        if (!std::isfinite(v) || v > hi || v == hi || v < lo || (v == lo && !closedLow))
+        // Finite as the float it is stored in, too (--tau 1e39 became inf).
+        if (!std::isfinite(v) || !std::isfinite(float(v)) || v > hi || v == hi || v < lo || (v == lo && !closedLow))
           return "'" + text + "' is out of range: needs a finite number " + (closedLow ? ">= " : "> ") +
                  CLI::detail::to_string(lo) + (std::isinf(hi) ? std::string() : " and < " + CLI::detail::to_string(hi));
         return std::string();

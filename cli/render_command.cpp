@@ -340,7 +340,8 @@ void addRenderCommand(CLI::App& app, int& exitCode) {
                 "Draw leaf clusters as their triangles even where their chord error projects above tau (default: "
                 "tessellated limit-surface patches)");
   cmd->add_option("--workgroups", a->workgroups,
-                  "Persistent traversal workgroups (default: as many as the device runs at once)");
+                  "Persistent traversal workgroups (default: as many as the device runs at once)")
+      ->check(CLI::Range(1u, 65535u));  // a dispatch's most workgroups that every device runs
   cmd->add_option("--sweep-budget", a->sweepBudget,
                   "Persistent traversal: cluster tests a frame may sweep instead of walking (0: none)")
       ->capture_default_str();

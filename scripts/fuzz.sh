@@ -22,7 +22,7 @@ else
   shift || true
 fi
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(obj off ply gltf glb vgeo json pipeline)
+[ ${#targets[@]} -gt 0 ] || targets=(obj off ply gltf glb vgeo json options pipeline)
 
 bash scripts/setup.sh
 CC=clang CXX=clang++ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVGEO_SANITIZE=ON -DVGEO_FUZZ=ON >/dev/null
@@ -46,6 +46,7 @@ seeds() {
     glb) find "$assimp" tests/inputs -name '*.glb' -size -64k ;;
     vgeo) ls tests/inputs/*.vgeo "$work"/seed_*.vgeo ;;
     json) ls tests/inputs/*.json "$work"/seed_scene.json ;;
+    options) ls "$work"/options_seeds/* ;;
     pipeline) ls "$work"/pipeline_seeds/* ;;
   esac
 }
@@ -54,6 +55,14 @@ build-asan/vgeo build "$cgal/data/meshes/cube_quad.off" -o "$work/seed_cube.vgeo
 build-asan/vgeo build "$cgal/data/meshes/tetrahedron.off" -o "$work/seed_tetra.vgeo" -q >/dev/null
 echo '{"geometries": ["a.vgeo"], "instances": [{"geometry": 0, "translation": [1, 2, 3], "rotation": [0, 0, 0, 1], "scale": [1, -1, 1]}]}' \
   >"$work/seed_scene.json"
+# Option texts behind their parser's byte (fuzz_options.cpp): a size, a camera, a light, a tau, lists, names.
+mkdir -p "$work/options_seeds"
+i=0
+for seed in "\x001920x1080" "\x011,2,3,0,0,0" "\x020.3,1,0.5" "\x031e39" "\x041,4,0.5" "\x05100,10000" "\x06auto" \
+  "\x07persistent"; do
+  printf "$seed" >"$work/options_seeds/seed_$i"
+  i=$((i + 1))
+done
 mkdir -p "$work/pipeline_seeds"
 for f in assets/horned_cube.obj tests/inputs/build_*.obj "$cgal"/data/meshes/{cube_quad,tetrahedron,fold,quad,hole,cube-ouvert}.off; do
   [ "$(stat -c %s "$f")" -lt 4000 ] || continue

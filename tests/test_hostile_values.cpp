@@ -9,6 +9,7 @@
 
 #include "../common/atomic_file.h"
 #include "../renderer/gpu_renderer.h"
+#include "gltf_writer.h"
 #include "render_util.h"
 #include "test_util.h"
 
@@ -169,6 +170,59 @@ TEST(HostileValues, ALinkPlantedAtTheTemporaryNameIsNotFollowed) {
   std::ifstream written(out);
   EXPECT_EQ(std::string((std::istreambuf_iterator<char>(written)), std::istreambuf_iterator<char>()), "new contents\n");
   EXPECT_TRUE(fs::is_symlink(base));
+}
+
+TEST(HostileValues, GltfPlacementsAndRequiredExtensionsAreSaid) {
+  const std::string dir = test::tempDir(), out = " -o " + dir + "/g.vgeo -q";
+  SourceScene cube = loadMeshFile(test::cgalMesh("cube_quad.off"));
+  // A scale past float's reach once left "0 instances" and exit 0; a zero scale hides a node.
+  expectOneLine("build " + test::gltfOf(dir, "huge.gltf", cube.meshes[0], R"(, "scale": [1e20, 1e20, 1e20])") + out, 1,
+                "past +-1e15");
+  expectOneLine("build " + test::gltfOf(dir, "zero.gltf", cube.meshes[0], R"(, "scale": [0, 0, 0])") + out, 1,
+                "every instance has a zero scale");
+  EXPECT_FALSE(fs::exists(dir + "/g.vgeo"));
+  // Required extensions: one that carries geometry vgeo does not read is refused; one of appearance is not.
+  const std::string plain = test::readFile(test::gltfOf(dir, "plain.gltf", cube.meshes[0], ""));
+  auto requiring = [&](const std::string& name, const std::string& ext) {
+    std::string text = plain;
+    text.replace(0, 1, "{\"extensionsUsed\": [\"" + ext + "\"], \"extensionsRequired\": [\"" + ext + "\"], ");
+    return test::writeFile(dir, name, text);
+  };
+  expectOneLine("build " + requiring("instancing.gltf", "EXT_mesh_gpu_instancing") + out, 1,
+                "requires the extension EXT_mesh_gpu_instancing");
+  expectOneLine("build " + requiring("unknown.gltf", "VENDOR_something_new") + out, 1, "VENDOR_something_new");
+  const test::RunResult texture = test::runVgeo("build " + requiring("texture.gltf", "KHR_texture_transform") + out);
+  EXPECT_EQ(texture.exitCode, 0) << texture.output;
+}
+
+TEST(HostileValues, NumbersAndHeadersReadAsWritten) {
+  const std::string dir = test::tempDir(), cube = dir + "/cube.vgeo";
+  writeVgeo(test::build(test::cgalMesh("cube_quad.off"), 0), cube);
+  const std::string out = " -o " + dir + "/o.png";
+  // Values past float, sizes that wrapped through sscanf's %u, junk after a size, unbounded workgroups.
+  expectOneLine("render " + cube + out + " --tau 1e39", 2, "--tau");
+  expectOneLine("render " + cube + out + " --size 4294967616x240", 2, "--size");
+  expectOneLine("render " + cube + out + " --size 64x48junk", 2, "--size");
+  expectOneLine("render " + cube + out + " --workgroups 4294967295", 2, "--workgroups");
+  EXPECT_FALSE(fs::exists(dir + "/o.png"));
+  // A UTF-8 byte order mark before an OBJ's first vertex; a PLY comment naming end_header: both read.
+  const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  const test::RunResult bom = test::runVgeo("build " + test::writeFile(dir, "bom.obj", "\xEF\xBB\xBF" + triangle) +
+                                            " -o " + dir + "/bom.vgeo --stats " + dir + "/bom.json -q");
+  EXPECT_EQ(bom.exitCode, 0) << bom.output;
+  EXPECT_NE(test::readFile(dir + "/bom.json").find("\"input_triangles\": 4"), std::string::npos);
+  const std::string ply =
+      "ply\nformat ascii 1.0\ncomment written before end_header, not the end\nelement vertex 4\nproperty float x\n"
+      "property float y\nproperty float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  const test::RunResult comment =
+      test::runVgeo("build " + test::writeFile(dir, "comment.ply", ply) + " -o " + dir + "/ply.vgeo -q");
+  EXPECT_EQ(comment.exitCode, 0) << comment.output;
+  // 4OFF has four coordinates a vertex: refused, not read as three and built into garbage.
+  expectOneLine("build " +
+                    test::writeFile(dir, "four.off", "4OFF\n4 1 0\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n3 0 1 2\n") +
+                    " -o " + dir + "/four.vgeo -q",
+                1, "unsupported OFF variant");
 }
 
 // The process's resident memory, bytes (Linux).
