@@ -34,7 +34,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       }
       case 3: {
         std::string copy = text;
-        if (vgeo::finiteBetween(0.0, INFINITY)(copy).empty() && !std::isfinite(float(std::stod(text)))) __builtin_trap();
+        if (vgeo::finiteBetween(0.0, INFINITY)(copy).empty() && !std::isfinite(float(std::stod(text))))
+          __builtin_trap();
         break;
       }
       case 4:
