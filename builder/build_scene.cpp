@@ -179,7 +179,7 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
     }
     const bool trianglesOnly = leaves.faceVertices.size() == 3 * leaves.faceCount();  // before any fan
     StageTimer fanning(&stats.stages, "fans");
-    fanLargeFaces(leaves, options.threads);
+    triangulateLargeFaces(leaves, options.threads);
     stats.leafTriangles += triangleCount(leaves, options.threads);
     fanning.stop();
     stats.subdivideSeconds += secondsSince(subdivideStart);

@@ -433,10 +433,11 @@ struct BuildCluster {
 // The triangles a cluster is cut to, leaves and simplified groups alike: nearly full, with the last
 // few of VGEO_MAX_CLUSTER_TRIANGLES left as room to merge a cut-off piece back into a neighbour.
 constexpr uint32_t kClusterFill = 126;
-// Faces of more than kMaxLeafFaceCorners corners are replaced by triangle fans: they could not be
-// patches and might not fit one cluster. Call before buildLeafClusters (a no-op on subdivided meshes).
+// Faces of more than kMaxLeafFaceCorners corners are replaced by triangle strips (zigzag from both ends,
+// no corner in more than four triangles): they could not be patches and might not fit one cluster. Call before
+// buildLeafClusters (a no-op on subdivided meshes).
 constexpr uint32_t kMaxLeafFaceCorners = 66;
-void fanLargeFaces(PolygonMesh& mesh, int threads);
+void triangulateLargeFaces(PolygonMesh& mesh, int threads);
 // Appends the triangles of face v[0..n): a quad split along its shorter diagonal, other faces fanned.
 void triangulateFace(const glm::vec3* positions, const uint32_t* v, uint32_t n, std::vector<uint32_t>& out);
 // A quad's two triangles as triangulateFace makes them, into out.

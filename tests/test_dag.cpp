@@ -283,7 +283,7 @@ TEST(DagBuild, ClustersCarryTheBorderTheirTrianglesHave) {
   // empty: the DAG build counts them.
   for (const char* name : kBorderMeshes) {
     PolygonMesh mesh = loadMeshFile(test::cgalMesh(name)).meshes[0];
-    fanLargeFaces(mesh, 1);
+    triangulateLargeFaces(mesh, 1);
     for (const BuildCluster& c : buildLeafClusters(mesh, 1)) ASSERT_TRUE(c.border.empty()) << name;
     splitRoundSizedGroups(mesh, [&](size_t first, size_t end, std::vector<BuildCluster> clusters) {
       for (const BuildCluster& c : clusters)
@@ -303,7 +303,7 @@ TEST(DagBuild, MergedGroupsAreConnectedBoundedAndCannotMergeFurther) {
   for (const char* name : kBorderMeshes) {
     PolygonMesh mesh = loadMeshFile(test::cgalMesh(name)).meshes[0];
     repairMesh(mesh, name);
-    fanLargeFaces(mesh, 1);
+    triangulateLargeFaces(mesh, 1);
     const std::vector<BuildCluster> clusters = buildLeafClusters(mesh, 1);
     std::map<uint64_t, std::vector<uint32_t>> edgeClusters;
     for (uint32_t c = 0; c < clusters.size(); c++)
@@ -375,7 +375,7 @@ TEST(DagBuild, TheChordRuleForbidsEveryEdgeAClusterHas) {
   for (const char* name : kBorderMeshes) {
     PolygonMesh mesh = loadMeshFile(test::cgalMesh(name)).meshes[0];
     repairMesh(mesh, name);  // oriented, as the build has it
-    fanLargeFaces(mesh, 1);
+    triangulateLargeFaces(mesh, 1);
     std::vector<BuildCluster> clusters = buildLeafClusters(mesh, 1);
     for (BuildCluster& c : clusters) c.border = edgesUsedOnce(c.indices);
     splitRoundSizedGroups(mesh, [&](size_t, size_t, std::vector<BuildCluster> split) {

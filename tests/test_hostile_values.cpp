@@ -225,6 +225,26 @@ TEST(HostileValues, NumbersAndHeadersReadAsWritten) {
                 1, "unsupported OFF variant");
 }
 
+TEST(HostileValues, AHugePolygonBuildsInLinearTime) {
+  // A 150,000-corner polygon: fanned from its first corner, its leaf clusters' dual graph looked through
+  // 150,000 faces at that corner for each face (30 s). In strips it builds within the command's 20 s with
+  // room to spare, and passes its check.
+  const std::string dir = test::tempDir();
+  std::string obj, face = "f";
+  const int n = 150000;
+  for (int i = 0; i < n; i++) {
+    const double a = 6.283185307179586 * double(i) / double(n);
+    obj += "v " + std::to_string(std::cos(a)) + " " + std::to_string(std::sin(a)) + " 0\n";
+    face += " " + std::to_string(i + 1);
+  }
+  const std::string path = test::writeFile(dir, "polygon.obj", obj + face + "\n");
+  const auto start = std::chrono::steady_clock::now();
+  const test::RunResult r = test::runVgeo("build " + path + " -o " + dir + "/p.vgeo -q");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 20.0);
+  EXPECT_EQ(test::runVgeo("check " + dir + "/p.vgeo --cuts 2").exitCode, 0);
+}
+
 // The process's resident memory, bytes (Linux).
 uint64_t residentBytes() {
   std::ifstream status("/proc/self/status");
