@@ -193,6 +193,12 @@ TEST(HostileValues, GltfPlacementsAndRequiredExtensionsAreSaid) {
   expectOneLine("build " + requiring("unknown.gltf", "VENDOR_something_new") + out, 1, "VENDOR_something_new");
   const test::RunResult texture = test::runVgeo("build " + requiring("texture.gltf", "KHR_texture_transform") + out);
   EXPECT_EQ(texture.exitCode, 0) << texture.output;
+  // A skin without inverseBindMatrices (optional in glTF: identity) was refused by the parser's word.
+  std::string skinned = plain;
+  skinned.replace(skinned.find("\"nodes\": [{\"mesh\": 0"), 20,
+                  "\"skins\": [{\"joints\": [0]}], \"nodes\": [{\"mesh\": 0, \"skin\": 0");
+  const test::RunResult skin = test::runVgeo("build " + test::writeFile(dir, "skin.gltf", skinned) + out);
+  EXPECT_EQ(skin.exitCode, 0) << skin.output;
 }
 
 TEST(HostileValues, NumbersAndHeadersReadAsWritten) {
