@@ -211,18 +211,23 @@ RenderScene loadSceneFile(const std::string& path) {
     std::filesystem::path dir = std::filesystem::path(path).parent_path();
     // Each distinct file read and merged once, however many entries name it.
     std::vector<VgeoData> files;
-    std::vector<size_t> fileOf;  // geometries entry -> files
-    std::map<std::string, size_t> byPath;
+    std::vector<size_t> fileOf;                    // geometries entry -> files
+    std::map<std::string, size_t> byPath, byName;  // by canonical path, and by the text that names it
     for (size_t g = 0; g < j.at("geometries").size(); g++) {
       const auto& entry = j.at("geometries")[g];
       const std::string where = "geometry " + std::to_string(g);
       if (entry.is_object()) onlyKeys(entry, {"path"}, path, where);
       const nlohmann::json& name = entry.is_object() && entry.contains("path") ? entry.at("path") : entry;
       if (!name.is_string()) sceneError(path, where, "expected a path or {\"path\": ...}");
+      if (auto seen = byName.find(name.get<std::string>()); seen != byName.end()) {  // named again, as written
+        fileOf.push_back(seen->second);
+        continue;
+      }
       const std::string file = geometryPath(dir, name.get<std::string>(), path, where);
       const std::string key = std::filesystem::weakly_canonical(file, ec).string();
       auto [it, added] = byPath.emplace(key, files.size());
       if (added) files.push_back(readVgeo(file));
+      byName.emplace(name.get<std::string>(), it->second);
       fileOf.push_back(it->second);
     }
     const nlohmann::json* placements = nullptr;
