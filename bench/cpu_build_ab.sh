@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Two builds of vgeo alternating on one machine (bench/build.md): armadillo made denser by Loop
+# Two builds of vgeo alternating on one machine (bench/README.md, "Against the peer builders"): armadillo made denser by Loop
 # subdivision (the peers' `prep`), each round building with OLD then NEW, then the peer that the
 # thread count is measured against (clusterlod on one thread, nv_cluster_lod_builder on 16).
 # Usage: bench/cpu_build_ab.sh OLD NEW PEERS_BIN ARMADILLO.off OUT_DIR "ONE_THREAD_LEVELS" \

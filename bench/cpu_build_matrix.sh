@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The builder against its peers on one machine (bench/build.md): armadillo made denser by Loop
+# The builder against its peers on one machine (bench/README.md, "Against the peer builders"): armadillo made denser by Loop
 # subdivision (the peers' `prep`), `vgeo bench build` over thread counts (DAG and whole-build times,
 # each step's seconds, peak memory) and the peer builders' drivers on the same meshes.
 # Usage: bench/cpu_build_matrix.sh VGEO PEERS_BIN ARMADILLO.off OUT_DIR "THREADS" [LOOP_LEVELS...]

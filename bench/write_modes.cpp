@@ -1,5 +1,5 @@
 // write_modes.cpp: how a machine's disk takes a file written and then fsynced, to tell what part of
-// `vgeo build`'s write is the disk (bench/build.md). Writes 19, 75 and 250 MB four ways, three rounds:
+// `vgeo build`'s write is the disk (CHANGELOG.md, 2026-11-28). Writes 19, 75 and 250 MB four ways, three rounds:
 // 4 MB writes each followed by a writeback hint (sync_file_range), 1 MB writes then fsync alone, 1 MB
 // writes then one hint over the whole file, and 1 MB writes each followed by its hint; and, for scale,
 // a copy into fresh memory. Build: g++ -O2 -static -o write_modes bench/write_modes.cpp; run:

@@ -108,7 +108,7 @@ RenderRun renderUntilComplete(GpuRenderer& renderer, const FrameSettings& settin
   return run;
 }
 
-// The frame statistics of `--stats` (README lists the fields).
+// The frame statistics of `--stats` (docs/cli.md lists the fields).
 nlohmann::ordered_json frameStats(const RenderArgs& a, const RenderScene& scene, const Camera& camera,
                                   const FrameSettings& settings, const RenderRun& run, const GpuRenderer& renderer,
                                   const VulkanContext& vk, uint32_t width, uint32_t height) {

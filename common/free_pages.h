@@ -8,7 +8,7 @@
 // free page of every arena (madvise, not only each heap's top). It costs the page faults of the pages
 // used again: nothing measurable on two threads, where it takes a sixth off a 0.8 M-triangle build's
 // peak, but 4-5% of the DAG on 16, where faults on many threads contend, for 8-20 MB; on one thread
-// the main arena reuses everything (bench/build-memory.md). The memory is a fixed 20-40 MB: from a
+// the main arena reuses everything (CHANGELOG.md, 2026-12-01). The memory is a fixed 20-40 MB: from a
 // few million triangles up it is no share of the peak worth the faults.
 #pragma once
 
