@@ -1,6 +1,6 @@
 // scaling_probe.cpp: how far a machine lets a workload speed up from one thread to many, to tell what
-// part of the builder's 1 -> 16 thread speed-up the hardware allows (bench/README.md, "Against the peer builders"). Weak scaling:
-// each of T threads runs the same work, alone in its data, so the speed-up T * t(1) / t(T) is T for a
+// part of the builder's 1 -> 16 thread speed-up the hardware allows (bench/README.md, "Against the peer builders").
+// Weak scaling: each of T threads runs the same work, alone in its data, so the speed-up T * t(1) / t(T) is T for a
 // machine whose cores do not slow each other down. Four kinds of work, the builder's in miniature:
 // arithmetic in registers (the clock as more cores run), a stream over 64 MB (memory bandwidth), a
 // random walk over 4 MB (misses past the core's own cache), and fresh memory touched a page at a time

@@ -61,26 +61,10 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
     const void* data;
     size_t bytes;
   } sections[] = {
-      {VGEO_BINDING_GEOMETRIES, &addresses.geometries, d.geometries.data(), bytes(d.geometries)},
-      {VGEO_BINDING_INSTANCES, &addresses.instances, d.instances.data(), bytes(d.instances)},
-      {VGEO_BINDING_POSITIONS, &addresses.positions, d.positions.data(), bytes(d.positions)},
-      {VGEO_BINDING_NORMALS, &addresses.normals, d.normals.data(), bytes(d.normals)},
-      {VGEO_BINDING_CLUSTERS, &addresses.clusters, d.clusters.data(), bytes(d.clusters)},
-      {VGEO_BINDING_CLUSTER_VERTICES, &addresses.clusterVertices, d.clusterVertices.data(), bytes(d.clusterVertices)},
-      {VGEO_BINDING_CLUSTER_TRIANGLES, &addresses.clusterTriangles, d.clusterTriangles.data(),
-       bytes(d.clusterTriangles)},
-      {VGEO_BINDING_GROUPS, &addresses.groups, d.groups.data(), bytes(d.groups)},
-      {VGEO_BINDING_NODES, &addresses.nodes, d.nodes.data(), bytes(d.nodes)},
-      {VGEO_BINDING_CLUSTER_CONES, &addresses.clusterCones, d.clusterCones.data(), bytes(d.clusterCones)},
-      {VGEO_BINDING_CONTROL_POINTS, &addresses.controlPoints, d.controlPoints.data(), bytes(d.controlPoints)},
-      {VGEO_BINDING_CAGE_FACES, &addresses.cageFaces, d.cageFaces.data(), bytes(d.cageFaces)},
-      {VGEO_BINDING_CAGE_FACE_VERTICES, &addresses.cageFaceVertices, d.cageFaceVertices.data(),
-       bytes(d.cageFaceVertices)},
-      {VGEO_BINDING_PATCHES, &addresses.patches, d.patches.data(), bytes(d.patches)},
-      {VGEO_BINDING_PATCH_POINTS, &addresses.patchPoints, d.patchPoints.data(), bytes(d.patchPoints)},
-      {VGEO_BINDING_LEVEL_CLUSTER_RUNS, &addresses.levelClusterRuns, scene.levelClusterRuns.data(),
-       bytes(scene.levelClusterRuns)},
-      {VGEO_BINDING_INSTANCE_ROOTS, &addresses.instanceRoots, scene.instanceRoots.data(), bytes(scene.instanceRoots)},
+#define VGEO_SCENE_ARRAY_UPLOAD(binding, array, type, align, owner) \
+  {binding, &addresses.array, owner.array.data(), bytes(owner.array)},
+      VGEO_SCENE_ARRAYS(VGEO_SCENE_ARRAY_UPLOAD)
+#undef VGEO_SCENE_ARRAY_UPLOAD
   };
   // Sweep runs carry their length above the instance index (shaderio.h, VGEO_ITEM_RUN_BIT).
   if (d.instances.size() >= (size_t(1) << VGEO_RUN_INSTANCE_BITS))
@@ -251,7 +235,10 @@ void GpuRenderer::writeDescriptors() {
   buffers[VGEO_BINDING_DEPTH_PYRAMID] = &depthPyramid_;
   buffers[VGEO_BINDING_DEFERRED_INSTANCES] = &deferredInstances_;
   buffers[VGEO_BINDING_DEFERRED_ITEMS] = &deferredItems_;
-  for (const auto& [binding, b] : sceneBuffers_) buffers[binding] = &b;
+  for (const auto& [binding, b] : sceneBuffers_) {
+    if (buffers[binding]) throw std::logic_error("binding " + std::to_string(binding) + " taken twice");
+    buffers[binding] = &b;
+  }
   const VkDescriptorImageInfo colorImage{VK_NULL_HANDLE, colorView_, VK_IMAGE_LAYOUT_GENERAL},
       depthImage{depthSampler_, depthView_, VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL};
   VkDescriptorBufferInfo infos[kRendererBindings];

@@ -14,59 +14,38 @@ layout(set = 0, binding = VGEO_BINDING_FRAME, std430) readonly restrict buffer F
 // Which pass of the frame this is (VGEO_PASS_*: two with occlusion culling, shaderio_frame.h).
 layout(push_constant) uniform PassBlock { PassConstants passConstants; };
 
-// The scene's arrays: each at a binding of its own, or in the VGEO_SCENE_BY_ADDRESS variant (scenes with
-// an array past maxStorageBufferRange) by device address (shaderio_frame.h, SceneArrays), each name then
-// a macro that reads as the array (positions[i]). The .vgeo's arrays (shaderio_scene.h), then the
-// renderer's two (scene.h). Bindings are the faster on lavapipe (bench/README.md, scene arrays).
+// The scene's arrays (shaderio_frame.h, VGEO_SCENE_ARRAYS): each at a binding of its own, or in the
+// VGEO_SCENE_BY_ADDRESS variant (scenes with an array past maxStorageBufferRange) by device address
+// (SceneArrays), each name then a macro that reads as the array (positions[i]). Bindings are the faster
+// on lavapipe (bench/README.md, "What the code's choices rest on").
 #ifdef VGEO_SCENE_BY_ADDRESS
 layout(set = 0, binding = VGEO_BINDING_SCENE) uniform SceneBlock { SceneArrays sceneArrays; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer GeometryArray { Geometry v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer InstanceArray { Instance v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer ClusterArray { Cluster v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer GroupArray { Group v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer BvhNodeArray { BvhNode v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer ClusterConeArray { ClusterCone v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer CageFaceArray { CageFace v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer PatchArray { Patch v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 8) readonly buffer Uvec2Array { uvec2 v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer FloatArray { float v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer UintArray { uint v[]; };
-#define geometries GeometryArray(sceneArrays.geometries).v
-#define instances InstanceArray(sceneArrays.instances).v
-#define positions FloatArray(sceneArrays.positions).v
-#define normals UintArray(sceneArrays.normals).v
-#define clusters ClusterArray(sceneArrays.clusters).v
-#define clusterVertices UintArray(sceneArrays.clusterVertices).v
-#define clusterTriangles UintArray(sceneArrays.clusterTriangles).v
-#define groups GroupArray(sceneArrays.groups).v
-#define nodes BvhNodeArray(sceneArrays.nodes).v
-#define clusterCones ClusterConeArray(sceneArrays.clusterCones).v
-// Leaves as patches (shaderio.h, Patch; patch_eval.h): the cage's control points, its faces, their patches.
-#define controlPoints FloatArray(sceneArrays.controlPoints).v
-#define cageFaces CageFaceArray(sceneArrays.cageFaces).v
-#define cageFaceVertices UintArray(sceneArrays.cageFaceVertices).v
-#define patches PatchArray(sceneArrays.patches).v
-#define patchPoints UintArray(sceneArrays.patchPoints).v
-#define levelClusterRuns Uvec2Array(sceneArrays.levelClusterRuns).v
-#define instanceRoots Uvec2Array(sceneArrays.instanceRoots).v
+#define VGEO_SCENE_ARRAY_TYPE(n, array, T, alignment, owner) \
+  layout(buffer_reference, std430, buffer_reference_align = alignment) readonly buffer array##Array { T v[]; };
+VGEO_SCENE_ARRAYS(VGEO_SCENE_ARRAY_TYPE)
+// GLSL cannot make a macro from a macro: one line an array (a missing one fails the variant's build).
+#define VGEO_BY_ADDRESS(array) array##Array(sceneArrays.array).v
+#define geometries VGEO_BY_ADDRESS(geometries)
+#define instances VGEO_BY_ADDRESS(instances)
+#define positions VGEO_BY_ADDRESS(positions)
+#define normals VGEO_BY_ADDRESS(normals)
+#define clusters VGEO_BY_ADDRESS(clusters)
+#define clusterVertices VGEO_BY_ADDRESS(clusterVertices)
+#define clusterTriangles VGEO_BY_ADDRESS(clusterTriangles)
+#define groups VGEO_BY_ADDRESS(groups)
+#define nodes VGEO_BY_ADDRESS(nodes)
+#define clusterCones VGEO_BY_ADDRESS(clusterCones)
+#define controlPoints VGEO_BY_ADDRESS(controlPoints)
+#define cageFaces VGEO_BY_ADDRESS(cageFaces)
+#define cageFaceVertices VGEO_BY_ADDRESS(cageFaceVertices)
+#define patches VGEO_BY_ADDRESS(patches)
+#define patchPoints VGEO_BY_ADDRESS(patchPoints)
+#define levelClusterRuns VGEO_BY_ADDRESS(levelClusterRuns)
+#define instanceRoots VGEO_BY_ADDRESS(instanceRoots)
 #else
-layout(set = 0, binding = VGEO_BINDING_GEOMETRIES, std430) readonly buffer GeometryBuffer { Geometry geometries[]; };
-layout(set = 0, binding = VGEO_BINDING_INSTANCES, std430) readonly buffer InstanceBuffer { Instance instances[]; };
-layout(set = 0, binding = VGEO_BINDING_POSITIONS, std430) readonly buffer PositionBuffer { float positions[]; };
-layout(set = 0, binding = VGEO_BINDING_NORMALS, std430) readonly buffer NormalBuffer { uint normals[]; };
-layout(set = 0, binding = VGEO_BINDING_CLUSTERS, std430) readonly buffer ClusterBuffer { Cluster clusters[]; };
-layout(set = 0, binding = VGEO_BINDING_CLUSTER_VERTICES, std430) readonly buffer ClusterVertexBuffer { uint clusterVertices[]; };
-layout(set = 0, binding = VGEO_BINDING_CLUSTER_TRIANGLES, std430) readonly buffer ClusterTriangleBuffer { uint clusterTriangles[]; };
-layout(set = 0, binding = VGEO_BINDING_GROUPS, std430) readonly buffer GroupBuffer { Group groups[]; };
-layout(set = 0, binding = VGEO_BINDING_NODES, std430) readonly buffer NodeBuffer { BvhNode nodes[]; };
-layout(set = 0, binding = VGEO_BINDING_CLUSTER_CONES, std430) readonly buffer ClusterConeBuffer { ClusterCone clusterCones[]; };
-layout(set = 0, binding = VGEO_BINDING_CONTROL_POINTS, std430) readonly buffer ControlPointBuffer { float controlPoints[]; };
-layout(set = 0, binding = VGEO_BINDING_CAGE_FACES, std430) readonly buffer CageFaceBuffer { CageFace cageFaces[]; };
-layout(set = 0, binding = VGEO_BINDING_CAGE_FACE_VERTICES, std430) readonly buffer CageFaceVertexBuffer { uint cageFaceVertices[]; };
-layout(set = 0, binding = VGEO_BINDING_PATCHES, std430) readonly buffer PatchBuffer { Patch patches[]; };
-layout(set = 0, binding = VGEO_BINDING_PATCH_POINTS, std430) readonly buffer PatchPointBuffer { uint patchPoints[]; };
-layout(set = 0, binding = VGEO_BINDING_LEVEL_CLUSTER_RUNS, std430) readonly buffer LevelRunBuffer { uvec2 levelClusterRuns[]; };
-layout(set = 0, binding = VGEO_BINDING_INSTANCE_ROOTS, std430) readonly buffer InstanceRootBuffer { uvec2 instanceRoots[]; };
+#define VGEO_SCENE_ARRAY_BINDING(n, array, T, alignment, owner) \
+  layout(set = 0, binding = n, std430) readonly buffer array##Block { T array[]; };
+VGEO_SCENE_ARRAYS(VGEO_SCENE_ARRAY_BINDING)
 #endif
 
 layout(set = 0, binding = VGEO_BINDING_COUNTERS, std430) coherent buffer CounterBuffer { Counters counters; };

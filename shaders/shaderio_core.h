@@ -6,6 +6,7 @@
 #define VGEO_SHADERIO_CORE_H
 
 #ifdef __cplusplus
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>

@@ -75,38 +75,46 @@ VGEO_NAMESPACE_BEGIN
 #define VGEO_CULL_SPREAD_INSTANCES 4096
 
 // The renderer's one descriptor set, named once for the host (gpu_renderer.cpp fills it) and the
-// shaders (common.glsl and the passes declare their buffers with these). 0 is the frame's uniform
-// buffer; the scene's arrays come from the .vgeo (and the renderer's per-level cluster runs), each at a
-// binding of its own, or, in the shaders' VGEO_SCENE_BY_ADDRESS variant (for scenes with an array past
-// maxStorageBufferRange, 128 MiB on lavapipe), by the device addresses of VGEO_BINDING_SCENE's uniform
-// block (SceneArrays); the rest are the frame's working buffers.
-// VGEO_BINDING_INSTANCE_ROOTS, made by the renderer: an instance's geometry's BVH root as uvec2
-// (childCountAndFlags, childOffset) of its BvhNode. Instance culling tests the root's children from it
-// and the instance record, two loads side by side instead of instance -> geometry -> root in a row.
+// shaders (common.glsl and the passes declare their buffers with these). 0 is the frame's constants; the
+// scene's arrays (VGEO_SCENE_ARRAYS below) have bindings of their own; the rest are the frame's working
+// buffers.
 #define VGEO_BINDING_FRAME 0
-#define VGEO_BINDING_GEOMETRIES 1
-#define VGEO_BINDING_INSTANCES 2
-#define VGEO_BINDING_POSITIONS 3
-#define VGEO_BINDING_NORMALS 4
-#define VGEO_BINDING_CLUSTERS 5
-#define VGEO_BINDING_CLUSTER_VERTICES 6
-#define VGEO_BINDING_CLUSTER_TRIANGLES 7
-#define VGEO_BINDING_GROUPS 8
-#define VGEO_BINDING_NODES 9
+
+// The scene's arrays, declared once: X(binding, array, GLSL element type, alignment in bytes, owner).
+// The list makes SceneArrays (below), common.glsl's declarations in both shader variants, and the
+// renderer's upload table, whose `owner` is `d` for the .vgeo's merged arrays (VgeoData, in the order of
+// the file's sections) or `scene` for the two the renderer makes (RenderScene, scene.h): levelClusterRuns,
+// a BVH node's run of clusters (first, count) when it is a level's subtree root, what a sweep tests
+// instead of walking it; and instanceRoots, an instance's geometry's BVH root as uvec2
+// (childCountAndFlags, childOffset) of its BvhNode: instance culling tests the root's children from it
+// and the instance record, two loads side by side instead of instance -> geometry -> root in a row.
+// Each array is read at its binding, or, in the shaders' VGEO_SCENE_BY_ADDRESS variant (for scenes with
+// an array past maxStorageBufferRange, 128 MiB on lavapipe), by its device address in SceneArrays.
+#define VGEO_SCENE_ARRAYS(X)               \
+  X(1, geometries, Geometry, 16, d)        \
+  X(2, instances, Instance, 16, d)         \
+  X(3, positions, float, 4, d)             \
+  X(4, normals, uint, 4, d)                \
+  X(5, clusters, Cluster, 16, d)           \
+  X(6, clusterVertices, uint, 4, d)        \
+  X(7, clusterTriangles, uint, 4, d)       \
+  X(8, groups, Group, 16, d)               \
+  X(9, nodes, BvhNode, 16, d)              \
+  X(13, clusterCones, ClusterCone, 16, d)  \
+  X(15, controlPoints, float, 4, d)        \
+  X(16, cageFaces, CageFace, 16, d)        \
+  X(17, cageFaceVertices, uint, 4, d)      \
+  X(18, patches, Patch, 16, d)             \
+  X(19, patchPoints, uint, 4, d)           \
+  X(22, levelClusterRuns, uvec2, 8, scene) \
+  X(23, instanceRoots, uvec2, 8, scene)
+
 #define VGEO_BINDING_COUNTERS 10
 #define VGEO_BINDING_QUEUE 11
 #define VGEO_BINDING_DRAW_LIST 12
-#define VGEO_BINDING_CLUSTER_CONES 13
 #define VGEO_BINDING_TRIANGLE_LIST 14
-#define VGEO_BINDING_CONTROL_POINTS 15
-#define VGEO_BINDING_CAGE_FACES 16
-#define VGEO_BINDING_CAGE_FACE_VERTICES 17
-#define VGEO_BINDING_PATCHES 18
-#define VGEO_BINDING_PATCH_POINTS 19
 #define VGEO_BINDING_PATCH_LIST 20
 #define VGEO_BINDING_WORKER_PROFILE 21
-#define VGEO_BINDING_LEVEL_CLUSTER_RUNS 22
-#define VGEO_BINDING_INSTANCE_ROOTS 23
 #define VGEO_BINDING_VISIBILITY 24
 #define VGEO_BINDING_OVERDRAW 25
 #define VGEO_BINDING_COLOR_IMAGE 26         // the frame's colour target as a storage image (resolve.comp writes it)
@@ -148,35 +156,16 @@ struct PassConstants {
   uint pass;  // VGEO_PASS_*
 };
 
-// The scene's arrays (VGEO_BINDING_SCENE), each a device address as two words (low, high), in the
-// order of the .vgeo sections, then two the renderer makes (scene.h): levelClusterRuns, a BVH node's
-// run of clusters (first, count) when it is a level's subtree root, what a sweep tests instead of
-// walking it; and instanceRoots, an instance's geometry's BVH root as uvec2 (childCountAndFlags,
-// childOffset) of its BvhNode (instance culling tests the root's children from it and the instance
-// record, two loads side by side instead of instance -> geometry -> root).
+// The scene's arrays' device addresses (VGEO_BINDING_SCENE, a uniform block), each as two words (low,
+// high), in the order of VGEO_SCENE_ARRAYS; pad makes the count even (std140 rounds to 16 bytes).
+#define VGEO_SCENE_ARRAY_ADDRESS(binding, array, type, align, owner) uvec2 array;
 struct SceneArrays {
-  uvec2 geometries;
-  uvec2 instances;
-  uvec2 positions;
-  uvec2 normals;
-  uvec2 clusters;
-  uvec2 clusterVertices;
-  uvec2 clusterTriangles;
-  uvec2 groups;
-  uvec2 nodes;
-  uvec2 clusterCones;
-  uvec2 controlPoints;
-  uvec2 cageFaces;
-  uvec2 cageFaceVertices;
-  uvec2 patches;
-  uvec2 patchPoints;
-  uvec2 levelClusterRuns;
-  uvec2 instanceRoots;
+  VGEO_SCENE_ARRAYS(VGEO_SCENE_ARRAY_ADDRESS)
   uvec2 pad;
 };
 
-// Per-frame constants (a uniform buffer). The cull camera selects the cut and culls; the draw camera
-// makes the picture. They differ only with --freeze-camera.
+// Per-frame constants (a read-only storage buffer, std140-compatible). The cull camera selects the cut and culls; the
+// draw camera makes the picture. They differ only with --freeze-camera.
 struct FrameData {
   mat4 viewProjection;  // draw camera
   vec4 frustum[6];      // cull camera's planes in world space: dot(xyz, p) + w >= 0 inside
@@ -362,7 +351,17 @@ static_assert(offsetof(FrameData, pyramidViews) % 16 == 0 && offsetof(FrameData,
                   offsetof(FrameData, light) % 16 == 0,
               "FrameData: std140 alignment");
 static_assert(sizeof(Counters) == 5 * 128 + 96 + 72, "Counters layout");
-static_assert(sizeof(SceneArrays) == 18 * 8, "SceneArrays layout");
+// The scene arrays' bindings: each below VGEO_BINDING_COUNT and none taken twice (the renderer's
+// descriptor table also refuses a binding without a buffer).
+#define VGEO_SCENE_ARRAY_BIT(binding, array, type, align, owner) | (uint64_t(1) << (binding))
+#define VGEO_SCENE_ARRAY_ONE(binding, array, type, align, owner) +1
+constexpr uint32_t kSceneArrayCount = 0 VGEO_SCENE_ARRAYS(VGEO_SCENE_ARRAY_ONE);
+constexpr uint64_t kSceneArrayBindings = 0 VGEO_SCENE_ARRAYS(VGEO_SCENE_ARRAY_BIT);
+static_assert(std::popcount(kSceneArrayBindings) == int(kSceneArrayCount) &&
+                  kSceneArrayBindings >> VGEO_BINDING_COUNT == 0,
+              "VGEO_SCENE_ARRAYS: bindings distinct and below VGEO_BINDING_COUNT");
+static_assert(kSceneArrayCount % 2 == 1 && sizeof(SceneArrays) == (kSceneArrayCount + 1) * 8,
+              "SceneArrays: with its pad an even count of addresses (std140)");
 static_assert(offsetof(Counters, itemsDone) == 4 * 128, "Counters: the hot words on lines of their own");
 #endif
 
