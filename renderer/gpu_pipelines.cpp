@@ -3,64 +3,7 @@
 // the draw, plus the overdraw variant that adds every fragment). The frame itself is gpu_renderer.cpp.
 #include "gpu_renderer.h"
 
-#include "shaders/begin_late_pass_comp.h"
-#include "shaders/begin_late_pass_comp_by_address.h"
-#include "shaders/build_depth_pyramid_comp.h"
-#include "shaders/build_depth_pyramid_comp_by_address.h"
-#include "shaders/cull_instances_comp.h"
-#include "shaders/queue_deferred_comp.h"
-#include "shaders/queue_deferred_comp_by_address.h"
-#include "shaders/cull_instances_comp_by_address.h"
-#include "shaders/cull_instances_comp_cull_serial.h"
-#include "shaders/cull_instances_comp_cull_serial_by_address.h"
-#include "shaders/cull_patches_comp.h"
-#include "shaders/cull_patches_comp_by_address.h"
-#include "shaders/cull_small_clusters_comp.h"
-#include "shaders/cull_small_clusters_comp_by_address.h"
-#include "shaders/cull_triangles_comp.h"
-#include "shaders/cull_triangles_comp_by_address.h"
-#include "shaders/draw_frag.h"
-#include "shaders/draw_frag_by_address.h"
-#include "shaders/draw_vert.h"
-#include "shaders/draw_vert_by_address.h"
-#include "shaders/draw_vert_visibility_only.h"
-#include "shaders/draw_vert_visibility_only_by_address.h"
-#include "shaders/draw_visibility_frag.h"
-#include "shaders/draw_visibility_frag_by_address.h"
-#include "shaders/finalize_comp.h"
-#include "shaders/finalize_comp_by_address.h"
-#include "shaders/finalize_triangles_comp.h"
-#include "shaders/finalize_triangles_comp_by_address.h"
-#include "shaders/patch_grid_vert.h"
-#include "shaders/patch_grid_vert_by_address.h"
-#include "shaders/patch_tesc.h"
-#include "shaders/patch_tesc_by_address.h"
-#include "shaders/patch_tese.h"
-#include "shaders/patch_tese_by_address.h"
-#include "shaders/patch_vert.h"
-#include "shaders/patch_vert_by_address.h"
-#include "shaders/prepare_flat_comp.h"
-#include "shaders/prepare_flat_comp_by_address.h"
-#include "shaders/raster_patches_comp.h"
-#include "shaders/raster_patches_comp_by_address.h"
-#include "shaders/raster_software_comp.h"
-#include "shaders/raster_software_comp_by_address.h"
-#include "shaders/prepare_level_comp.h"
-#include "shaders/prepare_level_comp_by_address.h"
-#include "shaders/prepare_patches_comp.h"
-#include "shaders/prepare_patches_comp_by_address.h"
-#include "shaders/reset_flat_comp.h"
-#include "shaders/reset_flat_comp_by_address.h"
-#include "shaders/resolve_comp.h"
-#include "shaders/resolve_comp_by_address.h"
-#include "shaders/traverse_flat_comp.h"
-#include "shaders/traverse_flat_comp_by_address.h"
-#include "shaders/traverse_level_comp.h"
-#include "shaders/traverse_level_comp_by_address.h"
-#include "shaders/traverse_persistent_comp.h"
-#include "shaders/traverse_persistent_comp_by_address.h"
-#include "shaders/traverse_persistent_comp_profile.h"
-#include "shaders/traverse_persistent_comp_profile_by_address.h"
+#include "shaders/spirv.h"  // every shader of VGEO_SHADERS (CMakeLists.txt), both variants
 
 // A shader's SPIR-V in the variant the scene needs: its arrays at their bindings, or by address (each
 // shader is built both ways, CMakeLists.txt).
@@ -223,8 +166,7 @@ void GpuRenderer::createDescriptorSet() {
   vkCheck(vkCreatePipelineLayout(dev, &layoutInfo, nullptr, &layout_), "vkCreatePipelineLayout");
 }
 
-VkPipeline GpuRenderer::computePipeline(const uint32_t* code, size_t bytes,
-                                        const VkSpecializationInfo* specialization) {
+Pipeline GpuRenderer::computePipeline(const uint32_t* code, size_t bytes, const VkSpecializationInfo* specialization) {
   VkDevice dev = vk_.device();
   VkShaderModule module = vk_.createShaderModule(code, bytes);
   VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
@@ -239,11 +181,11 @@ VkPipeline GpuRenderer::computePipeline(const uint32_t* code, size_t bytes,
   VkPipeline pipeline;
   vkCheck(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline), "vkCreateComputePipelines");
   vkDestroyShaderModule(dev, module, nullptr);
-  return pipeline;
+  return Pipeline(dev, pipeline);
 }
 
 VkPipeline GpuRenderer::resolvePipeline(uint32_t mode, bool patches, bool everyPixel) {
-  VkPipeline& pipeline = resolve_[mode][patches ? 1 : 0][everyPixel ? 1 : 0];
+  Pipeline& pipeline = resolve_[mode][patches ? 1 : 0][everyPixel ? 1 : 0];
   if (!pipeline) {
     const uint32_t constants[3] = {mode, patches ? 1u : 0u, everyPixel ? 1u : 0u};  // VkBool32
     const VkSpecializationMapEntry entries[3] = {
@@ -346,16 +288,21 @@ void GpuRenderer::createDrawPipelines() {
   blend.colorBlendOp = blend.alphaBlendOp = VK_BLEND_OP_ADD;
   // Each draw in two pipelines: the views that hide what lies behind (depth test and write), and the
   // overdraw view (every fragment adds, nothing is hidden).
-  auto createViews = [&](const VkPipelineShaderStageCreateInfo* shaderStages, uint32_t count, VkPipeline& hidden,
-                         VkPipeline& overdraw, const char* what) {
+  auto graphicsPipeline = [&](const char* what) {
+    VkPipeline pipeline;
+    vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline), what);
+    return Pipeline(dev, pipeline);
+  };
+  auto createViews = [&](const VkPipelineShaderStageCreateInfo* shaderStages, uint32_t count, Pipeline& hidden,
+                         Pipeline& overdraw, const char* what) {
     info.stageCount = count;
     info.pStages = shaderStages;
     depth.depthTestEnable = depth.depthWriteEnable = VK_TRUE;
     blend.blendEnable = VK_FALSE;
-    vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &hidden), what);
+    hidden = graphicsPipeline(what);
     depth.depthTestEnable = depth.depthWriteEnable = VK_FALSE;
     blend.blendEnable = VK_TRUE;
-    vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &overdraw), what);
+    overdraw = graphicsPipeline(what);
   };
   createViews(stages, 2, draw_, drawOverdraw_, "vkCreateGraphicsPipelines");
   // The same draw into the visibility buffer (draw_visibility.frag): no attachments, no depth test, no
@@ -373,13 +320,11 @@ void GpuRenderer::createDrawPipelines() {
     info.renderPass = renderPassVisibility_;
     depth.depthTestEnable = depth.depthWriteEnable = VK_FALSE;
     blendState.attachmentCount = 0;
-    vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &drawVisibility_),
-            "vkCreateGraphicsPipelines (visibility)");
+    drawVisibility_ = graphicsPipeline("vkCreateGraphicsPipelines (visibility)");
     // The hardware's patches from their grids (patch_grid.vert), into the same buffer.
     VkShaderModule gridVert = vk_.createShaderModule(VGEO_SPIRV(patch_grid_vert));
     visibilityStages[0].module = gridVert;
-    vkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &info, nullptr, &drawGridVisibility_),
-            "vkCreateGraphicsPipelines (patch grids)");
+    drawGridVisibility_ = graphicsPipeline("vkCreateGraphicsPipelines (patch grids)");
     vkDestroyShaderModule(dev, gridVert, nullptr);
     blendState.attachmentCount = 1;
     info.renderPass = renderPass_;

@@ -176,18 +176,7 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
 GpuRenderer::~GpuRenderer() {
   VkDevice dev = vk_.device();
   vkDeviceWaitIdle(dev);
-  const VkPipeline computePipelines[] = {
-      cull_[0],           cull_[1],       cullSerial_[0],     cullSerial_[1],  persistent_[0], persistent_[1],
-      persistentProfile_, level_,         prepareLevel_,      flat_,           prepareFlat_,   resetFlat_,
-      finalize_,          cullTriangles_, cullSmallClusters_, preparePatches_, cullPatches_,   finalizeTriangles_,
-      rasterSoftware_,    rasterPatches_, buildDepthPyramid_, beginLatePass_,  queueDeferred_};
-  const VkPipeline drawPipelines[] = {draw_,           drawOverdraw_,      drawPatches_, drawPatchesOverdraw_,
-                                      drawVisibility_, drawGridVisibility_};
-  for (VkPipeline p : computePipelines) vkDestroyPipeline(dev, p, nullptr);
-  for (VkPipeline p : drawPipelines) vkDestroyPipeline(dev, p, nullptr);
-  for (auto& view : resolve_)
-    for (auto& variants : view)
-      for (VkPipeline p : variants) vkDestroyPipeline(dev, p, nullptr);
+  // The pipelines destroy themselves (Pipeline), after this body.
   vkDestroyPipelineLayout(dev, layout_, nullptr);
   vkDestroyDescriptorPool(dev, descriptorPool_, nullptr);
   vkDestroyDescriptorSetLayout(dev, setLayout_, nullptr);

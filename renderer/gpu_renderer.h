@@ -1,6 +1,8 @@
-// gpu_renderer.h: the frame, all on the GPU (gpu_renderer.cpp): instance culling, traversal (persistent,
-// per level or flat), triangle culling, one indirect draw of the listed triangles, read back once the
-// frame is done. Targets and pipelines: gpu_pipelines.cpp.
+// gpu_renderer.h: the frame, all on the GPU (gpu_renderer.cpp; its passes recorded in frame_passes.cpp):
+// instance culling, the traversal (persistent, per level or flat), triangle and patch culling, the compute
+// rasterizers into the visibility buffer, the render pass (hardware triangles and patches), the resolve,
+// and with occlusion culling all of it in two passes around the depth pyramid; read back once the frame
+// is done. Targets and pipelines: gpu_pipelines.cpp; the growing lists: frame_lists.cpp.
 #pragma once
 
 #include <cstring>
@@ -19,13 +21,13 @@ namespace vgeo {
 
 enum class Traversal { Persistent, Levels, Flat };
 
-// FrameSettings::sweepBudget unless set (bench/README.md, "Sweeps").
+// FrameSettings::sweepBudget unless set (docs/design.md, "The frame's passes": sweeps).
 constexpr uint32_t kDefaultSweepBudget = 1u << 18;
 // Triangle culling packs 64 clusters a workgroup (cull_small_clusters.comp) when the draw list's clusters
 // average fewer triangles than this: far instances list roots of ~13 triangles, which leave most lanes of
 // a workgroup a cluster idle (lavapipe pays for every lane and every workgroup: 3.8x, the H100 1.9x).
 // Above it, one cluster a workgroup, whose loads are the same for every lane, is the faster
-// (bench/README.md, triangle culling of small clusters).
+// (bench/README.md, "What the code's choices rest on").
 constexpr uint32_t kDefaultPackedCullBelow = 32;
 
 enum class InstanceCulling { Auto, Pass, InTraversal };
@@ -241,7 +243,7 @@ class GpuRenderer {
   // Whether the depth pyramid was drawn from this camera: a frozen cut needs it from the camera it froze at.
   bool pyramidDrawnFrom(const View& view) const { return pyramidMade_ && sameView(pyramidView_, view); }
   void recordResolve(VkCommandBuffer cmd, uint32_t mode, bool patches, bool bare);
-  VkPipeline computePipeline(const uint32_t* code, size_t bytes, const VkSpecializationInfo* specialization = nullptr);
+  Pipeline computePipeline(const uint32_t* code, size_t bytes, const VkSpecializationInfo* specialization = nullptr);
   VkPipeline resolvePipeline(uint32_t mode, bool patches, bool everyPixel);
   void recordReadback(VkCommandBuffer cmd, const FrameSettings& settings);
   VkPipelineStageFlags drawShaderStages() const;
@@ -255,9 +257,6 @@ class GpuRenderer {
       return VGEO_RASTER_NONE;
     return s.raster == Raster::Software ? VGEO_RASTER_ALL : VGEO_RASTER_SMALL;
   }
-  // Whether patch culling bins patches to the compute rasterizer too. Not by default on lavapipe: it runs
-  // every line of a shader whatever its lanes branch to (docs/gpu-notes.md, 17), so each grid point there
-  // pays for every kind of patch evaluation; its tessellator is the faster path.
   // Whether the frame's render pass is the bare one (no attachments): its triangles (and the patches the
   // compute rasterizer leaves to the hardware, from their grids) go into the visibility buffer and the
   // resolve shades every pixel. Not when patches go to the tessellator: it draws with depth.
@@ -265,6 +264,9 @@ class GpuRenderer {
     return s.draw && frame.softwareRaster != VGEO_RASTER_NONE && drawVisibility_ != VK_NULL_HANDLE &&
            (frame.drawPatches == 0u || frame.softwarePatches != 0u);
   }
+  // Whether patch culling bins patches to the compute rasterizer too. Not by default on lavapipe: it runs
+  // every line of a shader whatever its lanes branch to (docs/gpu-notes.md, 17), so each grid point there
+  // pays for every kind of patch evaluation; its tessellator is the faster path.
   bool rastersPatchesInCompute(const FrameSettings& s) const {
     return drawsPatches(s) && softwareRaster(s) != VGEO_RASTER_NONE && vk_.drawIndirectCount() &&
            (s.raster == Raster::Software || !vk_.isLavapipe());
@@ -276,10 +278,8 @@ class GpuRenderer {
   uint32_t queueCapacity_ = 1u << 20, drawCapacity_ = 1u << 20, triangleCapacity_ = 1u << 22, patchCapacity_ = 1u << 18;
   uint32_t patchGridCapacity_ = 1;
   uint32_t persistentWorkgroups_ = 0, iterationBudget_ = 0, claimMode_ = 0;
-  uint32_t lastCullItems_ = 0;
-  uint64_t frameMemoryLimit_ =
-      uint64_t(kDefaultFrameMemoryMiB)
-      << 20;  // the last frame's counters.cullItems: sizes the persistent traversal's first claim
+  uint32_t lastCullItems_ = 0;  // the last frame's counters.cullItems: sizes the persistent traversal's first claim
+  uint64_t frameMemoryLimit_ = uint64_t(kDefaultFrameMemoryMiB) << 20;
 
   Buffer visibilityReadback_, patchListReadback_;  // host-visible, made when first asked for
   Buffer frameData_, counters_, countersReadback_, queue_, drawList_, drawListReadback_, imageReadback_, triangleList_,
@@ -308,19 +308,15 @@ class GpuRenderer {
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
   // Instance culling and the persistent traversal, [0] without the occlusion tests, [1] with them.
-  VkPipeline cull_[2] = {}, cullSerial_[2] = {}, persistent_[2] = {};
-  VkPipeline persistentProfile_ = VK_NULL_HANDLE, level_ = VK_NULL_HANDLE, prepareLevel_ = VK_NULL_HANDLE,
-             flat_ = VK_NULL_HANDLE, prepareFlat_ = VK_NULL_HANDLE, resetFlat_ = VK_NULL_HANDLE,
-             finalize_ = VK_NULL_HANDLE, draw_ = VK_NULL_HANDLE, cullTriangles_ = VK_NULL_HANDLE,
-             cullSmallClusters_ = VK_NULL_HANDLE, preparePatches_ = VK_NULL_HANDLE, cullPatches_ = VK_NULL_HANDLE,
-             finalizeTriangles_ = VK_NULL_HANDLE, drawOverdraw_ = VK_NULL_HANDLE, drawPatches_ = VK_NULL_HANDLE,
-             drawPatchesOverdraw_ = VK_NULL_HANDLE, rasterSoftware_ = VK_NULL_HANDLE, rasterPatches_ = VK_NULL_HANDLE,
-             drawVisibility_ = VK_NULL_HANDLE, drawGridVisibility_ = VK_NULL_HANDLE,
-             buildDepthPyramid_ = VK_NULL_HANDLE, beginLatePass_ = VK_NULL_HANDLE, queueDeferred_ = VK_NULL_HANDLE;
+  Pipeline cull_[2], cullSerial_[2], persistent_[2];
+  Pipeline persistentProfile_, level_, prepareLevel_, flat_, prepareFlat_, resetFlat_, finalize_, draw_, cullTriangles_,
+      cullSmallClusters_, preparePatches_, cullPatches_, finalizeTriangles_, drawOverdraw_, drawPatches_,
+      drawPatchesOverdraw_, rasterSoftware_, rasterPatches_, drawVisibility_, drawGridVisibility_, buildDepthPyramid_,
+      beginLatePass_, queueDeferred_;
   // resolve.comp, one pipeline a view, made when first used (a shader with only its view's code: lavapipe
   // runs every line of a shader whatever branch its lanes take, docs/gpu-notes.md 17).
   // [view][whether patches are in the visibility buffer][whether every pixel is (no render-pass attachments)]
-  VkPipeline resolve_[VGEO_MODE_COUNT][2][2] = {};
+  Pipeline resolve_[VGEO_MODE_COUNT][2][2];
   VkSampler depthSampler_ = VK_NULL_HANDLE;
   VkQueryPool queries_ = VK_NULL_HANDLE;
   VkQueryPool statistics_ = VK_NULL_HANDLE;  // clipping invocations of the patch draw (its triangles)

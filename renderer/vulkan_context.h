@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace vgeo {
@@ -22,6 +23,36 @@ struct ContextOptions {
   // instance exists. The context owns the surface.
   std::vector<const char*> instanceExtensions;
   std::function<VkSurfaceKHR(VkInstance)> createSurface;
+};
+
+// A pipeline that destroys itself, so that the renderer keeps no list of its pipelines to destroy.
+// Move-only; reads as the VkPipeline it holds (VK_NULL_HANDLE until made).
+class Pipeline {
+ public:
+  Pipeline() = default;
+  Pipeline(VkDevice device, VkPipeline pipeline) : device_(device), pipeline_(pipeline) {}
+  Pipeline(Pipeline&& other) noexcept { *this = std::move(other); }
+  Pipeline& operator=(Pipeline&& other) noexcept {
+    if (this != &other) {
+      reset();
+      device_ = other.device_;
+      pipeline_ = other.pipeline_;
+      other.pipeline_ = VK_NULL_HANDLE;
+    }
+    return *this;
+  }
+  Pipeline(const Pipeline&) = delete;
+  Pipeline& operator=(const Pipeline&) = delete;
+  ~Pipeline() { reset(); }
+  operator VkPipeline() const { return pipeline_; }
+
+ private:
+  void reset() {
+    if (pipeline_ != VK_NULL_HANDLE) vkDestroyPipeline(device_, pipeline_, nullptr);
+    pipeline_ = VK_NULL_HANDLE;
+  }
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkPipeline pipeline_ = VK_NULL_HANDLE;
 };
 
 struct Buffer {
