@@ -33,13 +33,13 @@ void GpuRenderer::createQueueAndDrawList() {
 
 void GpuRenderer::setCapacities(uint32_t queueItems, uint32_t drawEntries, uint32_t triangles, uint32_t patches) {
   vkDeviceWaitIdle(vk_.device());
-  vk_.destroyBuffer(queue_);
-  vk_.destroyBuffer(deferredItems_);
-  vk_.destroyBuffer(drawList_);
-  vk_.destroyBuffer(triangleList_);
-  vk_.destroyBuffer(patchList_);
-  vk_.destroyBuffer(patchDraws_);
-  vk_.destroyBuffer(patchEntries_);
+  queue_.reset();
+  deferredItems_.reset();
+  drawList_.reset();
+  triangleList_.reset();
+  patchList_.reset();
+  patchDraws_.reset();
+  patchEntries_.reset();
   patchCapacity_ = std::max(patches, 1u);
   queueCapacity_ = std::max(queueItems, 1u);
   drawCapacity_ = std::max(drawEntries, 1u);

@@ -13,7 +13,7 @@ void GpuRenderer::prepareReadbacks(const FrameSettings& settings, bool profile) 
     const VkDeviceSize bytes = VkDeviceSize(persistentWorkgroups_) * VGEO_PROFILE_WORKER_WORDS * 4;
     if (workerProfile_.size < bytes) {
       vkDeviceWaitIdle(vk_.device());
-      vk_.destroyBuffer(workerProfile_);
+      workerProfile_.reset();
       workerProfile_ = vk_.createBuffer(bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
       writeDescriptors();
     }
@@ -21,7 +21,7 @@ void GpuRenderer::prepareReadbacks(const FrameSettings& settings, bool profile) 
   }
   auto sized = [&](Buffer& readback, const Buffer& source) {
     if (readback.size == source.size) return;
-    vk_.destroyBuffer(readback);
+    readback.reset();
     readback = vk_.createBuffer(source.size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
   };
   if (settings.readDrawList || settings.readPixelClusters) sized(drawListReadback_, drawList_);

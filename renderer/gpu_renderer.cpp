@@ -176,7 +176,7 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
 GpuRenderer::~GpuRenderer() {
   VkDevice dev = vk_.device();
   vkDeviceWaitIdle(dev);
-  // The pipelines destroy themselves (Pipeline), after this body.
+  // The pipelines and buffers destroy themselves (Pipeline, Buffer), after this body.
   vkDestroyPipelineLayout(dev, layout_, nullptr);
   vkDestroyDescriptorPool(dev, descriptorPool_, nullptr);
   vkDestroyDescriptorSetLayout(dev, setLayout_, nullptr);
@@ -195,14 +195,6 @@ GpuRenderer::~GpuRenderer() {
   vkDestroyImage(dev, depth_, nullptr);
   vkFreeMemory(dev, colorMemory_, nullptr);
   vkFreeMemory(dev, depthMemory_, nullptr);
-  for (Buffer* b : {&frameData_,         &counters_,         &countersReadback_,   &queue_,
-                    &drawList_,          &drawListReadback_, &imageReadback_,      &triangleList_,
-                    &patchList_,         &patchDraws_,       &patchEntries_,       &workerProfile_,
-                    &visibility_,        &overdraw_,         &patchGrid_,          &depthPyramid_,
-                    &deferredInstances_, &deferredItems_,    &visibilityReadback_, &patchListReadback_})
-    vk_.destroyBuffer(*b);
-  for (auto& [binding, b] : sceneBuffers_) vk_.destroyBuffer(b);
-  vk_.destroyBuffer(sceneArrays_);
 }
 
 void GpuRenderer::writeDescriptors() {

@@ -358,6 +358,7 @@ uint32_t VulkanContext::memoryType(uint32_t bits, VkMemoryPropertyFlags flags) c
 
 Buffer VulkanContext::createBuffer(VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible) {
   Buffer b;
+  b.device = device_;
   b.size = std::max<VkDeviceSize>(size, 16);
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   info.size = b.size;
@@ -374,10 +375,8 @@ Buffer VulkanContext::createBuffer(VkDeviceSize size, VkBufferUsageFlags usage, 
       req.memoryTypeBits, hostVisible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
                                       : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   VkResult r = vkAllocateMemory(device_, &alloc, nullptr, &b.memory);
-  if (r != VK_SUCCESS) {
-    vkDestroyBuffer(device_, b.buffer, nullptr);
+  if (r != VK_SUCCESS)  // b frees its buffer on the way out
     throw std::runtime_error("vulkan: out of device memory allocating " + std::to_string(b.size >> 20) + " MiB");
-  }
   vkCheck(vkBindBufferMemory(device_, b.buffer, b.memory, 0), "vkBindBufferMemory");
   if (hostVisible) vkCheck(vkMapMemory(device_, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped), "vkMapMemory");
   return b;
@@ -397,12 +396,6 @@ VkDeviceSize VulkanContext::deviceLocalBytes() const {
   return memoryLimitBytes_ ? std::min<VkDeviceSize>(largest, memoryLimitBytes_) : largest;
 }
 
-void VulkanContext::destroyBuffer(Buffer& b) {
-  if (b.buffer) vkDestroyBuffer(device_, b.buffer, nullptr);
-  if (b.memory) vkFreeMemory(device_, b.memory, nullptr);
-  b = Buffer{};
-}
-
 void VulkanContext::upload(const Buffer& dst, const void* data, VkDeviceSize size, VkDeviceSize offset) {
   if (size == 0) return;
   Buffer staging = createBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
@@ -411,7 +404,6 @@ void VulkanContext::upload(const Buffer& dst, const void* data, VkDeviceSize siz
   VkBufferCopy region{0, offset, size};
   vkCmdCopyBuffer(cmd, staging.buffer, dst.buffer, 1, &region);
   submitAndWait(cmd);
-  destroyBuffer(staging);
 }
 
 VkCommandBuffer VulkanContext::beginCommands() {

@@ -55,11 +55,43 @@ class Pipeline {
   VkPipeline pipeline_ = VK_NULL_HANDLE;
 };
 
+// A buffer and its memory, freed with it (move-only), so that no owner keeps a list of buffers to
+// destroy. Host-visible buffers stay mapped.
 struct Buffer {
   VkBuffer buffer = VK_NULL_HANDLE;
   VkDeviceMemory memory = VK_NULL_HANDLE;
   VkDeviceSize size = 0;
-  void* mapped = nullptr;  // host-visible buffers stay mapped
+  void* mapped = nullptr;
+
+  Buffer() = default;
+  Buffer(Buffer&& other) noexcept { *this = std::move(other); }
+  Buffer& operator=(Buffer&& other) noexcept {
+    if (this != &other) {
+      reset();
+      std::swap(buffer, other.buffer);
+      std::swap(memory, other.memory);
+      std::swap(size, other.size);
+      std::swap(mapped, other.mapped);
+      std::swap(device, other.device);
+    }
+    return *this;
+  }
+  Buffer(const Buffer&) = delete;
+  Buffer& operator=(const Buffer&) = delete;
+  ~Buffer() { reset(); }
+  // Frees the buffer now (a list that grows frees the old one before making the larger).
+  void reset() {
+    if (buffer != VK_NULL_HANDLE) vkDestroyBuffer(device, buffer, nullptr);
+    if (memory != VK_NULL_HANDLE) vkFreeMemory(device, memory, nullptr);
+    buffer = VK_NULL_HANDLE;
+    memory = VK_NULL_HANDLE;
+    size = 0;
+    mapped = nullptr;
+  }
+
+ private:
+  friend class VulkanContext;
+  VkDevice device = VK_NULL_HANDLE;
 };
 
 class VulkanContext {
@@ -93,7 +125,6 @@ class VulkanContext {
 
   // Device-local buffer (usage | transfer dst/src), or host-visible and mapped when `hostVisible`.
   Buffer createBuffer(VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible = false);
-  void destroyBuffer(Buffer& buffer);
   // The address shaders read a buffer at (made with VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT).
   VkDeviceAddress deviceAddress(const Buffer& buffer) const;
   // The size of the largest device-local memory heap (at most ContextOptions::memoryLimitBytes).

@@ -326,7 +326,7 @@ uint32_t runViewer(const RenderScene& scene, const ViewerOptions& o) {
     vk.submitAndWait(cmd, swapchain.imageReady(), VK_PIPELINE_STAGE_TRANSFER_BIT, swapchain.renderDone(image));
     if (shot.buffer) {
       writeWindowShot(s.windowShot, shot, swapchain);
-      vk.destroyBuffer(shot);
+      shot.reset();
       s.windowShot.clear();
     }
     if (!swapchain.present(image)) {
