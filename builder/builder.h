@@ -50,6 +50,16 @@ struct PolygonMesh {
     for (size_t f = begin; f < std::min(end, faceCount()); f++) n += faceSize(f) > 2 ? faceSize(f) - 2 : 0;
     return n;
   }
+  // Face f's area vector: twice its area along its normal, the cross products of its fan from the first
+  // corner summed (exact for planar polygons; orientation and smooth normals weigh faces by it).
+  glm::dvec3 areaVector(size_t f) const {
+    const uint32_t* c = face(f);
+    const glm::dvec3 a(positions[c[0]]);
+    glm::dvec3 n(0.0);
+    for (uint32_t k = 1; k + 1 < faceSize(f); k++)
+      n += glm::cross(glm::dvec3(positions[c[k]]) - a, glm::dvec3(positions[c[k + 1]]) - a);
+    return n;
+  }
 };
 
 struct SourceInstance {

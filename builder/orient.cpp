@@ -58,13 +58,7 @@ OrientReport orientFaces(PolygonMesh& mesh, int threads, OrientedEdges* oriented
     return undirectedEdge(a, b);
   };
 
-  auto area = [&](size_t f) {
-    const uint32_t* c = mesh.face(f);
-    glm::dvec3 a(mesh.positions[c[0]]), n(0.0);
-    for (uint32_t k = 1; k + 1 < mesh.faceSize(f); k++)
-      n += glm::cross(glm::dvec3(mesh.positions[c[k]]) - a, glm::dvec3(mesh.positions[c[k + 1]]) - a);
-    return glm::length(n);
-  };
+  auto area = [&](size_t f) { return glm::length(mesh.areaVector(f)); };
 
   // Each face's turn relative to its component's first face, from the parity union-find over the
   // two-face edges (faces walking an edge the same way must differ, else agree).

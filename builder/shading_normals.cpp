@@ -20,15 +20,6 @@
 namespace vgeo {
 namespace {
 
-// Area vector of face f (twice its area along its normal; Newell's sum for any polygon).
-glm::dvec3 areaVector(const PolygonMesh& mesh, size_t f) {
-  const uint32_t* c = mesh.face(f);
-  glm::dvec3 a(mesh.positions[c[0]]), n(0.0);
-  for (uint32_t k = 1; k + 1 < mesh.faceSize(f); k++)
-    n += glm::cross(glm::dvec3(mesh.positions[c[k]]) - a, glm::dvec3(mesh.positions[c[k + 1]]) - a);
-  return n;
-}
-
 constexpr int kSerialNormalThreads = 2;  // vertexFaces costs a 2-thread build more than it saves
 
 // Each vertex's faces' area vectors summed in face order, as one walk over the faces sums them. On
@@ -43,7 +34,7 @@ FillLaterVector<glm::vec3> faceSummedNormals(const PolygonMesh& mesh, int thread
     FillLaterVector<glm::vec3> normals(vertexCount);
     std::vector<glm::dvec3> sums(vertexCount, glm::dvec3(0.0));
     for (size_t f = 0; f < faceCount; f++) {
-      const glm::dvec3 n = areaVector(mesh, f);
+      const glm::dvec3 n = mesh.areaVector(f);
       for (uint32_t k = 0; k < mesh.faceSize(f); k++) sums[mesh.face(f)[k]] += n;
     }
     for (size_t v = 0; v < vertexCount; v++) normals[v] = glm::vec3(sums[v]);
@@ -54,7 +45,7 @@ FillLaterVector<glm::vec3> faceSummedNormals(const PolygonMesh& mesh, int thread
   faces = vertexFaces(mesh.faceStart, mesh.faceVertices, vertexCount, threads);
   FillLaterVector<glm::dvec3> area(faceCount);
   parallelForRanges(faceCount, threads, [&](size_t begin, size_t end) {
-    for (size_t f = begin; f < end; f++) area[f] = areaVector(mesh, f);
+    for (size_t f = begin; f < end; f++) area[f] = mesh.areaVector(f);
   });
   FillLaterVector<glm::vec3> normals(vertexCount);
   parallelForRanges(vertexCount, threads, [&](size_t begin, size_t end) {
@@ -106,7 +97,7 @@ ShadingNormals shadingNormals(const PolygonMesh& mesh, std::span<const glm::vec3
   parallelForRanges(mesh.faceCount(), threads, [&](size_t begin, size_t end) {
     for (size_t f = begin; f < end; f++) {
       for (uint32_t c = mesh.faceStart[f]; c < mesh.faceStart[f + 1]; c++) cornerFace[c] = uint32_t(f);
-      faceArea[f] = areaVector(mesh, f);
+      faceArea[f] = mesh.areaVector(f);
     }
   });
 

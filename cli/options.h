@@ -95,14 +95,6 @@ inline glm::vec3 parseDirectionOption(const std::string& option, const std::stri
   return d;
 }
 
-// A camera as --camera takes it (eye, then target, each to float precision).
-inline std::string cameraOption(const Camera& c) {
-  char text[256];
-  std::snprintf(text, sizeof text, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y,
-                c.target.z);
-  return text;
-}
-
 // An output path that can be written: its folder exists, it is new or a regular file (not a folder,
 // link or device, which the atomic rename would replace), it is none of the inputs, and it ends in
 // `extension` (case-insensitive) when one is given.

@@ -73,7 +73,6 @@ struct RenderRun {
   uint32_t timedFrames = 0;
   double timedMs = 0.0;
 };
-constexpr uint32_t kUntimedFrames = 5;
 
 // Frames until one is complete (an overflow grows the buffers for the next); the first frames warm the
 // shader cache (docs/gpu-notes.md, 4), the last one is reported.

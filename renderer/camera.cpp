@@ -4,11 +4,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 namespace vgeo {
+
+std::string cameraOption(const Camera& c) {
+  char text[256];
+  std::snprintf(text, sizeof text, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y,
+                c.target.z);
+  return text;
+}
 
 View makeView(const Camera& camera, uint32_t width, uint32_t height, glm::vec4 bounds) {
   View v;

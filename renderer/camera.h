@@ -2,6 +2,7 @@
 #pragma once
 
 #include <glm/glm.hpp>
+#include <string>
 #include <vector>
 
 namespace vgeo {
@@ -24,6 +25,8 @@ struct View {
 
 // A view of `camera` for a width x height image; near and far planes fit a scene of `bounds` (sphere).
 View makeView(const Camera& camera, uint32_t width, uint32_t height, glm::vec4 bounds);
+// A camera as --camera takes it: eye, then target, each to float precision ("ex,ey,ez,tx,ty,tz").
+std::string cameraOption(const Camera& c);
 // Whether every number of the view is finite in float, the precision the shaders use it in (an eye at
 // 3e19, or a field of view of 1e-20 degrees, overflows the view-projection into infinities and NaNs).
 bool finiteView(const View& v);

@@ -30,6 +30,10 @@ constexpr uint32_t kDefaultSweepBudget = 1u << 18;
 // (bench/README.md, "What the code's choices rest on").
 constexpr uint32_t kDefaultPackedCullBelow = 32;
 
+// Frames a run renders before it reads pass times (lists grown, shader caches and clocks warm): `vgeo
+// render --frames` and the viewer's closing summary time the frames after these.
+constexpr uint32_t kUntimedFrames = 5;
+
 enum class InstanceCulling { Auto, Pass, InTraversal };
 
 // Which rasterizer draws a listed triangle (shaderio_frame.h, VGEO_RASTER_*): Auto small ones in software

@@ -71,15 +71,9 @@ void createImage(VulkanContext& vk, uint32_t width, uint32_t height, VkFormat fo
   vkCheck(vkCreateImage(dev, &info, nullptr, &image), "vkCreateImage");
   VkMemoryRequirements req;
   vkGetImageMemoryRequirements(dev, image, &req);
-  VkPhysicalDeviceMemoryProperties mem;
-  vkGetPhysicalDeviceMemoryProperties(vk.physicalDevice(), &mem);
   VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   alloc.allocationSize = req.size;
-  for (uint32_t i = 0; i < mem.memoryTypeCount; i++)
-    if ((req.memoryTypeBits & (1u << i)) && (mem.memoryTypes[i].propertyFlags & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) {
-      alloc.memoryTypeIndex = i;
-      break;
-    }
+  alloc.memoryTypeIndex = vk.memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   vkCheck(vkAllocateMemory(dev, &alloc, nullptr, &memory), "vkAllocateMemory (image)");
   vkCheck(vkBindImageMemory(dev, image, memory, 0), "vkBindImageMemory");
   VkImageViewCreateInfo v{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};

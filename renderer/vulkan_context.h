@@ -123,6 +123,8 @@ class VulkanContext {
   // Validation messages seen so far (warnings and errors); each is also printed to stderr.
   uint32_t validationMessages() const { return validationMessages_; }
 
+  // The first memory type among `bits` (VkMemoryRequirements) with every flag of `flags`; throws if none.
+  uint32_t memoryType(uint32_t bits, VkMemoryPropertyFlags flags) const;
   // Device-local buffer (usage | transfer dst/src), or host-visible and mapped when `hostVisible`.
   Buffer createBuffer(VkDeviceSize size, VkBufferUsageFlags usage, bool hostVisible = false);
   // The address shaders read a buffer at (made with VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT).
@@ -148,7 +150,6 @@ class VulkanContext {
   void createInstance(const ContextOptions& options);
   void pickDevice(const ContextOptions& options);
   void createDevice();
-  uint32_t memoryType(uint32_t bits, VkMemoryPropertyFlags flags) const;
 
   VkInstance instance_ = VK_NULL_HANDLE;
   VkSurfaceKHR surface_ = VK_NULL_HANDLE;

@@ -25,7 +25,7 @@ void cycleMode(ViewState& s) {
 
 void printCamera(const ViewState& s) {
   const Camera c = s.camera.camera(s.fov);
-  std::printf("--camera %.9g,%.9g,%.9g,%.9g,%.9g,%.9g", c.eye.x, c.eye.y, c.eye.z, c.target.x, c.target.y, c.target.z);
+  std::printf("--camera %s", cameraOption(c).c_str());
   if (s.headlight) {
     const glm::vec3 l = headlight(s.camera);
     std::printf(" --light %.9g,%.9g,%.9g", l.x, l.y, l.z);

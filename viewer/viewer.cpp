@@ -27,8 +27,6 @@ namespace {
 // A window resized by hand settles for this long before the renderer is remade at its size (it is
 // remade at once for a scripted resize); meanwhile the last size's picture is scaled.
 constexpr double kResizeSettleSeconds = 0.25;
-// Frames left out of the closing summary's times: the first ones grow lists and warm caches.
-constexpr uint32_t kUntimedFrames = 5;
 // The panel's numbers change this often (the frame time averaged over it): readable, and a panel that
 // does not change is copied, not drawn again (overlay.cpp).
 constexpr double kPanelNumbersSeconds = 0.5;
