@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 
 #include "../common/free_pages.h"
 #include "../common/parallel.h"
@@ -112,31 +113,29 @@ std::string unreducedReason(const SurfaceTopology& t) {
   return "no group could be halved without moving a locked group border or folding the surface";
 }
 
-}  // namespace
+// What repair finds of each mesh that later steps need.
+struct RepairedMeshes {
+  std::vector<bool> closed;   // closed and facing out: its instances may drop back faces
+  std::vector<double> reach;  // the farthest vertex from the mesh's origin (instances' placement check)
+};
 
-void buildScene(const std::string& path, const SceneBuildOptions& options, SceneBuildStats& stats, SectionSink& data) {
-  auto start = std::chrono::steady_clock::now();
-  StageTimer loading(&stats.stages, "load");
-  SourceScene scene = loadMeshFile(path, options.threads);
-  loading.stop();
-  stats.loadSeconds = secondsSince(start);
-  if (options.subdivisionLevels < 0) throw InputError(path, "--subdiv must be >= 0");
-
-  std::vector<bool> closed(scene.meshes.size());
-  std::vector<double> reach(scene.meshes.size(), 0.0);  // the farthest vertex from the mesh's origin
+// Repairs every mesh in place and checks that its subdivision fits the format's 32-bit indices before
+// any is made.
+RepairedMeshes repairMeshes(const std::string& path, SourceScene& scene, const SceneBuildOptions& options,
+                            SceneBuildStats& stats) {
+  RepairedMeshes r{std::vector<bool>(scene.meshes.size()), std::vector<double>(scene.meshes.size(), 0.0)};
   for (size_t m = 0; m < scene.meshes.size(); m++) {
     PolygonMesh& mesh = scene.meshes[m];
-    for (const glm::vec3& p : mesh.positions) reach[m] = std::max(reach[m], glm::length(glm::dvec3(p)));
+    for (const glm::vec3& p : mesh.positions) r.reach[m] = std::max(r.reach[m], glm::length(glm::dvec3(p)));
     stats.inputTriangles += triangleCount(mesh, options.threads);
     const std::string where = scene.meshes.size() > 1 ? path + " (mesh '" + scene.meshNames[m] + "')" : path;
-    StageTimer repairing(&stats.stages, "repair");
-    RepairReport report = repairMesh(mesh, where, options.threads);
-    repairing.stop();
+    const RepairReport report =
+        timed(&stats.stages, "repair", [&] { return repairMesh(mesh, where, options.threads); });
     add(stats.repair, report);
     // Closed: no boundary edge, no vertex split by repair (so positions identify vertices), and facing
     // out (positive signed volume): the renderer drops back faces of closed instances, which would drop
     // the visible side of a mesh that is inside out.
-    closed[m] = report.boundaryEdges == 0 && report.splitVertices == 0 && signedVolume(mesh, options.threads) > 0.0;
+    r.closed[m] = report.boundaryEdges == 0 && report.splitVertices == 0 && signedVolume(mesh, options.threads) > 0.0;
     double vertices = 0, triangles = 0;
     predictSize(mesh, report.boundaryEdges, options.subdivisionLevels, options.threads, vertices, triangles);
     // Cluster triangles over all levels (~2x the leaves) and vertices must stay addressable by uint32.
@@ -146,105 +145,137 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
                                   std::to_string(uint64_t(triangles)) + " triangles over " +
                                   std::to_string(uint64_t(vertices)) + " vertices (limit about 1 billion triangles)");
   }
-  returnFreePages(options.threads, &stats.stages);  // what the file's text, repair's copies and sorts held
-  // One mesh at a time, from subdivision to layout, each array freed once used: the build's peak memory
-  // is one mesh's.
-  std::vector<shaderio::Instance> instances;
-  for (size_t m = 0; m < scene.meshes.size(); m++) {
-    auto subdivideStart = std::chrono::steady_clock::now();
-    StageTimer subdividing(&stats.stages, "subdivide");
-    PolygonMesh leaves = std::move(scene.meshes[m]);
-    FillLaterVector<glm::vec3> leafNormals;  // limit normals of a subdivided cage
-    MeshPatches patches;                     // and its limit-surface patches
-    PatchErrorList patchErrors;              // with the chord errors of their faces
+  return r;
+}
+
+// A mesh's finest level, as the DAG takes it.
+struct LeafMesh {
+  PolygonMesh faces;                   // subdivided, at the limit, large faces in strips
+  FillLaterVector<glm::vec3> normals;  // limit normals of a subdivided cage
+  MeshPatches patches;                 // and its limit-surface patches
+  PatchErrorList patchErrors;          // with the chord errors of their faces
+  bool trianglesOnly = false;          // every leaf face a triangle before the strips: repaired faces
+  bool positionsDistinct = true;       // no two limit positions rounded together
+};
+
+// Subdivides a cage `levels` times; a subdivided cage's leaves then sample the limit surface: its
+// patches, limit positions and normals (limit.cpp) and the faces' chord errors against the patches.
+LeafMesh makeLeaves(PolygonMesh mesh, const SceneBuildOptions& options, SceneBuildStats& stats,
+                    const std::function<void(const char*)>& progress) {
+  LeafMesh leaves;
+  leaves.faces = timed(&stats.stages, "subdivide", [&] {
     for (int l = 0; l < options.subdivisionLevels; l++) {
-      if (options.progress) options.progress(double(m) / double(scene.meshes.size()), "subdividing");
-      leaves = subdivideCatmullClark(leaves, options.threads);
+      progress("subdividing");
+      mesh = subdivideCatmullClark(mesh, options.threads);
     }
-    subdividing.stop();
-    // A subdivided cage's leaves sample the limit surface: limit positions and normals (limit.cpp).
-    if (options.subdivisionLevels >= 1) {
-      const uint32_t threads = uint32_t(std::max(options.threads, 1));
-      StageTimer patching(&stats.stages, "patches");
-      const Patcher patcher(leaves, options.threads);  // its corners serve the limit too
-      patches = buildPatches(leaves, leaves.positions, patcher, threads);
-      patching.stop();
-      StageTimer limiting(&stats.stages, "limit");
-      moveToLimit(leaves, leafNormals, options.threads, &patcher.corners());
-      closed[m] = closed[m] && positionsDistinct(leaves.positions, options.threads);
-      limiting.stop();
-      StageTimer chords(&stats.stages, "patch chord errors");
-      patchErrors = patchChordErrors(leaves, patches, threads);
-      chords.stop();
-    }
-    const bool trianglesOnly = leaves.faceVertices.size() == 3 * leaves.faceCount();  // before any fan
-    StageTimer fanning(&stats.stages, "fans");
-    triangulateLargeFaces(leaves, options.threads);
-    stats.leafTriangles += triangleCount(leaves, options.threads);
-    fanning.stop();
+    return std::move(mesh);
+  });
+  PolygonMesh& faces = leaves.faces;
+  if (options.subdivisionLevels >= 1) {
+    const uint32_t threads = uint32_t(std::max(options.threads, 1));
+    const Patcher patcher(faces, options.threads);  // its corners serve the limit too
+    leaves.patches =
+        timed(&stats.stages, "patches", [&] { return buildPatches(faces, faces.positions, patcher, threads); });
+    timed(&stats.stages, "limit", [&] {
+      moveToLimit(faces, leaves.normals, options.threads, &patcher.corners());
+      leaves.positionsDistinct = positionsDistinct(faces.positions, options.threads);
+    });
+    leaves.patchErrors =
+        timed(&stats.stages, "patch chord errors", [&] { return patchChordErrors(faces, leaves.patches, threads); });
+  }
+  leaves.trianglesOnly = faces.faceVertices.size() == 3 * faces.faceCount();  // before any strip
+  timed(&stats.stages, "fans", [&] {
+    triangulateLargeFaces(faces, options.threads);
+    stats.leafTriangles += triangleCount(faces, options.threads);
+  });
+  return leaves;
+}
+
+// The built DAG's counts, added to the scene's.
+void addDagStats(SceneBuildStats& stats, const Dag& dag, const std::string& name) {
+  stats.clusters += dag.clusters.size();
+  stats.leafClusters += dag.levelClusters[0];
+  for (const auto& c : dag.clusters) stats.clusterTriangles += c.indices.size() / 3;
+  stats.levels = std::max<uint32_t>(stats.levels, uint32_t(dag.levelClusters.size()));
+  stats.levelClusters.resize(stats.levels, 0);
+  stats.levelTriangles.resize(stats.levels, 0);
+  for (size_t l = 0; l < dag.levelClusters.size(); l++) {
+    stats.levelClusters[l] += dag.levelClusters[l];
+    stats.levelTriangles[l] += dag.levelTriangles[l];
+  }
+  stats.rootClusters += dag.rootClusters;
+  if (dag.rootClusters > dag.roots.components)
+    stats.unreduced.push_back({name, dag.rootClusters, dag.roots, unreducedReason(dag.roots)});
+  stats.relaxedGroups += dag.relaxedGroups;
+  stats.stuckGroups += dag.stuckGroups;
+}
+
+}  // namespace
+
+// Load and repair every mesh, then one mesh at a time from subdivision to layout, each array freed once
+// used: the build's peak memory is one mesh's. Between steps the threads' free pages go back to the
+// kernel (free_pages.h): the file's text and repair's sorts, the rounds' meshes, the DAG's scratch.
+void buildScene(const std::string& path, const SceneBuildOptions& options, SceneBuildStats& stats, SectionSink& data) {
+  auto start = std::chrono::steady_clock::now();
+  SourceScene scene = timed(&stats.stages, "load", [&] { return loadMeshFile(path, options.threads); });
+  stats.loadSeconds = secondsSince(start);
+  if (options.subdivisionLevels < 0) throw InputError(path, "--subdiv must be >= 0");
+  RepairedMeshes repaired = repairMeshes(path, scene, options, stats);
+  returnFreePages(options.threads, &stats.stages);
+
+  std::vector<shaderio::Instance> instances;
+  const size_t meshes = scene.meshes.size();
+  for (size_t m = 0; m < meshes; m++) {
+    const std::string name = meshes > 1 ? scene.meshNames[m] : path;
+    const std::string where = meshes > 1 ? path + " (mesh '" + name + "')" : path;
+    auto progress = [&, m](double f, const char* stage) {
+      if (options.progress) options.progress((double(m) + f) / double(meshes), stage);
+    };
+    auto subdivideStart = std::chrono::steady_clock::now();
+    LeafMesh leaves =
+        makeLeaves(std::move(scene.meshes[m]), options, stats, [&](const char* stage) { progress(0.0, stage); });
+    repaired.closed[m] = repaired.closed[m] && leaves.positionsDistinct;
     stats.subdivideSeconds += secondsSince(subdivideStart);
 
     auto buildStart = std::chrono::steady_clock::now();
     // The patches' words and control points go to the file now: nothing before the layout reads them.
-    StageTimer patchLayout(&stats.stages, "patch points");
-    const PatchBases patchBases = appendPatchPoints(data, patches);
-    patchLayout.stop();
+    const PatchBases patchBases =
+        timed(&stats.stages, "patch points", [&] { return appendPatchPoints(data, leaves.patches); });
+    if (options.subdivisionLevels >= 1) returnFreePages(options.threads, &stats.stages);
+    VertexFaces leafFaces;  // made by the normals' sums on threads, then the leaf clusters' dual graph
+    const ShadingNormals shading = timed(&stats.stages, "shading normals", [&] {
+      return shadingNormals(leaves.faces, leaves.normals, options.creaseAngleDegrees, options.threads, &leafFaces);
+    });
+    FillLaterVector<glm::vec3>().swap(leaves.normals);
     BuildOptions bo;
     bo.threads = options.threads;
     bo.groupSize = options.groupSize;
-    bo.leafFaceErrors = &patchErrors;
-    bo.leavesAreRepairedFaces = trianglesOnly;
+    bo.leafFaceErrors = &leaves.patchErrors;
+    bo.leavesAreRepairedFaces = leaves.trianglesOnly;
     bo.times = &stats.stages;
-    if (options.progress)
-      bo.progress = [&, m](double f, const char* stage) {
-        options.progress((double(m) + f) / double(scene.meshes.size()), stage);
-      };
-    // The rounds' meshes and the patch trees' scratch, freed in the workers' arenas.
-    if (options.subdivisionLevels >= 1) returnFreePages(options.threads, &stats.stages);
-    StageTimer normals(&stats.stages, "shading normals");
-    VertexFaces leafFaces;  // made by the normals' sums on threads, then the leaf clusters' dual graph
-    const ShadingNormals shading =
-        shadingNormals(leaves, leafNormals, options.creaseAngleDegrees, options.threads, &leafFaces);
-    normals.stop();
-    FillLaterVector<glm::vec3>().swap(leafNormals);
     bo.shading = &shading;
     bo.leafFaces = &leafFaces;
-    const std::string where = scene.meshes.size() > 1 ? path + " (mesh '" + scene.meshNames[m] + "')" : path;
+    if (options.progress) bo.progress = progress;
     Dag dag;
     try {
-      dag = buildDag(leaves, bo);
+      dag = buildDag(leaves.faces, bo);
     } catch (const SurfaceError& e) {
       throw InputError(where, e.what());
     }
-    // The rounds' scratch, in the workers' arenas: the layout's arrays are allocated on this thread.
-    returnFreePages(options.threads, &stats.stages);
-    StageTimer layout(&stats.stages, "layout");
-    const bool last = m + 1 == scene.meshes.size();
-    if (last) {  // every mesh's closedness is known: the instances' total too
-      instances = sceneInstances(path, scene, closed, reach, stats.zeroScaleInstances);
-      data.expectTotal(Section::Instances, data.count(Section::Instances) + instances.size());
-    }
-    appendGeometry(data, dag, leaves, shading, patches, patchBases, patchErrors, closed[m], last, options.threads);
-    layout.stop();
-    stats.clusters += dag.clusters.size();
-    stats.leafClusters += dag.levelClusters[0];
-    for (const auto& c : dag.clusters) stats.clusterTriangles += c.indices.size() / 3;
-    stats.levels = std::max<uint32_t>(stats.levels, uint32_t(dag.levelClusters.size()));
-    stats.levelClusters.resize(stats.levels, 0);
-    stats.levelTriangles.resize(stats.levels, 0);
-    for (size_t l = 0; l < dag.levelClusters.size(); l++) {
-      stats.levelClusters[l] += dag.levelClusters[l];
-      stats.levelTriangles[l] += dag.levelTriangles[l];
-    }
-    stats.rootClusters += dag.rootClusters;
-    if (dag.rootClusters > dag.roots.components)
-      stats.unreduced.push_back({scene.meshes.size() > 1 ? scene.meshNames[m] : path, dag.rootClusters, dag.roots,
-                                 unreducedReason(dag.roots)});
-    stats.relaxedGroups += dag.relaxedGroups;
-    stats.stuckGroups += dag.stuckGroups;
+    returnFreePages(options.threads, &stats.stages);  // the layout's arrays are allocated on this thread
+    timed(&stats.stages, "layout", [&] {
+      const bool last = m + 1 == meshes;
+      if (last) {  // every mesh's closedness is known: the instances' total too
+        instances = sceneInstances(path, scene, repaired.closed, repaired.reach, stats.zeroScaleInstances);
+        data.expectTotal(Section::Instances, data.count(Section::Instances) + instances.size());
+      }
+      appendGeometry(data, dag, leaves.faces, shading, leaves.patches, patchBases, leaves.patchErrors,
+                     repaired.closed[m], last, options.threads);
+    });
+    addDagStats(stats, dag, name);
     stats.buildSeconds += secondsSince(buildStart);
   }
-  if (scene.meshes.empty()) instances = sceneInstances(path, scene, closed, reach, stats.zeroScaleInstances);
+  if (meshes == 0) instances = sceneInstances(path, scene, repaired.closed, repaired.reach, stats.zeroScaleInstances);
   data.append(Section::Instances, instances);
   stats.geometries = uint32_t(data.count(Section::Geometries));
   stats.instances = uint32_t(data.count(Section::Instances));

@@ -262,12 +262,9 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
   };
   report(0.0, "clustering");
   Dag dag;
-  StageTimer leaves(options.times, "leaf clusters");
-  dag.clusters = makeLeafClusters(mesh, options);
-  leaves.stop();
-  StageTimer chordSetUp(options.times, "chord rule");
-  ChordRule chords(mesh.positions.size(), options.threads);
-  chordSetUp.stop();
+  StageTimes* times = options.times;
+  dag.clusters = timed(times, "leaf clusters", [&] { return makeLeafClusters(mesh, options); });
+  ChordRule chords = timed(times, "chord rule", [&] { return ChordRule(mesh.positions.size(), options.threads); });
   std::vector<uint32_t> active(dag.clusters.size());
   for (uint32_t i = 0; i < active.size(); i++) active[i] = i;
   dag.levelClusters.push_back(uint32_t(active.size()));
@@ -288,49 +285,46 @@ Dag buildDag(const PolygonMesh& mesh, const BuildOptions& options) {
     // groups, which does not read it: the inserts fill the threads that the grouping leaves idle. The set's
     // room is made first: memory allocated by two threads at once, each in its own malloc arena,
     // raised the peak. The inserts' wall time counts as the chord rule's and as grouping's.
-    StageTimer room(options.times, "chord rule");
-    chords.makeRoom(dag.clusters, unrecorded, unrecorded == 0 ? nullptr : &active, options.threads);
-    room.stop();
+    timed(times, "chord rule",
+          [&] { chords.makeRoom(dag.clusters, unrecorded, unrecorded == 0 ? nullptr : &active, options.threads); });
     StageTimes insertTimes;  // its own: the inserts stop their timer on another thread
     auto recordEdges = [&] {
       StageTimer recording(&insertTimes, "chord rule");
       chords.addClusters(dag.clusters, unrecorded, options.threads);
     };
     std::vector<uint64_t> openEdges;
-    StageTimer grouping(options.times, "grouping");
-    const std::vector<GroupPlan> plans = groupClusters(dag.clusters, active, mesh.positions, options.groupSize,
-                                                       options.threads, &openEdges, recordEdges);
-    grouping.stop();
-    if (options.times)
-      for (const auto& [stage, seconds] : insertTimes.seconds) options.times->add(stage, seconds);
-    StageTimer roundChords(options.times, "chord rule");
-    chords.startRound(plans, dag.clusters, options.threads);
-    freeBorders(dag.clusters, active, options.threads);
-    roundChords.stop();
-    StageTimer simplifying(options.times, "simplify and split");
-    bounds.startRound();
-    std::vector<GroupOutcome> outcomes =
-        simplifyGroups(plans, dag.clusters, mesh.positions, chords, openEdges, round, options, bounds);
-    simplifying.stop();
-    StageTimer adding(options.times, "add round");
+    const std::vector<GroupPlan> plans = timed(times, "grouping", [&] {
+      return groupClusters(dag.clusters, active, mesh.positions, options.groupSize, options.threads, &openEdges,
+                           recordEdges);
+    });
+    if (times)
+      for (const auto& [stage, seconds] : insertTimes.seconds) times->add(stage, seconds);
+    timed(times, "chord rule", [&] {
+      chords.startRound(plans, dag.clusters, options.threads);
+      freeBorders(dag.clusters, active, options.threads);
+    });
+    std::vector<GroupOutcome> outcomes = timed(times, "simplify and split", [&] {
+      bounds.startRound();
+      return simplifyGroups(plans, dag.clusters, mesh.positions, chords, openEdges, round, options, bounds);
+    });
     unrecorded = dag.clusters.size();
-    std::vector<uint32_t> next = addRound(dag, plans, outcomes, round);
-    for (size_t g = 0; g < plans.size(); g++)
-      if (outcomes[g].simplified.halved) doneWork += double(triangleCount(dag.clusters, plans[g].clusters));
-    adding.stop();
+    std::vector<uint32_t> next = timed(times, "add round", [&] {
+      std::vector<uint32_t> added = addRound(dag, plans, outcomes, round);
+      for (size_t g = 0; g < plans.size(); g++)
+        if (outcomes[g].simplified.halved) doneWork += double(triangleCount(dag.clusters, plans[g].clusters));
+      return added;
+    });
     const uint32_t producedCount = uint32_t(dag.clusters.size() - unrecorded);
     if (producedCount == 0) break;  // no group could be halved: what is left are the roots
     active = std::move(next);
     dag.levelClusters.push_back(producedCount);
     dag.levelTriangles.push_back(triangleCount(dag.clusters, active));
   }
-  StageTimer rootGroups(options.times, "root groups");
-  addRootGroups(dag, active, mesh.positions, options);
-  freeBorders(dag.clusters, active, options.threads);
-  rootGroups.stop();
-  StageTimer bounding(options.times, "cluster bounds");
-  bounds.finish(options.threads);
-  bounding.stop();
+  timed(times, "root groups", [&] {
+    addRootGroups(dag, active, mesh.positions, options);
+    freeBorders(dag.clusters, active, options.threads);
+  });
+  timed(times, "cluster bounds", [&] { bounds.finish(options.threads); });
   report(1.0, "done");
   return dag;
 }

@@ -40,4 +40,12 @@ class StageTimer {
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
+// Runs step() as stage `stage` of `times` (nullptr: untimed) and returns what it returns, so that a
+// function reads as its steps: `auto mesh = timed(times, "load", [&] { return load(path); });`.
+template <class Step>
+decltype(auto) timed(StageTimes* times, const char* stage, Step&& step) {
+  StageTimer timer(times, stage);
+  return step();
+}
+
 }  // namespace vgeo
