@@ -33,7 +33,7 @@ void addFrameCounters(nlohmann::ordered_json& r, const FrameResult& f, const Gpu
   r["software_patches"] = f.softwarePatches;  // of those, tessellated and drawn by the compute rasterizer
   // "visibility": the hardware's triangles went into the visibility buffer too (no depth target);
   // "depth": the render pass drew with depth (patches for the tessellator, or no compute rasterizer).
-  r["render_pass"] = f.bareRenderPass ? "visibility" : "depth";
+  r["render_pass"] = f.drewIntoVisibility ? "visibility" : "depth";
   r["patch_triangles"] = f.patchTriangles;
   // Two-pass occlusion culling: the clusters the early pass drew (those of last frame's visible instances)
   // and what the late pass found hidden behind them.

@@ -204,20 +204,21 @@ void GpuRenderer::recordSoftwareRaster(VkCommandBuffer cmd, bool patches, bool c
 
 // 8. The resolve of the software rasterizer's pixels where they are nearer than the render pass's
 // (resolve.comp), into the colour target.
-void GpuRenderer::recordResolve(VkCommandBuffer cmd, uint32_t mode, bool patches, bool bare) {
-  if (bare)  // the colour target, untouched by the bare render pass, into the resolve's layout
+void GpuRenderer::recordResolve(VkCommandBuffer cmd, uint32_t mode, bool patches, bool intoVisibility) {
+  if (intoVisibility)  // the colour target, untouched by the render pass without attachments, into the resolve's layout
     layoutBarrier(cmd, color_, VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
                   VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                   VK_ACCESS_SHADER_WRITE_BIT);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, resolvePipeline(mode, patches, bare));
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, resolvePipeline(mode, patches, intoVisibility));
   vkCmdDispatch(cmd, (width_ + 7) / 8, (height_ + 7) / 8, 1);
 }
 
 // 7. The render pass: one indirect draw of the listed hardware triangles, one of the patches (not in the
 // early pass). The late pass's keeps what the early one drew.
-void GpuRenderer::recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings, bool bare, uint32_t pass) {
-  if (bare) {  // the hardware's triangles into the visibility buffer, no attachments (draw_visibility.frag)
+void GpuRenderer::recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings, bool intoVisibility,
+                                   uint32_t pass) {
+  if (intoVisibility) {  // the hardware's triangles into the visibility buffer, no attachments (draw_visibility.frag)
     VkRenderPassBeginInfo begin{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
     begin.renderPass = renderPassVisibility_;
     begin.framebuffer = framebufferVisibility_;

@@ -63,8 +63,8 @@ void GpuRenderer::recordReadback(VkCommandBuffer cmd, const FrameSettings& setti
 
 // Copies what the frame left in host-visible memory into the result: counters, tessellator statistics,
 // image, draw list, worker profile.
-void GpuRenderer::readResults(const FrameSettings& settings, const shaderio::FrameData& frame, bool profile, bool bare,
-                              FrameResult& result) {
+void GpuRenderer::readResults(const FrameSettings& settings, const shaderio::FrameData& frame, bool profile,
+                              bool intoVisibility, FrameResult& result) {
   std::memcpy(&result.counters, countersReadback_.mapped, sizeof(result.counters));
   auto& c = result.counters;
   // The frame's totals where the late pass counted its own (begin_late_pass.glsl).
@@ -77,13 +77,13 @@ void GpuRenderer::readResults(const FrameSettings& settings, const shaderio::Fra
   result.trianglesDrawn = cullTriangles ? c.trianglesDrawn - c.triangleOverflow : c.triangles;
   result.patchesDrawn = std::min(c.patchesDrawn, patchCapacity_);
   result.softwarePatches = std::min(c.softwarePatches, patchCapacity_);
-  if (patches && statistics_ && !bare) {  // the query runs around the tessellated draw, in the depth pass
+  if (patches && statistics_ && !intoVisibility) {  // the query runs around the tessellated draw, in the depth pass
     uint64_t primitives = 0;
     vkCheck(vkGetQueryPoolResults(vk_.device(), statistics_, 0, 1, sizeof(primitives), &primitives, sizeof(primitives),
                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
             "vkGetQueryPoolResults (statistics)");
     result.patchTriangles = int64_t(primitives) + c.softwarePatchTriangles;
-  } else if (!patches || bare) {
+  } else if (!patches || intoVisibility) {
     result.patchTriangles = c.softwarePatchTriangles;
   }
   if (settings.readImage && settings.draw) {
@@ -98,7 +98,7 @@ void GpuRenderer::readResults(const FrameSettings& settings, const shaderio::Fra
     result.drawList.resize(n);
     for (uint32_t i = 0; i < n; i++) result.drawList[i] = {p[2 * i], p[2 * i + 1] & ~VGEO_DRAW_PATCHES_BIT};
   }
-  if (settings.readPixelClusters && bare) {
+  if (settings.readPixelClusters && intoVisibility) {
     // Each pixel's id (shaderio_frame.h, the visibility buffer): a triangle-list word, or a patch-list slot
     // whose entry's first word names the draw-list entry the same way.
     const uint64_t* pixels = static_cast<const uint64_t*>(visibilityReadback_.mapped);

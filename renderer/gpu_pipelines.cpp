@@ -95,8 +95,8 @@ void GpuRenderer::createTargets() {
   // (draw_visibility.frag): no attachments, so nothing to clear or store. Its fragments' atomics come
   // after the compute rasterizers' (and its vertices read the patch grids they wrote), and before the
   // resolve's reads.
-  VkSubpassDescription bare{};
-  bare.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  VkSubpassDescription noAttachments{};
+  noAttachments.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
   VkSubpassDependency bareDeps[2] = {};
   bareDeps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
   bareDeps[0].srcStageMask = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
@@ -109,7 +109,7 @@ void GpuRenderer::createTargets() {
   bareDeps[1].dstStageMask = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
   bareDeps[1].dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
   rp.attachmentCount = 0;
-  rp.pSubpasses = &bare;
+  rp.pSubpasses = &noAttachments;
   rp.pDependencies = bareDeps;
   vkCheck(vkCreateRenderPass(dev, &rp, nullptr, &renderPassVisibility_), "vkCreateRenderPass (visibility)");
   fb.renderPass = renderPassVisibility_;

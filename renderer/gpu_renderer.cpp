@@ -119,7 +119,7 @@ GpuRenderer::GpuRenderer(VulkanContext& context, const RenderScene& scene, uint3
                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
 
   if (vk_.isLavapipe()) {
-    claimMode_ = 1;
+    claimMode_ = VGEO_CLAIM_WRITTEN;
     iterationBudget_ = kLavapipeIterationBudget;
     persistentWorkgroups_ = kLavapipeWorkgroups;
   } else {
@@ -318,7 +318,7 @@ shaderio::FrameData GpuRenderer::frameConstants(const FrameSettings& settings, O
 // lavapipe one submission a pass timed on the host. With occlusion culling the selection and drawing run
 // twice (docs/design.md, "Occlusion culling"), the depth pyramid between.
 void GpuRenderer::runPasses(const FrameSettings& settings, const shaderio::FrameData& frame, OcclusionPlan plan,
-                            bool bare, FrameResult& result) {
+                            bool intoVisibility, FrameResult& result) {
   // The frame's passes in order, each with where its time goes (nullptr: the frame's only) and the
   // selection pass it belongs to (VGEO_PASS_*).
   const bool software = frame.softwareRaster != VGEO_RASTER_NONE;
@@ -344,8 +344,9 @@ void GpuRenderer::runPasses(const FrameSettings& settings, const shaderio::Frame
                           recordSoftwareRaster(cmd, softwarePatches, pass != VGEO_PASS_LATE);
                         }});
     if (settings.draw)
-      passes.push_back({&result.drawMs, pass,
-                        [&, bare, pass](VkCommandBuffer cmd) { recordRenderPass(cmd, settings, bare, pass); }});
+      passes.push_back({&result.drawMs, pass, [&, intoVisibility, pass](VkCommandBuffer cmd) {
+                          recordRenderPass(cmd, settings, intoVisibility, pass);
+                        }});
   };
   if (frame.occlusion == VGEO_OCCLUSION_OFF) {
     addSelection(VGEO_PASS_ONLY);
@@ -359,7 +360,7 @@ void GpuRenderer::runPasses(const FrameSettings& settings, const shaderio::Frame
   }
   if (settings.draw && (software || settings.mode == VGEO_MODE_PYRAMID))  // the pyramid view: every pixel
     passes.push_back({&result.resolveMs, VGEO_PASS_LATE, [&](VkCommandBuffer cmd) {
-                        recordResolve(cmd, settings.mode, frame.softwarePatches != 0u, bare);
+                        recordResolve(cmd, settings.mode, frame.softwarePatches != 0u, intoVisibility);
                       }});
   passes.push_back({nullptr, VGEO_PASS_LATE, [&](VkCommandBuffer cmd) { recordReadback(cmd, settings); }});
   if (passes.size() + 1 > kMaxTimestamps) throw std::logic_error("more passes than timestamps");
@@ -448,14 +449,15 @@ FrameResult GpuRenderer::renderFrame(const FrameSettings& settings) {
   FrameResult result;
   result.culledInTraversal = frame.cullInTraversal != 0u;
   result.occlusion = frame.occlusion != VGEO_OCCLUSION_OFF;
-  const bool bare = drawsIntoVisibility(settings, frame);
-  frame.pyramidSources = bare ? VGEO_PYRAMID_FROM_VISIBILITY
-                              : VGEO_PYRAMID_FROM_DEPTH_IMAGE |
-                                    (frame.softwareRaster != VGEO_RASTER_NONE ? VGEO_PYRAMID_FROM_VISIBILITY : 0u);
+  const bool intoVisibility = drawsIntoVisibility(settings, frame);
+  frame.pyramidSources = intoVisibility
+                             ? VGEO_PYRAMID_FROM_VISIBILITY
+                             : VGEO_PYRAMID_FROM_DEPTH_IMAGE |
+                                   (frame.softwareRaster != VGEO_RASTER_NONE ? VGEO_PYRAMID_FROM_VISIBILITY : 0u);
   std::memcpy(frameData_.mapped, &frame, sizeof(frame));
-  runPasses(settings, frame, plan, bare, result);
-  readResults(settings, frame, profile, bare, result);
-  result.bareRenderPass = bare;
+  runPasses(settings, frame, plan, intoVisibility, result);
+  readResults(settings, frame, profile, intoVisibility, result);
+  result.drewIntoVisibility = intoVisibility;
   result.pyramidBuilt = frame.occlusion == VGEO_OCCLUSION_ON || plan == OcclusionPlan::OnePassThenPyramid;
   if (result.pyramidBuilt) {  // the next frame's early pass tests against this pyramid
     pyramidMade_ = true;

@@ -62,7 +62,7 @@ struct FrameSettings {
   Traversal traversal = Traversal::Persistent;
   bool readDrawList = false;  // copy the draw list back (tests, --compare-cpu)
   // Tests: FrameResult::pixelClusters, from the visibility buffer; the frame must draw every pixel into it
-  // (FrameResult::bareRenderPass: Raster::Software, or auto on a GPU).
+  // (FrameResult::drewIntoVisibility: Raster::Software, or auto on a GPU).
   bool readPixelClusters = false;
   bool readImage = true;
   bool draw = true;          // false: selection only (cut benchmarks); no image
@@ -103,14 +103,14 @@ struct FrameResult {
   uint32_t softwarePatches = 0;         // of those, drawn by the compute rasterizer
   int64_t patchTriangles = -1;          // triangles made of them (-1: no pipeline statistics for the hardware's)
   std::vector<CutEntry> drawList;       // when readDrawList
-  std::vector<CutEntry> pixelClusters;  // when readPixelClusters in a bare render pass: the distinct (instance,
-                                        // cluster) of the surfaces the picture shows
-  std::vector<uint8_t> rgba;            // when readImage: width x height x 4
-  bool culledInTraversal = false;       // the persistent traversal culled the instances (instanceCullMs: the reset)
-  bool occlusion = false;               // two passes ran (counters: the frame's totals; drawBase the early pass's
-                                        // clusters, occluded* what the late pass hid)
-  bool pyramidBuilt = false;            // the frame left a depth pyramid (two passes, or one before a probe)
-  bool bareRenderPass = false;          // the render pass had no attachments: every pixel from the visibility buffer
+  std::vector<CutEntry> pixelClusters;  // when readPixelClusters in a render pass without attachments: the distinct
+                                        // (instance, cluster) of the surfaces the picture shows
+  std::vector<uint8_t> rgba;        // when readImage: width x height x 4
+  bool culledInTraversal = false;   // the persistent traversal culled the instances (instanceCullMs: the reset)
+  bool occlusion = false;           // two passes ran (counters: the frame's totals; drawBase the early pass's
+                                    // clusters, occluded* what the late pass hid)
+  bool pyramidBuilt = false;        // the frame left a depth pyramid (two passes, or one before a probe)
+  bool drewIntoVisibility = false;  // the render pass had no attachments: every pixel from the visibility buffer
   // The passes' times: rasterMs the software rasterizer, drawMs the render pass (hardware draws), resolveMs
   // the shading of the software rasterizer's pixels; frameMs all of them and the read-back copies.
   // With occlusion culling each is the sum of both passes', and pyramidMs the depth pyramid's build.
@@ -174,7 +174,7 @@ class GpuRenderer {
       return false;
     if (s.instanceCulling == InstanceCulling::InTraversal)
       return instances <= kCullInTraversalMaxPerWorker * persistentWorkgroups_;
-    return claimMode_ == 0 && cullInstanceLanes(s) != 1 &&
+    return claimMode_ == VGEO_CLAIM_PAST_FRONTIER && cullInstanceLanes(s) != 1 &&
            instances <= kCullInTraversalPerWorker * persistentWorkgroups_;
   }
 
@@ -190,9 +190,9 @@ class GpuRenderer {
   OcclusionPlan occlusionPlan(const FrameSettings& settings) const;
   shaderio::FrameData frameConstants(const FrameSettings& settings, OcclusionPlan plan) const;
   void prepareReadbacks(const FrameSettings& settings, bool profile);
-  void runPasses(const FrameSettings& settings, const shaderio::FrameData& frame, OcclusionPlan plan, bool bare,
-                 FrameResult& result);
-  void readResults(const FrameSettings& settings, const shaderio::FrameData& frame, bool profile, bool bare,
+  void runPasses(const FrameSettings& settings, const shaderio::FrameData& frame, OcclusionPlan plan,
+                 bool intoVisibility, FrameResult& result);
+  void readResults(const FrameSettings& settings, const shaderio::FrameData& frame, bool profile, bool intoVisibility,
                    FrameResult& result);
   bool checkDrained(FrameResult& result);
   void growOverflowedLists(const shaderio::Counters& counters, float tau);
@@ -225,7 +225,7 @@ class GpuRenderer {
   void recordTraversal(VkCommandBuffer cmd, const FrameSettings& settings, uint32_t pass);
   void recordTriangleCull(VkCommandBuffer cmd, bool patches);
   void recordSoftwareRaster(VkCommandBuffer cmd, bool patches, bool clear);
-  void recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings, bool bare, uint32_t pass);
+  void recordRenderPass(VkCommandBuffer cmd, const FrameSettings& settings, bool intoVisibility, uint32_t pass);
   void recordDepthPyramid(VkCommandBuffer cmd);
   // The pyramid levels a workgroup's tile reduces to in shared memory (build_depth_pyramid.comp): 1 on
   // lavapipe, where each of the tile's barriers costs more than the one workgroup's work above it.
@@ -246,7 +246,7 @@ class GpuRenderer {
   static bool keepsPyramid(const FrameSettings& s) { return !sameView(s.cullView, s.drawView); }
   // Whether the depth pyramid was drawn from this camera: a frozen cut needs it from the camera it froze at.
   bool pyramidDrawnFrom(const View& view) const { return pyramidMade_ && sameView(pyramidView_, view); }
-  void recordResolve(VkCommandBuffer cmd, uint32_t mode, bool patches, bool bare);
+  void recordResolve(VkCommandBuffer cmd, uint32_t mode, bool patches, bool intoVisibility);
   Pipeline computePipeline(const uint32_t* code, size_t bytes, const VkSpecializationInfo* specialization = nullptr);
   VkPipeline resolvePipeline(uint32_t mode, bool patches, bool everyPixel);
   void recordReadback(VkCommandBuffer cmd, const FrameSettings& settings);
@@ -261,7 +261,7 @@ class GpuRenderer {
       return VGEO_RASTER_NONE;
     return s.raster == Raster::Software ? VGEO_RASTER_ALL : VGEO_RASTER_SMALL;
   }
-  // Whether the frame's render pass is the bare one (no attachments): its triangles (and the patches the
+  // Whether the frame's render pass is the one without attachments (no attachments): its triangles (and the patches the
   // compute rasterizer leaves to the hardware, from their grids) go into the visibility buffer and the
   // resolve shades every pixel. Not when patches go to the tessellator: it draws with depth.
   bool drawsIntoVisibility(const FrameSettings& s, const shaderio::FrameData& frame) const {
@@ -281,7 +281,8 @@ class GpuRenderer {
   uint32_t width_, height_;
   uint32_t queueCapacity_ = 1u << 20, drawCapacity_ = 1u << 20, triangleCapacity_ = 1u << 22, patchCapacity_ = 1u << 18;
   uint32_t patchGridCapacity_ = 1;
-  uint32_t persistentWorkgroups_ = 0, iterationBudget_ = 0, claimMode_ = 0;
+  uint32_t persistentWorkgroups_ = 0, iterationBudget_ = 0;
+  uint32_t claimMode_ = VGEO_CLAIM_PAST_FRONTIER;  // VGEO_CLAIM_WRITTEN on lavapipe
   uint32_t lastCullItems_ = 0;  // the last frame's counters.cullItems: sizes the persistent traversal's first claim
   uint64_t frameMemoryLimit_ = uint64_t(kDefaultFrameMemoryMiB) << 20;
 

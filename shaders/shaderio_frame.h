@@ -164,6 +164,10 @@ struct SceneArrays {
   uvec2 pad;
 };
 
+// FrameData.claimMode: how the persistent traversal's workers claim queue slots (traverse_persistent.comp).
+#define VGEO_CLAIM_PAST_FRONTIER 0u  // GPUs: a batch of slots, written or not; a lane waits on its slot
+#define VGEO_CLAIM_WRITTEN 1u        // lavapipe: only slots already written; nobody waits
+
 // Per-frame constants (a read-only storage buffer, std140-compatible). The cull camera selects the cut and culls; the
 // draw camera makes the picture. They differ only with --freeze-camera.
 struct FrameData {
@@ -180,7 +184,7 @@ struct FrameData {
   uint drawCapacity;      // entries in the draw list
   uint iterationBudget;   // persistent traversal: leave after this many loop iterations (0: never)
   uint maxClusters;       // largest cluster count of a geometry (flat traversal)
-  uint claimMode;         // persistent traversal: 0 claim past the frontier, 1 claim only reserved items
+  uint claimMode;         // persistent traversal: VGEO_CLAIM_*
   uint triangleCull;      // 1: cull_triangles.comp lists the triangles to draw; 0: every listed cluster's
   uint triangleCapacity;  // entries in the triangle list
   float viewportWidth;    // pixels

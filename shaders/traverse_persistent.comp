@@ -5,14 +5,14 @@
 // through shared memory; no lane ever spins on a flag another lane of its workgroup must set.
 //
 // Claiming (frame.claimMode):
-//   0  past the frontier (GPUs): one atomicAdd claims a batch of slots, produced or not; each lane keeps
+//   VGEO_CLAIM_PAST_FRONTIER (GPUs): one atomicAdd claims a batch of slots, produced or not; each lane keeps
 //      its slot until a producer fills it. The batch follows the backlog (the items written and not yet
 //      claimed, read beside the previous iteration's slots, shared over the workgroups), from kMinBatch
 //      (a chain of single items, as in a close view of a few instances: spread over many workgroups) to
 //      64 (100,000 instances: fewer claims). The first claim, which nothing has been read for, is sized
 //      by the last frame's instance-culling items (frame.firstClaimItems), not the instance count, so that
 //      a few workgroups do not take every item of a close view.
-//   1  written items only (lavapipe): the lanes find the written prefix after the read position and
+//   VGEO_CLAIM_WRITTEN (lavapipe): the lanes find the written prefix after the read position and
 //      lane 0 claims it by compare-and-swap; nobody waits on a slot, a workgroup holds nothing between
 //      iterations, so it can leave on the iteration budget (lavapipe ends loops silently after 65,535
 //      iterations per invocation, all loops counted, docs/gpu-notes.md, 1: every loop here counts into gLoops).
@@ -356,7 +356,7 @@ void cullInstancesFirst() {
 void claimSlots(uint lane, bool firstClaim) {
   // Beside the first claim: when instance culling queued nothing, nothing will ever be queued (only node
   // items produce items), and the workers leave without reading their slots.
-  if (lane == kWatchLane && firstClaim && frame.claimMode == 0u && frame.cullInTraversal == 0u) sNoItems = counters.queueWrite == counters.queueBase ? 1u : 0u;
+  if (lane == kWatchLane && firstClaim && frame.claimMode == VGEO_CLAIM_PAST_FRONTIER && frame.cullInTraversal == 0u) sNoItems = counters.queueWrite == counters.queueBase ? 1u : 0u;
   if (lane == 0u) {
     sExit = kWorkerStays;
     sCount = 0u;
@@ -365,7 +365,7 @@ void claimSlots(uint lane, bool firstClaim) {
     } else if (sHolding == 0u) {
       if (frame.iterationBudget != 0u && sLoops >= frame.iterationBudget) {
         sExit = kWorkerOutOfBudget;
-      } else if (frame.claimMode == 0u) {
+      } else if (frame.claimMode == VGEO_CLAIM_PAST_FRONTIER) {
         sBase = atomicAdd(counters.queueRead, sBatch);  // one atomic on the chain of steps, nothing before it
         sCount = sBatch;
       } else {
@@ -420,7 +420,7 @@ void takeSlots(uint lane, inout uint slot) {
   if (lane < sCount) slot = sBase + lane;
   uint instance, code;
   bool have = false;
-  if (frame.claimMode == 1u) {
+  if (frame.claimMode == VGEO_CLAIM_WRITTEN) {
     // Claimed slots are written (above).
     have = slot != VGEO_INVALID && takeQueue(slot, instance, code);
     slot = VGEO_INVALID;
@@ -460,7 +460,7 @@ void runRounds(uint lane) {
   // round 2 always) with more tests than lanes preloads them, in claims below kSerialBatch on GPUs
   // (lavapipe runs a test a lane: kLaneTests is 1 there; bench/README.md, cut selection).
   const uint testMask = (1u << kTestBits) - 1u;
-  const bool preload = frame.claimMode == 0u && sCount < kSerialBatch;
+  const bool preload = frame.claimMode == VGEO_CLAIM_PAST_FRONTIER && sCount < kSerialBatch;
   if (preload && sDoneNodes == 0u && (sEntryCounts[0] & testMask) > VGEO_TRAVERSAL_WORKGROUP) runClusterRound(0u, lane);
   else if (sEntryCounts[0] != 0u) runRound(0u, lane);
   if (sKeepCount != 0u) {

@@ -99,7 +99,7 @@ TEST_F(RenderOcclusion, PictureEqualsThePictureWithoutAlongAPath) {
         without.readPixelClusters = config.raster == Raster::Software;  // every pixel in the visibility buffer
         const FrameResult a = complete(occluding, with), b = complete(plain, without);
         if (without.readPixelClusters) {
-          EXPECT_TRUE(b.bareRenderPass);
+          EXPECT_TRUE(b.drewIntoVisibility);
           expectShownAreDrawn(a, b, i);
         }
         ASSERT_TRUE(a.occlusion);
@@ -132,7 +132,7 @@ TEST_F(RenderOcclusion, EveryClusterThePictureShowsIsDrawn) {
     without.readPixelClusters = true;
     complete(occluding, with);  // the first frame from a camera has no pyramid to test against
     const FrameResult a = complete(occluding, with), b = complete(plain, without);
-    ASSERT_TRUE(b.bareRenderPass);
+    ASSERT_TRUE(b.drewIntoVisibility);
     ASSERT_GT(b.pixelClusters.size(), 10u);
     expectShownAreDrawn(a, b, 0);
     EXPECT_LT(a.drawList.size(), b.drawList.size());

@@ -83,7 +83,7 @@ TEST_P(RenderPatches, NoCracksCloseUpAndAtTheTransition) {
       expectPatchesInCompute(r);
       // With patches in compute, those left to the hardware are drawn from their grids: no depth pass.
       if (GetParam() == Raster::Software) {
-        EXPECT_TRUE(r.bareRenderPass) << "view " << view << " tau " << tau;
+        EXPECT_TRUE(r.drewIntoVisibility) << "view " << view << " tau " << tau;
       }
       const uint32_t listed = r.counters.drawCount, patched = r.counters.patchClusters;
       if (patched * 2 > listed) closeViews++;
