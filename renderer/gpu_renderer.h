@@ -105,12 +105,12 @@ struct FrameResult {
   std::vector<CutEntry> drawList;       // when readDrawList
   std::vector<CutEntry> pixelClusters;  // when readPixelClusters in a render pass without attachments: the distinct
                                         // (instance, cluster) of the surfaces the picture shows
-  std::vector<uint8_t> rgba;        // when readImage: width x height x 4
-  bool culledInTraversal = false;   // the persistent traversal culled the instances (instanceCullMs: the reset)
-  bool occlusion = false;           // two passes ran (counters: the frame's totals; drawBase the early pass's
-                                    // clusters, occluded* what the late pass hid)
-  bool pyramidBuilt = false;        // the frame left a depth pyramid (two passes, or one before a probe)
-  bool drewIntoVisibility = false;  // the render pass had no attachments: every pixel from the visibility buffer
+  std::vector<uint8_t> rgba;            // when readImage: width x height x 4
+  bool culledInTraversal = false;       // the persistent traversal culled the instances (instanceCullMs: the reset)
+  bool occlusion = false;               // two passes ran (counters: the frame's totals; drawBase the early pass's
+                                        // clusters, occluded* what the late pass hid)
+  bool pyramidBuilt = false;            // the frame left a depth pyramid (two passes, or one before a probe)
+  bool drewIntoVisibility = false;      // the render pass had no attachments: every pixel from the visibility buffer
   // The passes' times: rasterMs the software rasterizer, drawMs the render pass (hardware draws), resolveMs
   // the shading of the software rasterizer's pixels; frameMs all of them and the read-back copies.
   // With occlusion culling each is the sum of both passes', and pyramidMs the depth pyramid's build.
