@@ -113,6 +113,11 @@ std::string unreducedReason(const SurfaceTopology& t) {
   return "no group could be halved without moving a locked group border or folding the surface";
 }
 
+// How errors name mesh m: the file, and the mesh's name where the file holds several.
+std::string meshWhere(const std::string& path, const SourceScene& scene, size_t m) {
+  return scene.meshes.size() > 1 ? path + " (mesh '" + scene.meshNames[m] + "')" : path;
+}
+
 // What repair finds of each mesh that later steps need.
 struct RepairedMeshes {
   std::vector<bool> closed;   // closed and facing out: its instances may drop back faces
@@ -128,7 +133,7 @@ RepairedMeshes repairMeshes(const std::string& path, SourceScene& scene, const S
     PolygonMesh& mesh = scene.meshes[m];
     for (const glm::vec3& p : mesh.positions) r.reach[m] = std::max(r.reach[m], glm::length(glm::dvec3(p)));
     stats.inputTriangles += triangleCount(mesh, options.threads);
-    const std::string where = scene.meshes.size() > 1 ? path + " (mesh '" + scene.meshNames[m] + "')" : path;
+    const std::string where = meshWhere(path, scene, m);
     const RepairReport report =
         timed(&stats.stages, "repair", [&] { return repairMesh(mesh, where, options.threads); });
     add(stats.repair, report);
@@ -227,7 +232,7 @@ void buildScene(const std::string& path, const SceneBuildOptions& options, Scene
   const size_t meshes = scene.meshes.size();
   for (size_t m = 0; m < meshes; m++) {
     const std::string name = meshes > 1 ? scene.meshNames[m] : path;
-    const std::string where = meshes > 1 ? path + " (mesh '" + name + "')" : path;
+    const std::string where = meshWhere(path, scene, m);
     auto progress = [&, m](double f, const char* stage) {
       if (options.progress) options.progress((double(m) + f) / double(meshes), stage);
     };
